@@ -1,0 +1,91 @@
+/**
+ * @file search.h
+ * @brief Stage 1: A* and bidirectional A* over (voxel, heading) states.
+ *
+ * Without penalties the heading carries no cost and every voxel is one state, so the search costs
+ * no more than A* over voxels. With lambda or mu > 0 states are (voxel, heading) (pipeline.md s.1).
+ */
+#ifndef TDO_SEARCH_H
+#define TDO_SEARCH_H
+
+#include "tdo/arena.h"
+#include "tdo/grid.h"
+#include "tdo/status.h"
+#include "tdo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Which search runs. */
+typedef enum tdo_search_kind {
+  TDO_SEARCH_ASTAR = 0, /**< unidirectional A* */
+  TDO_SEARCH_BIDIR = 1  /**< bidirectional A* with the optimal stopping rule */
+} tdo_search_kind;
+
+/** Opaque search context; carved from an arena by tdo_search_init. */
+typedef struct tdo_search tdo_search;
+
+/** Capacities of one search context. */
+typedef struct tdo_search_config {
+  uint32_t max_voxels;     /**< largest grid it will search */
+  uint32_t max_nodes;      /**< states per direction */
+  uint32_t max_path;       /**< voxels in the returned path */
+  uint32_t max_expansions; /**< default budget when the input gives 0 */
+} tdo_search_config;
+
+/** One query. */
+typedef struct tdo_search_input {
+  const tdo_grid* grid;    /**< finished grid to search */
+  tdo_vec3 start;          /**< m, world frame */
+  tdo_vec3 goal;           /**< m, world frame */
+  tdo_search_kind kind;    /**< A* or bidirectional */
+  double lambda;           /**< m of cost per (turn/pi)^2, >= 0; 0 = no turn penalty */
+  double mu;               /**< m of f per unit deviation, >= 0; 0 = no deviation term */
+  double theta_max;        /**< rad; steps within theta_max of the heading are expanded directly,
+                                sharper ones only through a pivot (turn in place at the turn cost
+                                plus a surcharge). <= 0 or >= pi: unconstrained */
+  double d_th;             /**< deviation threshold in (0, 1): steps deviating more from the target
+                                direction go through a pivot too. <= 0 or >= 1: off */
+  uint32_t max_expansions; /**< expansions allowed (both directions); 0 = configured default */
+} tdo_search_input;
+
+/**
+ * @brief Extra cost (m) of a pivot: lambda * (theta_max / pi)^2, the price of the sharpest direct
+ *        turn, so a pivot never undercuts a direct step. 0 when unconstrained.
+ */
+double tdo_search_pivot_cost(double lambda, double theta_max);
+
+/** Result of one query. Arrays point into the context and stay valid until the next run. */
+typedef struct tdo_search_output {
+  double cost;           /**< m, sum of step lengths between voxel centres (penalties excluded) */
+  double penalized_cost; /**< m, cost plus turn penalties (equals cost when lambda = 0) */
+  uint32_t expansions;   /**< states expanded, both directions */
+  uint32_t pivots;       /**< pivots (sharp turns in place) on the returned path */
+  uint32_t n_path;       /**< voxels in path, start voxel first, goal voxel last */
+  const tdo_voxel* path; /**< the voxel path */
+} tdo_search_output;
+
+/** @return arena bytes tdo_search_init carves for `cfg`. */
+size_t tdo_search_footprint(const tdo_search_config* cfg);
+
+/**
+ * @brief Carve a search context from `arena`.
+ * @return TDO_ERR_INVALID_ARGUMENT for zero capacities, TDO_ERR_ARENA_TOO_SMALL when it does not
+ * fit.
+ */
+tdo_status tdo_search_init(tdo_search** ctx, tdo_arena* arena, const tdo_search_config* cfg);
+
+/**
+ * @brief Plan on the grid. Allocates nothing.
+ * @return TDO_ERR_START_OUT_OF_BOUNDS / TDO_ERR_GOAL_OUT_OF_BOUNDS, TDO_ERR_START_BLOCKED /
+ *         TDO_ERR_GOAL_BLOCKED, TDO_ERR_START_EQUALS_GOAL, TDO_ERR_NO_PATH, TDO_ERR_NODE_CAPACITY,
+ *         TDO_ERR_PATH_CAPACITY, TDO_ERR_BUDGET, TDO_ERR_MAP_NOT_READY, TDO_ERR_INVALID_ARGUMENT.
+ */
+tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in, tdo_search_output* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TDO_SEARCH_H */

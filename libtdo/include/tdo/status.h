@@ -1,0 +1,49 @@
+/**
+ * @file status.h
+ * @brief The one status enum of libtdo: a name for every failure.
+ */
+#ifndef TDO_STATUS_H
+#define TDO_STATUS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Result of every fallible libtdo call. TDO_OK is zero; every failure has its own name. */
+typedef enum tdo_status {
+  TDO_OK = 0,                      /**< success */
+  TDO_ERR_INVALID_ARGUMENT = 1,    /**< null pointer, non-finite or out-of-range parameter */
+  TDO_ERR_ARENA_TOO_SMALL = 2,     /**< the caller's arena is smaller than the footprint */
+  TDO_ERR_MAP_CAPACITY = 3,        /**< map has more voxels than the configured capacity */
+  TDO_ERR_BOX_CAPACITY = 4,        /**< more obstacle boxes than the configured capacity */
+  TDO_ERR_INVALID_BOX = 5,         /**< box with max <= min on an axis, or non-finite corner */
+  TDO_ERR_MAP_NOT_READY = 6,       /**< planning before a map was finished */
+  TDO_ERR_START_OUT_OF_BOUNDS = 7, /**< start outside the map bounds */
+  TDO_ERR_GOAL_OUT_OF_BOUNDS = 8,  /**< goal outside the map bounds */
+  TDO_ERR_START_BLOCKED = 9,       /**< start voxel intersects an obstacle or is within clearance */
+  TDO_ERR_GOAL_BLOCKED = 10,       /**< goal voxel intersects an obstacle or is within clearance */
+  TDO_ERR_START_EQUALS_GOAL = 11,  /**< start and goal are the same point */
+  TDO_ERR_NO_PATH = 12,            /**< search exhausted: goal unreachable */
+  TDO_ERR_NODE_CAPACITY = 13,      /**< search node pool full */
+  TDO_ERR_PATH_CAPACITY = 14,      /**< path longer than the path buffer */
+  TDO_ERR_BUDGET = 15,             /**< expansion or iteration budget exhausted */
+  TDO_ERR_INFEASIBLE = 16,         /**< no trajectory within the dynamic limits */
+  TDO_ERR_LOCAL_MINIMUM = 17,      /**< potential-field follower trapped, escape failed */
+  TDO_ERR_OBSTACLE_CAPACITY = 18,  /**< more moving obstacles than the configured capacity */
+  TDO_ERR_SAMPLE_CAPACITY = 19,    /**< more trajectory samples than the configured capacity */
+  TDO_ERR_CLEARANCE_CAPACITY =
+      20,               /**< clearance reaches further than the configured voxel radius */
+  TDO_STATUS_COUNT = 21 /**< number of statuses (not a status) */
+} tdo_status;
+
+/**
+ * @brief Stable lower-case name of a status, e.g. "start_blocked".
+ * @return a static string; "unknown_status" for values outside the enum.
+ */
+const char* tdo_status_str(tdo_status status);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TDO_STATUS_H */

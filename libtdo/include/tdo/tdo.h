@@ -1,0 +1,16 @@
+/**
+ * @file tdo.h
+ * @brief Umbrella header of libtdo, the TDO-MSF UAV trajectory planner.
+ */
+#ifndef TDO_TDO_H
+#define TDO_TDO_H
+
+#include "tdo/arena.h"
+#include "tdo/config.h"
+#include "tdo/grid.h"
+#include "tdo/planner.h"
+#include "tdo/search.h"
+#include "tdo/status.h"
+#include "tdo/types.h"
+
+#endif /* TDO_TDO_H */

@@ -1,0 +1,711 @@
+// Stage 1: A* and bidirectional A* over (voxel, heading) states (pipeline.md s.1).
+//
+// Without penalties a voxel is one state (the heading field only remembers the last step), so the
+// search is plain A* over voxels. With lambda or mu > 0 a state is (voxel, heading); the states of
+// one voxel form a chain from a per-voxel slot, so lookups, meetings and capacity stay bounded.
+#include "tdo/search.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "directions.h"
+#include "grid_internal.h"
+
+namespace tdo_internal {
+namespace {
+
+constexpr uint32_t kNil = 0xFFFFFFFFu;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kSqrt2 = 1.41421356237309504880;
+constexpr double kSqrt3 = 1.73205080756887729353;
+constexpr int32_t kMaxAxis = 0xFFFF;  // node coordinates are 16-bit
+
+struct Node {
+  double g;          // m, cost from this side's root: length plus turn penalties
+  uint32_t parent;   // node towards this side's root, kNil at the root
+  uint32_t voxel;    // linear voxel index
+  uint32_t next;     // next state of the same voxel, kNil at the end of the chain
+  uint32_t heap;     // position in the open list, kNil when closed
+  uint16_t x, y, z;  // voxel coordinates
+  uint8_t heading;   // forward-sense step direction into (forward) / out of (backward) the voxel
+  uint8_t closed;    // 1 once expanded
+};
+static_assert(sizeof(Node) == 32, "Node layout");
+
+struct OpenItem {
+  double f;       // m, g + h (+ mu * deviation)
+  float h;        // m, heuristic; smaller h wins ties of f
+  uint32_t node;  // node index; smaller wins ties of f and h (deterministic allocation order)
+};
+static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
+constexpr uint32_t kArity =
+    4;  // 4-ary heap: half the depth of a binary heap, children share a line
+
+// Per-voxel slot word: generation stamp in the high 32 bits, first state of the voxel's chain in
+// the low 31 bits, and kSlotClosed once the voxel's only state is expanded (searches without
+// heading costs), so closed neighbours are skipped without touching the node pool.
+constexpr uint64_t kSlotClosed = 0x80000000u;
+constexpr uint64_t kSlotIndex = 0x7FFFFFFFu;
+// Open-list item that stands for the deferred pivots of an expanded state (partial expansion):
+// its f is a lower bound of every pivot's f, so most are never popped.
+constexpr uint32_t kPivotItem = 0x80000000u;
+
+// Unidirectional A* keeps children whose f does not exceed their parent's on a small LIFO stack
+// instead of the heap: they are expanded next anyway (f <= fmin keeps A* optimal), which skips a
+// heap push and pop for most states on open ground. Full stack: the heap takes the child.
+constexpr uint32_t kStackCap = 1024;
+constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stack
+
+struct StackItem {
+  double f;       // m, f when pushed (<= the f of every open heap state at that time)
+  uint32_t node;  // node index
+  uint32_t pad;
+};
+
+struct Side {
+  uint64_t* slot;  // per voxel: see kSlotClosed
+  Node* nodes;     // state pool, max_nodes
+  OpenItem* open;  // binary min-heap, max_nodes
+  uint32_t n_nodes;
+  uint32_t n_open;
+  int32_t tx, ty, tz;          // target voxel of this side's heuristic
+  StackItem stack[kStackCap];  // A* fast path (forward side only)
+  uint32_t n_stack;
+  double f_cur;   // f of the state being expanded
+  int use_stack;  // 1 for unidirectional A*
+};
+
+}  // namespace
+}  // namespace tdo_internal
+
+struct tdo_search {
+  tdo_search_config cfg;
+  tdo_internal::Side side[2];                                           // 0 forward, 1 backward
+  uint32_t gen;                                                         // query generation stamp
+  tdo_voxel* path;                                                      // max_path voxels
+  double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
+  double turn_lambda;                       // lambda the turn table was built for
+  double step_len[tdo_internal::kNumDirs];  // m
+  int64_t offset[tdo_internal::kNumDirs];   // linear index offset of each step
+  double unit[tdo_internal::kNumDirs][3];   // unit vector of each step
+  // combo[a][b]: direction of step a followed by step b when that is one step (kCombo* otherwise)
+  uint8_t combo[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
+  uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
+  double cand_theta;                          // theta_max the cand table was built for
+};
+
+namespace tdo_internal {
+namespace {
+
+struct Query {
+  const tdo_grid* grid;
+  uint32_t voxel[2];  // start voxel, goal voxel
+  tdo_voxel v[2];
+  int bidir;
+  double mu;
+  double d_th;            // deviation threshold, 0 = off
+  double pivot_cost;      // m, surcharge of a pivot
+  double pivot_turn_min;  // m, least turn cost of a pivot (0 when D_th moves in-cone steps there)
+  int constrained;        // theta_max active
+  uint32_t budget;
+  // results
+  double best;
+  uint32_t meet[2];
+  uint32_t expansions;
+};
+
+constexpr uint8_t kComboBack = 26;   // b undoes a
+constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
+
+inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
+  const uint64_t w = s.slot[v];
+  return (w >> 32) == ctx->gen ? static_cast<uint32_t>(w & kSlotIndex) : kNil;
+}
+
+inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
+  s.slot[v] = (static_cast<uint64_t>(ctx->gen) << 32) | idx;
+}
+
+inline bool before(const OpenItem& a, const OpenItem& b) {
+  if (a.f < b.f) return true;
+  if (b.f < a.f) return false;
+  if (a.h < b.h) return true;
+  if (b.h < a.h) return false;
+  return a.node < b.node;
+}
+
+void sift_up(Side& s, uint32_t i) {
+  const OpenItem it = s.open[i];
+  while (i > 0) {
+    const uint32_t p = (i - 1u) / kArity;
+    if (!before(it, s.open[p])) break;
+    s.open[i] = s.open[p];
+    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
+    i = p;
+  }
+  s.open[i] = it;
+  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+}
+
+void sift_down(Side& s, uint32_t i) {
+  const OpenItem it = s.open[i];
+  const uint32_t n = s.n_open;
+  for (;;) {
+    const uint32_t first = kArity * i + 1u;
+    if (first >= n) break;
+    const uint32_t last = first + kArity < n ? first + kArity : n;
+    uint32_t c = first;
+    for (uint32_t k = first + 1u; k < last; ++k)
+      if (before(s.open[k], s.open[c])) c = k;
+    if (!before(s.open[c], it)) break;
+    s.open[i] = s.open[c];
+    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
+    i = c;
+  }
+  s.open[i] = it;
+  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+}
+
+uint32_t pop(Side& s) {
+  const uint32_t top = s.open[0].node;
+  --s.n_open;
+  if (s.n_open > 0) {
+    s.open[0] = s.open[s.n_open];
+    sift_down(s, 0);
+  }
+  if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
+  return top;
+}
+
+inline int32_t iabs(int32_t a) { return a < 0 ? -a : a; }
+
+// 3D octile distance: admissible and consistent for the length part of the cost.
+inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+  int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
+  if (a < b) {
+    const int32_t t = a;
+    a = b;
+    b = t;
+  }
+  if (b < c) {
+    const int32_t t = b;
+    b = c;
+    c = t;
+  }
+  if (a < b) {
+    const int32_t t = a;
+    a = b;
+    b = t;
+  }
+  return res * (static_cast<double>(a) + (kSqrt2 - 1.0) * static_cast<double>(b) +
+                (kSqrt3 - kSqrt2) * static_cast<double>(c));
+}
+
+// Deviation in [0,1]: angle between the search's travel direction and the direction to its target.
+double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
+                 int32_t z) {
+  if (travel >= kNumDirs) return 0.0;
+  const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
+  const double n = sqrt(vx * vx + vy * vy + vz * vz);
+  if (!(n > 0.0)) return 0.0;
+  double c =
+      (ctx->unit[travel][0] * vx + ctx->unit[travel][1] * vy + ctx->unit[travel][2] * vz) / n;
+  if (c > 1.0) c = 1.0;
+  if (c < -1.0) c = -1.0;
+  return acos(c) / kPi;
+}
+
+template <bool kHeaded>
+inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
+                       const Node& n, float* h_out) {
+  const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
+  *h_out = static_cast<float>(h);
+  if (!kHeaded || !(q.mu > 0.0) || n.heading >= kNumDirs) return n.g + h;
+  const int travel = back ? dir_opposite(n.heading) : n.heading;
+  return n.g + h + q.mu * deviation(ctx, s, travel, n.x, n.y, n.z);
+}
+
+void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
+  OpenItem it;
+  it.node = idx;
+  it.f = headed ? priority<true>(ctx, q, s, back, s.nodes[idx], &it.h)
+                : priority<false>(ctx, q, s, back, s.nodes[idx], &it.h);
+  if (s.use_stack && !(it.f > s.f_cur) && s.n_stack < kStackCap) {
+    s.stack[s.n_stack].f = it.f;
+    s.stack[s.n_stack].node = idx;
+    s.stack[s.n_stack].pad = 0;
+    ++s.n_stack;
+    s.nodes[idx].heap = kInStack;
+    return;
+  }
+  s.open[s.n_open] = it;
+  sift_up(s, s.n_open++);
+}
+
+// A pivot state turned in place: its parent holds the same voxel.
+inline bool is_pivot(const Side& s, const Node& n) {
+  return n.parent != kNil && s.nodes[n.parent].voxel == n.voxel;
+}
+
+// A join of headings hf (forward) and hb (backward) beyond theta_max is a pivot.
+inline bool sharp_join(const tdo_search* ctx, const Query& q, int hf, int hb) {
+  return q.constrained && hf < kNumDirs && hb < kNumDirs && ((ctx->cand[hf] >> hb) & 1u) == 0;
+}
+
+// Offer the state just reached on side `a` as a meeting point with every state of the other side
+// in the same voxel; the join adds the turn between the two headings.
+template <bool kHeaded>
+inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
+  const Side& me = ctx->side[a];
+  const Side& other = ctx->side[1 - a];
+  const Node& n = me.nodes[idx];
+  for (uint32_t o = slot_first(ctx, other, n.voxel); o != kNil; o = other.nodes[o].next) {
+    const Node& m = other.nodes[o];
+    double c = n.g + m.g;
+    if (kHeaded) {
+      const int hf = a == 0 ? n.heading : m.heading, hb = a == 0 ? m.heading : n.heading;
+      // A pivot state continues straight on, through a state of the other side that did not turn
+      // there: any other join would turn twice in one voxel and split one turn's price.
+      const bool pn = is_pivot(me, n), pm = is_pivot(other, m);
+      if ((pn || pm) && (pn == pm || hf != hb)) continue;
+      c += ctx->turn[hf][hb];
+      if (sharp_join(ctx, q, hf, hb)) c += q.pivot_cost;  // the join itself is a sharp turn
+    }
+    if (c < q.best) {
+      q.best = c;
+      q.meet[a] = idx;
+      q.meet[1 - a] = o;
+    }
+  }
+}
+
+// Offer state (w, heading) at cost ng with parent ui: create it, or lower its cost.
+template <bool kHeaded>
+inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
+                        int step, double ng) {
+  Side& s = ctx->side[back];
+  uint32_t idx = kNil;
+  if (kHeaded) {
+    idx = slot_first(ctx, s, w);
+    while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
+  } else {
+    const uint64_t word = s.slot[w];
+    if ((word >> 32) == ctx->gen) {
+      if ((word & kSlotClosed) != 0) return TDO_OK;
+      idx = static_cast<uint32_t>(word & kSlotIndex);
+    }
+  }
+  if (idx != kNil) {
+    Node& n = s.nodes[idx];
+    if (n.closed || !(ng < n.g)) return TDO_OK;
+    n.g = ng;
+    n.parent = ui;
+    n.heading = static_cast<uint8_t>(heading);
+    if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
+      float h = 0.0f;
+      s.open[n.heap].f = priority<kHeaded>(ctx, q, s, back, n, &h);
+      s.open[n.heap].h = h;
+      sift_up(s, n.heap);
+    }
+  } else {
+    if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+    const Node& u = s.nodes[ui];
+    idx = s.n_nodes++;
+    Node& n = s.nodes[idx];
+    n.g = ng;
+    n.parent = ui;
+    n.voxel = w;
+    n.next = slot_first(ctx, s, w);
+    n.x = static_cast<uint16_t>(u.x + (step >= 0 ? dir_dx(step) : 0));
+    n.y = static_cast<uint16_t>(u.y + (step >= 0 ? dir_dy(step) : 0));
+    n.z = static_cast<uint16_t>(u.z + (step >= 0 ? dir_dz(step) : 0));
+    n.heading = static_cast<uint8_t>(heading);
+    n.closed = 0;
+    slot_set(ctx, s, w, idx);
+    push(ctx, q, s, back, idx, kHeaded);
+  }
+  if (q.bidir) meet<kHeaded>(ctx, q, back, idx);
+  return TDO_OK;
+}
+
+// Split the legal search-sense steps of state u into those expanded directly and the sharp ones
+// (beyond theta_max of the heading, or deviating more than D_th) reached only through a pivot.
+// Straight ahead is always direct, and a pivot state only goes straight on: so every turn of a path
+// is paid exactly once, and every legal step stays reachable from every state (completeness).
+template <bool kHeaded>
+inline void classify(const tdo_search* ctx, const Query& q, int back, const Node& u,
+                     uint32_t* direct, uint32_t* sharp) {
+  const uint32_t moves = q.grid->moves[u.voxel];
+  *direct = moves;
+  *sharp = 0;
+  if (!kHeaded || u.heading >= kNumDirs) return;
+  const Side& s = ctx->side[back];
+  const int travel = back ? dir_opposite(u.heading) : u.heading;
+  if (is_pivot(s, u)) {  // it turned in place already: it goes straight on
+    *direct = moves & (1u << travel);
+    return;
+  }
+  *direct = moves & ctx->cand[travel];
+  *sharp = moves & ~ctx->cand[travel];
+  if (q.d_th > 0.0) {
+    for (uint32_t m = *direct & ~(1u << travel); m != 0; m &= m - 1u) {
+      const int e = __builtin_ctz(m);
+      if (deviation(ctx, s, e, u.x + dir_dx(e), u.y + dir_dy(e), u.z + dir_dz(e)) > q.d_th) {
+        *direct &= ~(1u << e);
+        *sharp |= 1u << e;
+      }
+    }
+  }
+}
+
+template <bool kHeaded>
+tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+  Side& s = ctx->side[back];
+  const tdo_grid* g = q.grid;
+  const Node u = s.nodes[ui];
+  uint32_t direct;  // search-sense steps expanded directly
+  uint32_t sharp;   // search-sense steps reached through a pivot only
+  classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
+  // Without heading costs, a neighbour one legal step away from u's parent p was already offered
+  // by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up.
+  int s_in = -1;         // search-sense step p -> u
+  uint32_t p_moves = 0;  // legal steps from p
+  if (!kHeaded && u.parent != kNil) {
+    s_in = back ? dir_opposite(u.heading) : u.heading;
+    p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
+  }
+  uint32_t mask = direct;
+  while (mask != 0) {
+    const int e = __builtin_ctz(mask);  // search-direction step
+    mask &= mask - 1u;
+    if (!kHeaded && s_in >= 0) {
+      const uint8_t c = ctx->combo[s_in][e];
+      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) continue;
+    }
+    const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
+    const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
+    double ng = u.g + ctx->step_len[e];
+    if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
+    const tdo_status st = relax<kHeaded>(ctx, q, back, ui, w, d, e, ng);
+    if (st != TDO_OK) return st;
+  }
+  // Pivots keep the constrained search complete: turning in place to any legal step direction is
+  // allowed at the turn cost plus the pivot surcharge; the new state then steps straight on. They
+  // are deferred behind one open-list item whose f bounds theirs from below.
+  if (kHeaded && sharp != 0) {
+    if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+    OpenItem it;
+    const double h = octile(s, u.x, u.y, u.z, g->desc.res);
+    it.f = u.g + q.pivot_cost + q.pivot_turn_min + h;
+    it.h = static_cast<float>(h);
+    it.node = ui | kPivotItem;
+    s.open[s.n_open] = it;
+    sift_up(s, s.n_open++);
+  }
+  return TDO_OK;
+}
+
+// Generate the deferred pivots of state ui (already expanded).
+template <bool kHeaded>
+tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+  Side& s = ctx->side[back];
+  const Node u = s.nodes[ui];
+  uint32_t direct, sharp;
+  classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
+  while (sharp != 0) {
+    const int e = __builtin_ctz(sharp);
+    sharp &= sharp - 1u;
+    const int d = back ? dir_opposite(e) : e;
+    const double ng =
+        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
+    const tdo_status st = relax<kHeaded>(ctx, q, back, ui, u.voxel, d, -1, ng);
+    if (st != TDO_OK) return st;
+  }
+  return TDO_OK;
+}
+
+void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
+  Side& s = ctx->side[back];
+  const tdo_voxel& v = q.v[back];
+  const tdo_voxel& t = q.v[1 - back];
+  s.tx = t.i;
+  s.ty = t.j;
+  s.tz = t.k;
+  Node& n = s.nodes[0];
+  n.g = 0.0;
+  n.parent = kNil;
+  n.voxel = q.voxel[back];
+  n.next = kNil;
+  n.x = static_cast<uint16_t>(v.i);
+  n.y = static_cast<uint16_t>(v.j);
+  n.z = static_cast<uint16_t>(v.k);
+  n.heading = kHeadingNone;
+  n.closed = 0;
+  s.n_nodes = 1;
+  s.n_open = 0;
+  s.n_stack = 0;
+  s.f_cur = -HUGE_VAL;  // the root goes to the heap
+  s.use_stack = !q.bidir;
+  slot_set(ctx, s, n.voxel, 0);
+  push(ctx, q, s, back, 0, headed);
+}
+
+template <bool kHeaded>
+tdo_status search_loop(tdo_search* ctx, Query& q) {
+  Side& fw = ctx->side[0];
+  Side& bw = ctx->side[1];
+  add_root(ctx, q, 0, kHeaded);
+  if (q.bidir) add_root(ctx, q, 1, kHeaded);
+  // Bounded: every iteration expands one state or returns, and expansions stop at the budget.
+  for (;;) {
+    int back = 0;
+    if (!q.bidir) {
+      if (fw.n_open == 0 && fw.n_stack == 0) return TDO_ERR_NO_PATH;
+      const uint32_t top = fw.n_stack > 0 ? fw.stack[fw.n_stack - 1].node : fw.open[0].node;
+      if ((top & kPivotItem) == 0 && fw.nodes[top].voxel == q.voxel[1]) {
+        q.best = fw.nodes[top].g;
+        q.meet[0] = top;
+        return TDO_OK;
+      }
+    } else {
+      // Stop when either side's smallest f reaches the best meeting cost: every path cheaper than
+      // it would have to pass an open state of both sides (consistent heuristics, exact compare).
+      const double top_f = fw.n_open > 0 ? fw.open[0].f : HUGE_VAL;
+      const double top_b = bw.n_open > 0 ? bw.open[0].f : HUGE_VAL;
+      if (!(q.best > top_f) || !(q.best > top_b))
+        return q.best < HUGE_VAL ? TDO_OK : TDO_ERR_NO_PATH;
+      back = fw.n_open <= bw.n_open ? 0 : 1;
+    }
+    if (q.expansions >= q.budget) return TDO_ERR_BUDGET;
+    Side& s = ctx->side[back];
+    uint32_t ui;
+    if (s.n_stack > 0) {
+      --s.n_stack;
+      ui = s.stack[s.n_stack].node;
+      s.f_cur = s.stack[s.n_stack].f;
+      s.nodes[ui].heap = kNil;
+    } else {
+      s.f_cur = s.open[0].f;
+      ui = pop(s);
+    }
+    ++q.expansions;
+    if ((ui & kPivotItem) != 0) {
+      const tdo_status st = expand_pivots<kHeaded>(ctx, q, back, ui & ~kPivotItem);
+      if (st != TDO_OK) return st;
+      continue;
+    }
+    s.nodes[ui].closed = 1;
+    if (!kHeaded) s.slot[s.nodes[ui].voxel] |= kSlotClosed;
+    const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
+    if (st != TDO_OK) return st;
+  }
+}
+
+double step_length(const tdo_voxel& a, const tdo_voxel& b, double res) {
+  const int order = (a.i != b.i ? 1 : 0) + (a.j != b.j ? 1 : 0) + (a.k != b.k ? 1 : 0);
+  return order == 3 ? res * kSqrt3 : order == 2 ? res * kSqrt2 : order == 1 ? res : 0.0;
+}
+
+// Append the voxels of a parent chain; a pivot repeats its parent's voxel and is skipped.
+// `reverse` fills from path[pos - 1] downwards. Returns the number of voxels (counted even when
+// `fill` is 0) and counts pivots.
+uint64_t walk_chain(tdo_search* ctx, const Side& s, uint32_t from, uint32_t skip_voxel, int fill,
+                    int reverse, uint64_t pos, uint32_t* pivots) {
+  uint64_t count = 0;
+  uint32_t prev = skip_voxel;
+  uint32_t guard = 0;
+  for (uint32_t i = from; i != kNil && guard <= s.n_nodes; i = s.nodes[i].parent, ++guard) {
+    const Node& n = s.nodes[i];
+    if (pivots != nullptr && n.parent != kNil && s.nodes[n.parent].voxel == n.voxel) ++*pivots;
+    if (n.voxel == prev) continue;
+    prev = n.voxel;
+    if (fill) ctx->path[reverse ? pos - 1u - count : pos + count] = tdo_voxel{n.x, n.y, n.z};
+    ++count;
+  }
+  return count;
+}
+
+tdo_status write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
+  const Side& fw = ctx->side[0];
+  const Side& bw = ctx->side[1];
+  const uint32_t meet_voxel = fw.nodes[q.meet[0]].voxel;
+  const uint64_t n_fw = walk_chain(ctx, fw, q.meet[0], kNil, 0, 1, 0, nullptr);
+  const uint64_t n_bw = q.bidir ? walk_chain(ctx, bw, q.meet[1], meet_voxel, 0, 0, 0, nullptr) : 0;
+  const uint64_t count = n_fw + n_bw;
+  if (count > ctx->cfg.max_path) return TDO_ERR_PATH_CAPACITY;
+  uint32_t pivots = 0;
+  walk_chain(ctx, fw, q.meet[0], kNil, 1, 1, n_fw, &pivots);
+  if (q.bidir) walk_chain(ctx, bw, q.meet[1], meet_voxel, 1, 0, n_fw, &pivots);
+  double cost = 0.0;
+  for (uint64_t i = 1; i < count; ++i)
+    cost += step_length(ctx->path[i - 1], ctx->path[i], q.grid->desc.res);
+  out->cost = cost;
+  out->penalized_cost = q.best;
+  out->n_path = static_cast<uint32_t>(count);
+  out->path = ctx->path;
+  if (q.bidir && sharp_join(ctx, q, fw.nodes[q.meet[0]].heading, bw.nodes[q.meet[1]].heading))
+    ++pivots;
+  out->pivots = pivots;
+  return TDO_OK;
+}
+
+void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double theta_max) {
+  for (int d = 0; d < kNumDirs; ++d) {
+    const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
+    const int order = dir_order(d);
+    ctx->step_len[d] = g->desc.res * (order == 3 ? kSqrt3 : order == 2 ? kSqrt2 : 1.0);
+    ctx->offset[d] = dx + dy * g->stride_y + dz * g->stride_z;
+    const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+    ctx->unit[d][0] = dx / n;
+    ctx->unit[d][1] = dy / n;
+    ctx->unit[d][2] = dz / n;
+  }
+  if (ctx->cand_theta < theta_max || theta_max < ctx->cand_theta) {
+    for (int a = 0; a < kNumDirs; ++a) {
+      ctx->cand[a] = 0;
+      for (int b = 0; b < kNumDirs; ++b) {
+        double c = 0.0;
+        for (int i = 0; i < 3; ++i) c += ctx->unit[a][i] * ctx->unit[b][i];
+        // 1e-9 rad of slack keeps exact 45 and 90 degree neighbours in at their limit
+        if (c >= cos(theta_max + 1e-9) || !(theta_max > 0.0) || !(theta_max < kPi))
+          ctx->cand[a] |= 1u << b;
+      }
+    }
+    ctx->cand[kHeadingNone] = (1u << kNumDirs) - 1u;
+    ctx->cand_theta = theta_max;
+  }
+  if (!(ctx->turn_lambda < lambda) && !(lambda < ctx->turn_lambda)) return;  // cached
+  for (int a = 0; a < kNumHeadings; ++a) {
+    for (int b = 0; b < kNumHeadings; ++b) {
+      if (a >= kNumDirs || b >= kNumDirs || !(lambda > 0.0)) {
+        ctx->turn[a][b] = 0.0;
+        continue;
+      }
+      double c = 0.0;
+      for (int i = 0; i < 3; ++i) c += ctx->unit[a][i] * ctx->unit[b][i];
+      if (c > 1.0) c = 1.0;
+      if (c < -1.0) c = -1.0;
+      const double t = acos(c) / kPi;
+      ctx->turn[a][b] = lambda * t * t;
+    }
+  }
+  ctx->turn_lambda = lambda;
+}
+
+size_t side_bytes(const tdo_search_config& cfg) {
+  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
+         tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
+         tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(OpenItem));
+}
+
+bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+}  // namespace
+}  // namespace tdo_internal
+
+using namespace tdo_internal;
+
+extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
+  if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
+  return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
+}
+
+extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
+                                      const tdo_search_config* cfg) {
+  if (out == nullptr || arena == nullptr || cfg == nullptr || cfg->max_voxels == 0 ||
+      cfg->max_nodes == 0 || cfg->max_path == 0 || cfg->max_nodes > kSlotIndex)
+    return TDO_ERR_INVALID_ARGUMENT;
+  tdo_search* ctx = static_cast<tdo_search*>(tdo_arena_alloc(arena, sizeof(tdo_search)));
+  if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(ctx, 0, sizeof(*ctx));
+  ctx->cfg = *cfg;
+  if (ctx->cfg.max_expansions == 0) ctx->cfg.max_expansions = 0xFFFFFFFFu;
+  ctx->turn_lambda = -1.0;
+  ctx->cand_theta = -1.0;
+  for (int a = 0; a < kNumDirs; ++a) {
+    for (int b = 0; b < kNumDirs; ++b) {
+      const int x = dir_dx(a) + dir_dx(b), y = dir_dy(a) + dir_dy(b), z = dir_dz(a) + dir_dz(b);
+      if (x == 0 && y == 0 && z == 0)
+        ctx->combo[a][b] = kComboBack;
+      else if (x < -1 || x > 1 || y < -1 || y > 1 || z < -1 || z > 1)
+        ctx->combo[a][b] = kComboFar;
+      else
+        ctx->combo[a][b] = static_cast<uint8_t>(dir_of_cell(cell_of(x, y, z)));
+    }
+  }
+  for (int k = 0; k < 2; ++k) {
+    Side& s = ctx->side[k];
+    s.slot = static_cast<uint64_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint64_t)));
+    s.nodes = static_cast<Node*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(Node)));
+    s.open = static_cast<OpenItem*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(OpenItem)));
+    if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
+      return TDO_ERR_ARENA_TOO_SMALL;
+    memset(s.slot, 0, cfg->max_voxels * sizeof(uint64_t));
+  }
+  ctx->path = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cfg->max_path * sizeof(tdo_voxel)));
+  if (ctx->path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  *out = ctx;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in,
+                                     tdo_search_output* out) {
+  if (ctx == nullptr || in == nullptr || out == nullptr || in->grid == nullptr)
+    return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  const tdo_grid* g = in->grid;
+  if (!g->ready) return TDO_ERR_MAP_NOT_READY;
+  if (g->nvox > ctx->cfg.max_voxels || g->desc.nx > kMaxAxis || g->desc.ny > kMaxAxis ||
+      g->desc.nz > kMaxAxis)
+    return TDO_ERR_MAP_CAPACITY;
+  if (!isfinite(in->lambda) || !isfinite(in->mu) || in->lambda < 0.0 || in->mu < 0.0 ||
+      !isfinite(in->theta_max) || !isfinite(in->d_th) ||
+      (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) || !finite3(in->start) ||
+      !finite3(in->goal))
+    return TDO_ERR_INVALID_ARGUMENT;
+  Query q;
+  memset(&q, 0, sizeof(q));
+  q.grid = g;
+  if (!tdo_grid_world_to_voxel(g, in->start, &q.v[0])) return TDO_ERR_START_OUT_OF_BOUNDS;
+  if (!tdo_grid_world_to_voxel(g, in->goal, &q.v[1])) return TDO_ERR_GOAL_OUT_OF_BOUNDS;
+  if (!(in->start.x < in->goal.x || in->start.x > in->goal.x || in->start.y < in->goal.y ||
+        in->start.y > in->goal.y || in->start.z < in->goal.z || in->start.z > in->goal.z))
+    return TDO_ERR_START_EQUALS_GOAL;
+  if (tdo_grid_is_blocked(g, q.v[0])) return TDO_ERR_START_BLOCKED;
+  if (tdo_grid_is_blocked(g, q.v[1])) return TDO_ERR_GOAL_BLOCKED;
+  for (int k = 0; k < 2; ++k)
+    q.voxel[k] = static_cast<uint32_t>(q.v[k].i + q.v[k].j * g->stride_y + q.v[k].k * g->stride_z);
+  if (q.voxel[0] == q.voxel[1]) {  // distinct points in one voxel: a one-voxel path
+    ctx->path[0] = q.v[0];
+    out->n_path = 1;
+    out->path = ctx->path;
+    return TDO_OK;
+  }
+  q.bidir = in->kind == TDO_SEARCH_BIDIR;
+  q.mu = in->mu;
+  q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
+  q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
+  q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);
+  q.pivot_turn_min = q.d_th > 0.0 ? 0.0 : q.pivot_cost;
+  q.budget = in->max_expansions != 0 ? in->max_expansions : ctx->cfg.max_expansions;
+  q.best = HUGE_VAL;
+  q.meet[0] = q.meet[1] = kNil;
+  prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
+  if (++ctx->gen == 0) {  // stamps wrapped: clear them once every 2^32 queries
+    for (int k = 0; k < 2; ++k)
+      memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
+    ctx->gen = 1;
+  }
+  const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
+  const tdo_status st = headed ? search_loop<true>(ctx, q) : search_loop<false>(ctx, q);
+  out->expansions = q.expansions;
+  if (st != TDO_OK) return st;
+  return write_path(ctx, q, out);
+}
+
+extern "C" double tdo_search_pivot_cost(double lambda, double theta_max) {
+  if (!(lambda > 0.0) || !(theta_max > 0.0) || !(theta_max < kPi)) return 0.0;
+  const double t = theta_max / kPi;
+  return lambda * t * t;
+}

@@ -1,0 +1,719 @@
+// Stage 1 search (search.h, pipeline.md s.0-1): optimal costs against an independent reference
+// Dijkstra, path validity, named statuses, budgets and capacities, determinism, and completeness
+// with turn penalties.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "tdo/tdo.h"
+#include "test_util.h"
+
+namespace {
+
+using tdo_test::kInf;
+using tdo_test::make_cap;
+using tdo_test::make_input;
+using tdo_test::near_rel;
+using tdo_test::Rng;
+using tdo_test::TestPlanner;
+using tdo_test::VoxelMap;
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfty = std::numeric_limits<double>::infinity();
+const double kSqrt2 = std::sqrt(2.0);
+const double kSqrt3 = std::sqrt(3.0);
+constexpr tdo_search_kind kKinds[] = {TDO_SEARCH_ASTAR, TDO_SEARCH_BIDIR};
+
+uint64_t bits(double d) {
+  uint64_t u;
+  std::memcpy(&u, &d, sizeof u);
+  return u;
+}
+
+/** A stored copy of one search result (out.path only lives until the next run). */
+struct Result {
+  tdo_status status = TDO_ERR_INVALID_ARGUMENT;
+  tdo_search_output out{};
+  std::vector<tdo_voxel> path;
+};
+
+Result run(tdo_search* s, const tdo_search_input& in) {
+  Result r;
+  r.status = tdo_search_run(s, &in, &r.out);
+  if (r.status == TDO_OK && r.out.path != nullptr)
+    r.path.assign(r.out.path, r.out.path + r.out.n_path);
+  r.out.path = r.path.empty() ? nullptr : r.path.data();
+  return r;
+}
+
+::testing::AssertionResult identical(const Result& a, const Result& b) {
+  if (a.status != b.status)
+    return ::testing::AssertionFailure()
+           << "status " << tdo_status_str(a.status) << " vs " << tdo_status_str(b.status);
+  if (a.out.expansions != b.out.expansions)
+    return ::testing::AssertionFailure()
+           << "expansions " << a.out.expansions << " vs " << b.out.expansions;
+  if (bits(a.out.cost) != bits(b.out.cost) ||
+      bits(a.out.penalized_cost) != bits(b.out.penalized_cost))
+    return ::testing::AssertionFailure() << "cost " << a.out.cost << " vs " << b.out.cost;
+  if (a.path.size() != b.path.size())
+    return ::testing::AssertionFailure()
+           << "path length " << a.path.size() << " vs " << b.path.size();
+  for (size_t n = 0; n < a.path.size(); ++n)
+    if (!tdo_test::same_voxel(a.path[n], b.path[n]))
+      return ::testing::AssertionFailure() << "path differs at " << n;
+  return ::testing::AssertionSuccess();
+}
+
+/** One random query on a random voxel map. */
+struct Case {
+  VoxelMap map;
+  tdo_voxel s{}, g{};
+  tdo_vec3 ps{}, pg{};
+};
+
+/** Random grid up to 9x9x5 with density in [0, 0.4]; start and goal are distinct free voxels. */
+Case random_case(Rng& rng, int32_t max_xy = 9, int32_t max_z = 5) {
+  const double resolutions[] = {1.0, 0.5, 0.3, 2.0};
+  for (;;) {
+    Case c;
+    const int32_t nx = rng.range(1, max_xy), ny = rng.range(1, max_xy), nz = rng.range(1, max_z);
+    const double density = rng.uniform(0.0, 0.4);
+    c.map = tdo_test::random_voxel_map(rng, nx, ny, nz, resolutions[rng.below(4)], density);
+    if (rng.uniform() < 0.1 && nx >= 3) {  // a wall across x: often splits the map in two
+      const int32_t x = rng.range(1, nx - 2);
+      for (int32_t k = 0; k < nz; ++k)
+        for (int32_t j = 0; j < ny; ++j) c.map.set(x, j, k);
+    }
+    std::vector<size_t> free;
+    for (size_t n = 0; n < c.map.size(); ++n)
+      if (!c.map.blocked[n]) free.push_back(n);
+    if (free.size() < 2) continue;
+    const size_t a = free[rng.below(static_cast<uint32_t>(free.size()))];
+    size_t b = a;
+    while (b == a) b = free[rng.below(static_cast<uint32_t>(free.size()))];
+    c.s = c.map.voxel(a);
+    c.g = c.map.voxel(b);
+    if (rng.uniform() < 0.3) {
+      c.ps = c.map.center(c.s);
+      c.pg = c.map.center(c.g);
+    } else {
+      c.ps = c.map.point_in(c.s, rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98),
+                            rng.uniform(0.02, 0.98));
+      c.pg = c.map.point_in(c.g, rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98),
+                            rng.uniform(0.02, 0.98));
+    }
+    return c;
+  }
+}
+
+class SearchTest : public ::testing::Test {
+ protected:
+  SearchTest() : pl_(make_cap(1024, 1024, 1025, 64, 20000, 1u << 30)) {}
+  void SetUp() override { ASSERT_EQ(pl_.status(), TDO_OK); }
+  tdo_grid* grid() { return pl_.grid(); }
+  tdo_search* search() { return pl_.search(); }
+  void load(const VoxelMap& m, double clearance = 0.0) {
+    ASSERT_EQ(tdo_test::load_voxels(grid(), m, clearance), TDO_OK);
+  }
+
+  TestPlanner pl_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Known answers, worked out by hand.
+
+TEST_F(SearchTest, GivenAnEmptyGrid_WhenSearching_ThenCostsAreOctileDistances) {
+  struct Q {
+    tdo_voxel s, g;
+    double cost;  // in voxel edges
+  };
+  const Q qs[] = {
+      {{0, 0, 0}, {2, 2, 2}, 2.0 * kSqrt3}, {{0, 0, 0}, {2, 1, 0}, 1.0 + kSqrt2},
+      {{0, 0, 0}, {2, 0, 0}, 2.0},          {{2, 0, 1}, {0, 2, 0}, kSqrt3 + kSqrt2},
+      {{0, 0, 0}, {1, 0, 0}, 1.0},          {{0, 1, 2}, {1, 2, 1}, kSqrt3},
+  };
+  for (double res : {1.0, 0.5}) {
+    const VoxelMap m(3, 3, 3, res, tdo_vec3{-1.0, 0.0, 2.0});
+    load(m);
+    for (const Q& q : qs)
+      for (tdo_search_kind kind : kKinds) {
+        const Result r = run(search(), make_input(grid(), m.center(q.s), m.center(q.g), kind));
+        ASSERT_EQ(r.status, TDO_OK) << tdo_test::kind_name(kind);
+        EXPECT_NEAR(r.out.cost, q.cost * res, 1e-12) << tdo_test::kind_name(kind);
+        EXPECT_TRUE(tdo_test::valid_path(m, r.out, q.s, q.g));
+      }
+  }
+}
+
+TEST_F(SearchTest, GivenABlockedCornerIn2D_WhenSearchingDiagonally_ThenTheDiagonalIsNotTaken) {
+  VoxelMap m(2, 2, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  m.set(1, 0, 0);
+  load(m);
+  for (tdo_search_kind kind : kKinds) {
+    const Result r =
+        run(search(), make_input(grid(), m.center({0, 0, 0}), m.center({1, 1, 0}), kind));
+    ASSERT_EQ(r.status, TDO_OK);
+    EXPECT_NEAR(r.out.cost, 2.0, 1e-12) << "no corner cutting: around via (0,1,0)";
+    EXPECT_EQ(r.out.n_path, 3u);
+  }
+  m.set(0, 1, 0);
+  load(m);
+  for (tdo_search_kind kind : kKinds) {
+    const Result r =
+        run(search(), make_input(grid(), m.center({0, 0, 0}), m.center({1, 1, 0}), kind));
+    EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << "the diagonal between two blocked voxels is closed";
+  }
+}
+
+TEST_F(SearchTest, GivenOneBlockedVoxelOfA2x2x2Block_WhenSearchingTheCornerDiagonal_ThenItDetours) {
+  VoxelMap m(2, 2, 2, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  m.set(1, 0, 0);
+  load(m);
+  for (tdo_search_kind kind : kKinds) {
+    const Result r =
+        run(search(), make_input(grid(), m.center({0, 0, 0}), m.center({1, 1, 1}), kind));
+    ASSERT_EQ(r.status, TDO_OK);
+    EXPECT_NEAR(r.out.cost, 1.0 + kSqrt2, 1e-12) << "no edge cutting through the 2x2x2 block";
+    EXPECT_TRUE(tdo_test::valid_path(m, r.out, {0, 0, 0}, {1, 1, 1}));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (a) optimal costs, (b) valid paths, (d) determinism, (e) expansions: seeded random grids.
+
+TEST_F(SearchTest, GivenRandomGrids_WhenSearchingWithoutPenalties_ThenCostsMatchReferenceDijkstra) {
+  Rng rng(0x7D0A5EA7C4ull);
+  int reachable = 0, unreachable = 0;
+  for (int round = 0; round < 1000; ++round) {
+    const Case c = random_case(rng);
+    load(c.map);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    const uint32_t n_free = c.map.free_count();
+    (want < kInf ? reachable : unreachable)++;
+    for (tdo_search_kind kind : kKinds) {
+      const tdo_search_input in = make_input(grid(), c.ps, c.pg, kind);
+      const Result r = run(search(), in);
+      SCOPED_TRACE(::testing::Message()
+                   << "round " << round << " " << tdo_test::kind_name(kind) << " grid " << c.map.nx
+                   << "x" << c.map.ny << "x" << c.map.nz << " start " << tdo_test::str(c.s)
+                   << " goal " << tdo_test::str(c.g));
+      if (!(want < kInf)) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+      } else {
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status) << ", reference cost " << want;
+        EXPECT_TRUE(near_rel(r.out.cost, want)) << "cost " << r.out.cost << " reference " << want;
+        EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+        EXPECT_TRUE(near_rel(r.out.penalized_cost, r.out.cost))
+            << "no penalties: penalized_cost " << r.out.penalized_cost << " cost " << r.out.cost;
+      }
+      // (e) one state per voxel without penalties: per direction, no voxel expanded twice.
+      const uint32_t sides = kind == TDO_SEARCH_ASTAR ? 1u : 2u;
+      EXPECT_LE(r.out.expansions, sides * n_free) << "free voxels " << n_free;
+      // (d) the same query again gives the same answer.
+      EXPECT_TRUE(identical(r, run(search(), in)));
+    }
+  }
+  EXPECT_GE(reachable, 600);
+  EXPECT_GE(unreachable, 50);
+}
+
+// Boxes plus clearance: the reference uses the brute-force blocked set (test_util.h).
+TEST_F(SearchTest, GivenRandomBoxMapsWithClearance_WhenSearching_ThenCostsMatchReference) {
+  Rng rng(99);
+  int reachable = 0;
+  for (int round = 0; round < 300; ++round) {
+    const double res = rng.uniform() < 0.5 ? 1.0 : 0.5;
+    VoxelMap m(rng.range(3, 10), rng.range(3, 10), rng.range(1, 5), res,
+               tdo_vec3{rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)});
+    tdo_test::Obstacles obs;
+    const int n_boxes = rng.range(1, 5);
+    for (int b = 0; b < n_boxes; ++b) {
+      const tdo_vec3 lo{m.origin.x + rng.uniform(0.0, m.nx * res),
+                        m.origin.y + rng.uniform(0.0, m.ny * res),
+                        m.origin.z + rng.uniform(0.0, m.nz * res)};
+      obs.boxes.push_back(
+          tdo_box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 3.0), lo.y + rng.uniform(0.1, 3.0),
+                               lo.z + rng.uniform(0.1, 3.0)}});
+    }
+    const double clearance = rng.uniform(0.0, 1.2);
+    ASSERT_EQ(tdo_test::load_obstacles(grid(), m, obs, clearance), TDO_OK);
+    m.blocked = tdo_test::brute_blocked(m, obs, clearance);
+    std::vector<size_t> free;
+    for (size_t n = 0; n < m.size(); ++n)
+      if (!m.blocked[n]) free.push_back(n);
+    if (free.size() < 2) continue;
+    const tdo_voxel s = m.voxel(free[rng.below(static_cast<uint32_t>(free.size()))]);
+    const tdo_voxel g = m.voxel(free[rng.below(static_cast<uint32_t>(free.size()))]);
+    if (tdo_test::same_voxel(s, g)) continue;
+    const double want = tdo_test::reference_cost(m, s, g);
+    reachable += want < kInf ? 1 : 0;
+    for (tdo_search_kind kind : kKinds) {
+      const Result r = run(search(), make_input(grid(), m.center(s), m.center(g), kind));
+      SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind));
+      if (!(want < kInf)) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+      } else {
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+        EXPECT_TRUE(near_rel(r.out.cost, want)) << r.out.cost << " vs " << want;
+        EXPECT_TRUE(tdo_test::valid_path(m, r.out, s, g));
+      }
+    }
+  }
+  EXPECT_GE(reachable, 100);
+}
+
+// (e) again, as a capacity: a node pool of one state per free voxel is enough without penalties.
+TEST(SearchCapacity,
+     GivenANodePoolOfOneStatePerFreeVoxel_WhenSearchingWithoutPenalties_ThenItFits) {
+  Rng rng(4242);
+  for (int round = 0; round < 200; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    const uint32_t n_free = c.map.free_count();
+    TestPlanner pl(make_cap(static_cast<uint32_t>(c.map.size()), n_free,
+                            static_cast<uint32_t>(c.map.size()) + 1u, 4, 1000, 1u << 30));
+    ASSERT_EQ(pl.status(), TDO_OK);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    for (tdo_search_kind kind : kKinds) {
+      const Result r = run(pl.search(), make_input(pl.grid(), c.ps, c.pg, kind));
+      SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
+                                        << " free voxels " << n_free);
+      EXPECT_EQ(r.status, want < kInf ? TDO_OK : TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+      if (r.status == TDO_OK) {
+        EXPECT_TRUE(near_rel(r.out.cost, want));
+      }
+    }
+  }
+}
+
+// (d) determinism across interleaved queries and across planner instances at other addresses.
+TEST(SearchDeterminism,
+     GivenTheSameQueries_WhenRepeatedInterleavedOrOnAnotherPlanner_ThenIdentical) {
+  Rng rng(5);
+  VoxelMap m = tdo_test::random_voxel_map(rng, 12, 11, 6, 0.5, 0.25);
+  const tdo_capacity cap = make_cap(1024, 27u * 1024u, 1025, 4, 1000, 1u << 30);
+  TestPlanner a(cap);
+  ASSERT_EQ(a.status(), TDO_OK);
+  ASSERT_EQ(tdo_test::load_voxels(a.grid(), m), TDO_OK);
+  std::vector<tdo_search_input> queries;
+  for (int q = 0; q < 40; ++q) {
+    const tdo_vec3 s =
+        m.point_in({rng.range(0, 11), rng.range(0, 10), rng.range(0, 5)}, rng.uniform(0.1, 0.9),
+                   rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9));
+    const tdo_vec3 g =
+        m.point_in({rng.range(0, 11), rng.range(0, 10), rng.range(0, 5)}, rng.uniform(0.1, 0.9),
+                   rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9));
+    const double lambda = q % 3 == 0 ? 0.0 : (q % 3 == 1 ? 2.0 : 50.0);
+    queries.push_back(make_input(a.grid(), s, g, kKinds[q % 2], lambda, q % 4 == 0 ? 0.0 : 20.0,
+                                 q % 7 == 0 ? 40u : 0u));
+  }
+  std::vector<Result> first;
+  int ok = 0;
+  for (const tdo_search_input& in : queries) {
+    first.push_back(run(a.search(), in));
+    ok += first.back().status == TDO_OK ? 1 : 0;
+  }
+  ASSERT_GE(ok, 10) << "the map should allow most queries";
+  for (size_t q = queries.size(); q-- > 0;)
+    EXPECT_TRUE(identical(first[q], run(a.search(), queries[q]))) << "reverse order, query " << q;
+
+  TestPlanner b(cap);
+  ASSERT_EQ(b.status(), TDO_OK);
+  ASSERT_EQ(tdo_test::load_voxels(b.grid(), m), TDO_OK);
+  for (size_t q = 0; q < queries.size(); ++q) {
+    tdo_search_input in = queries[q];
+    in.grid = b.grid();
+    EXPECT_TRUE(identical(first[q], run(b.search(), in))) << "second planner, query " << q;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// (f) turn penalties keep completeness; cost is never below the optimum.
+
+// Direction constraints of pipeline.md s.1: unconstrained, theta_max = 45 degrees (the default),
+// and 45 degrees plus the deviation threshold D_th = 0.5.
+struct Constraint {
+  double theta_max;  // rad
+  double d_th;
+};
+const std::vector<Constraint> kUnconstrained = {{0.0, 0.0}};
+const std::vector<Constraint> kConstrained = {{0.25 * 3.14159265358979323846, 0.0},
+                                              {0.25 * 3.14159265358979323846, 0.5}};
+
+void check_penalised(tdo_search* search, const tdo_grid* grid, const Case& c, double want,
+                     const char* what, const std::vector<Constraint>& constraints) {
+  for (double lambda : {0.5, 50.0})
+    for (double mu : {0.0, 20.0})
+      for (const Constraint& con : constraints)
+        for (tdo_search_kind kind : kKinds) {
+          tdo_search_input in = make_input(grid, c.ps, c.pg, kind, lambda, mu);
+          in.theta_max = con.theta_max;
+          in.d_th = con.d_th;
+          const Result r = run(search, in);
+          SCOPED_TRACE(::testing::Message()
+                       << what << " " << tdo_test::kind_name(kind) << " lambda " << lambda << " mu "
+                       << mu << " theta_max " << con.theta_max << " d_th " << con.d_th << " start "
+                       << tdo_test::str(c.s) << " goal " << tdo_test::str(c.g));
+          if (!(want < kInf)) {
+            EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+            continue;
+          }
+          ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status) << ": lambda = 0 finds a path";
+          EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+          EXPECT_GE(r.out.cost, want * (1.0 - 1e-9)) << "below the optimal length";
+          // penalized_cost = length + lambda * sum (theta_i/pi)^2 + one surcharge per pivot (a
+          // sharp turn, taken in place); every turn of the voxel path is paid exactly once.
+          const double turns = tdo_test::turn_penalty(r.out, lambda);
+          const double surcharge = r.out.pivots * tdo_search_pivot_cost(lambda, con.theta_max);
+          EXPECT_TRUE(near_rel(r.out.penalized_cost, r.out.cost + turns + surcharge))
+              << "penalized_cost " << r.out.penalized_cost << " != cost " << r.out.cost
+              << " + lambda * sum (theta/pi)^2 = " << turns << " + " << r.out.pivots
+              << " pivots * surcharge";
+        }
+}
+
+void random_penalised(const std::vector<Constraint>& constraints) {
+  TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(31337);
+  for (int round = 0; round < 400; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    check_penalised(pl.search(), pl.grid(), c, want, "random", constraints);
+  }
+}
+
+void narrow_penalised(const std::vector<Constraint>& constraints) {
+  TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  {
+    // A 2D serpentine: walls at y = 1, 3, 5, 7 with one-voxel gaps alternating at x = 8 and x = 0,
+    // so every gap forces a U-turn.
+    Case c;
+    c.map = VoxelMap(9, 9, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+    for (int32_t y : {1, 3, 5, 7})
+      for (int32_t x = 0; x < 9; ++x)
+        if (x != ((y / 2) % 2 == 0 ? 8 : 0)) c.map.set(x, y, 0);
+    c.s = {0, 0, 0};
+    c.g = {0, 8, 0};
+    c.ps = c.map.center(c.s);
+    c.pg = c.map.center(c.g);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    ASSERT_LT(want, kInf);
+    check_penalised(pl.search(), pl.grid(), c, want, "serpentine", constraints);
+  }
+  {
+    // 3D: floors at z = 2 and z = 5 with single holes in opposite corners, start behind the goal.
+    Case c;
+    c.map = VoxelMap(5, 5, 8, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+    for (int32_t y = 0; y < 5; ++y)
+      for (int32_t x = 0; x < 5; ++x) {
+        if (!(x == 4 && y == 4)) c.map.set(x, y, 2);
+        if (!(x == 0 && y == 0)) c.map.set(x, y, 5);
+      }
+    c.s = {1, 1, 0};
+    c.g = {1, 1, 7};
+    c.ps = c.map.center(c.s);
+    c.pg = c.map.center(c.g);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    ASSERT_LT(want, kInf);
+    check_penalised(pl.search(), pl.grid(), c, want, "shafts", constraints);
+  }
+  {
+    // A straight row meeting a two-voxel-wide diagonal corridor at 135 degrees: an acute turn.
+    Case c;
+    c.map = VoxelMap(8, 6, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+    for (int32_t y = 0; y < 6; ++y)
+      for (int32_t x = 0; x < 8; ++x) {
+        const bool row = y == 0 && x <= 6;
+        const bool diagonal = y >= 1 && (x + y == 6 || x + y == 7);
+        c.map.set(x, y, 0, !(row || diagonal));
+      }
+    c.s = {0, 0, 0};
+    c.g = {1, 5, 0};
+    c.ps = c.map.center(c.s);
+    c.pg = c.map.center(c.g);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    ASSERT_LT(want, kInf);
+    check_penalised(pl.search(), pl.grid(), c, want, "acute", constraints);
+  }
+}
+
+TEST(SearchPenalty,
+     GivenRandomGrids_WhenSearchingWithTurnPenalties_ThenAPathIsFoundWheneverOneExists) {
+  random_penalised(kUnconstrained);
+}
+
+TEST(SearchPenalty, GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithPenalties_ThenPathFound) {
+  narrow_penalised(kUnconstrained);
+}
+
+// pipeline.md s.1: the direction constraint (theta_max) and the deviation threshold (D_th) must
+// never cost completeness, and a pivot must not make a turn cheaper than lambda * (theta/pi)^2.
+TEST(SearchConstrained,
+     GivenRandomGrids_WhenSearchingWithDirectionConstraints_ThenAPathIsFoundWheneverOneExists) {
+  random_penalised(kConstrained);
+}
+
+TEST(SearchConstrained,
+     GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithDirectionConstraints_ThenPathFound) {
+  narrow_penalised(kConstrained);
+}
+
+// ---------------------------------------------------------------------------------------------
+// (c) named statuses
+
+TEST_F(SearchTest, GivenStartOrGoalOutsideTheBounds_WhenSearching_ThenOutOfBounds) {
+  const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  load(m);
+  const tdo_vec3 inside{1.5, 1.5, 1.5};
+  const tdo_vec3 outside[] = {{-0.1, 1.5, 1.5}, {4.0, 1.5, 1.5},   {1.5, -2.0, 1.5},
+                              {1.5, 4.0, 1.5},  {1.5, 1.5, -1e-9}, {1.5, 1.5, 4.0}};
+  for (const tdo_vec3& p : outside)
+    for (tdo_search_kind kind : kKinds) {
+      tdo_search_output out{};
+      tdo_search_input in = make_input(grid(), p, inside, kind);
+      EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_START_OUT_OF_BOUNDS)
+          << p.x << "," << p.y << "," << p.z;
+      in = make_input(grid(), inside, p, kind);
+      EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_GOAL_OUT_OF_BOUNDS)
+          << p.x << "," << p.y << "," << p.z;
+    }
+}
+
+TEST_F(SearchTest, GivenStartOrGoalBlocked_WhenSearching_ThenStartBlockedOrGoalBlocked) {
+  VoxelMap m(5, 5, 5, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  m.set(2, 2, 2);
+  const tdo_vec3 free_point{0.5, 0.5, 0.5};
+  const tdo_vec3 occupied{2.5, 2.5, 2.5};
+  const tdo_vec3 near{3.2, 2.5, 2.5};  // voxel (3,2,2): 0.5 m from the cube, free at clearance 0
+  load(m, 0.0);
+  for (tdo_search_kind kind : kKinds) {
+    tdo_search_output out{};
+    tdo_search_input in = make_input(grid(), occupied, free_point, kind);
+    EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_START_BLOCKED);
+    in = make_input(grid(), free_point, occupied, kind);
+    EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_GOAL_BLOCKED);
+    in = make_input(grid(), near, free_point, kind);
+    EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_OK) << "clearance 0: (3,2,2) is free";
+  }
+  load(m, 0.6);  // now (3,2,2) is blocked by clearance alone
+  for (tdo_search_kind kind : kKinds) {
+    tdo_search_output out{};
+    tdo_search_input in = make_input(grid(), near, free_point, kind);
+    EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_START_BLOCKED);
+    in = make_input(grid(), free_point, near, kind);
+    EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_GOAL_BLOCKED);
+  }
+}
+
+TEST_F(SearchTest, GivenIdenticalStartAndGoal_WhenSearching_ThenStartEqualsGoal) {
+  const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  load(m);
+  for (const tdo_vec3& p :
+       {tdo_vec3{1.5, 1.5, 1.5}, tdo_vec3{1.0, 2.0, 3.0}, tdo_vec3{0.1, 3.9, 0.7}})
+    for (tdo_search_kind kind : kKinds) {
+      tdo_search_output out{};
+      const tdo_search_input in = make_input(grid(), p, p, kind);
+      EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_START_EQUALS_GOAL);
+    }
+}
+
+TEST_F(SearchTest, GivenDistinctPointsInOneVoxel_WhenSearching_ThenAOneVoxelPathOfZeroCost) {
+  const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  load(m);
+  for (tdo_search_kind kind : kKinds) {
+    const Result r =
+        run(search(), make_input(grid(), tdo_vec3{1.2, 1.2, 1.2}, tdo_vec3{1.8, 1.7, 1.6}, kind));
+    ASSERT_EQ(r.status, TDO_OK);
+    ASSERT_EQ(r.out.n_path, 1u);
+    EXPECT_TRUE(tdo_test::same_voxel(r.path[0], tdo_voxel{1, 1, 1}));
+    EXPECT_NEAR(r.out.cost, 0.0, 1e-15);
+  }
+}
+
+// The budget is exact: a query that needed E expansions succeeds with budget E and stops with
+// TDO_ERR_BUDGET at E - 1; the same holds for proving that there is no path.
+TEST_F(SearchTest, GivenABudgetOneBelowWhatTheQueryNeeds_WhenSearching_ThenBudget) {
+  Rng rng(8);
+  int checked = 0, checked_no_path = 0;
+  for (int round = 0; round < 200; ++round) {
+    const Case c = random_case(rng);
+    load(c.map);
+    for (tdo_search_kind kind : kKinds) {
+      const Result full = run(search(), make_input(grid(), c.ps, c.pg, kind));
+      ASSERT_TRUE(full.status == TDO_OK || full.status == TDO_ERR_NO_PATH)
+          << tdo_status_str(full.status);
+      const uint32_t e = full.out.expansions;
+      ASSERT_GE(e, 1u);
+      SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
+                                        << " needs " << e << " expansions");
+      EXPECT_TRUE(identical(full, run(search(), make_input(grid(), c.ps, c.pg, kind, 0, 0, e))))
+          << "budget exactly E";
+      if (e < 2) continue;
+      const Result cut = run(search(), make_input(grid(), c.ps, c.pg, kind, 0, 0, e - 1));
+      EXPECT_EQ(cut.status, TDO_ERR_BUDGET) << tdo_status_str(cut.status);
+      const Result one = run(search(), make_input(grid(), c.ps, c.pg, kind, 0, 0, 1));
+      EXPECT_EQ(one.status, TDO_ERR_BUDGET) << tdo_status_str(one.status);
+      ++checked;
+      checked_no_path += full.status == TDO_ERR_NO_PATH ? 1 : 0;
+    }
+  }
+  EXPECT_GE(checked, 250);
+  EXPECT_GE(checked_no_path, 10);
+}
+
+TEST(SearchCapacity, GivenAZeroInputBudget_WhenSearching_ThenTheConfiguredBudgetApplies) {
+  TestPlanner pl(make_cap(1000, 1000, 1000, 4, 1000, 3));  // default budget: 3 expansions
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const VoxelMap m(10, 10, 10, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {
+    const tdo_vec3 s{0.5, 0.5, 0.5}, g{9.5, 9.5, 9.5};
+    EXPECT_EQ(run(pl.search(), make_input(pl.grid(), s, g, kind)).status, TDO_ERR_BUDGET);
+    const Result r = run(pl.search(), make_input(pl.grid(), s, g, kind, 0, 0, 100000));
+    EXPECT_EQ(r.status, TDO_OK) << "an explicit input budget overrides the default";
+  }
+}
+
+TEST(SearchCapacity, GivenATinyNodePool_WhenSearchingFar_ThenNodeCapacity) {
+  TestPlanner pl(make_cap(1000, 8, 1000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const VoxelMap m(10, 10, 10, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+  for (tdo_search_kind kind : kKinds)
+    for (double lambda : {0.0, 50.0}) {
+      const Result r = run(pl.search(), make_input(pl.grid(), tdo_vec3{0.5, 0.5, 0.5},
+                                                   tdo_vec3{9.5, 9.5, 9.5}, kind, lambda));
+      EXPECT_EQ(r.status, TDO_ERR_NODE_CAPACITY)
+          << tdo_test::kind_name(kind) << " lambda " << lambda << ": " << tdo_status_str(r.status);
+    }
+}
+
+TEST(SearchCapacity, GivenAPathBufferOneShort_WhenSearching_ThenPathCapacityElseItFitsExactly) {
+  // A straight corridor of 12 voxels: the only path has 12 voxels.
+  const VoxelMap m(12, 1, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  for (uint32_t max_path : {5u, 11u, 12u}) {
+    TestPlanner pl(make_cap(12, 12, max_path));
+    ASSERT_EQ(pl.status(), TDO_OK);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+    for (tdo_search_kind kind : kKinds) {
+      const Result r = run(pl.search(), make_input(pl.grid(), tdo_vec3{0.5, 0.5, 0.5},
+                                                   tdo_vec3{11.5, 0.5, 0.5}, kind));
+      if (max_path < 12u) {
+        EXPECT_EQ(r.status, TDO_ERR_PATH_CAPACITY)
+            << "max_path " << max_path << " " << tdo_test::kind_name(kind);
+      } else {
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+        EXPECT_EQ(r.out.n_path, 12u);
+        EXPECT_TRUE(tdo_test::valid_path(m, r.out, {0, 0, 0}, {11, 0, 0}));
+      }
+    }
+  }
+  // With turn penalties and enough nodes for every heading the same rule holds.
+  for (uint32_t max_path : {11u, 12u}) {
+    TestPlanner pl(make_cap(12, 27u * 12u, max_path));
+    ASSERT_EQ(pl.status(), TDO_OK);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+    for (tdo_search_kind kind : kKinds) {
+      const Result r = run(pl.search(), make_input(pl.grid(), tdo_vec3{0.5, 0.5, 0.5},
+                                                   tdo_vec3{11.5, 0.5, 0.5}, kind, 50.0, 20.0));
+      EXPECT_EQ(r.status, max_path < 12u ? TDO_ERR_PATH_CAPACITY : TDO_OK)
+          << "max_path " << max_path << " " << tdo_test::kind_name(kind) << ": "
+          << tdo_status_str(r.status);
+    }
+  }
+}
+
+TEST(SearchStatus, GivenAMapThatIsNotFinished_WhenSearching_ThenMapNotReady) {
+  TestPlanner pl(make_cap(1000, 1000, 1000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const tdo_vec3 s{0.5, 0.5, 0.5}, g{3.5, 3.5, 3.5};
+  for (tdo_search_kind kind : kKinds) {
+    EXPECT_EQ(run(pl.search(), make_input(pl.grid(), s, g, kind)).status, TDO_ERR_MAP_NOT_READY)
+        << "fresh planner, no map loaded";
+  }
+  const tdo_grid_desc d{5, 5, 5, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(pl.grid(), &d), TDO_OK);
+  for (tdo_search_kind kind : kKinds)
+    EXPECT_EQ(run(pl.search(), make_input(pl.grid(), s, g, kind)).status, TDO_ERR_MAP_NOT_READY)
+        << "reset but not finished";
+  ASSERT_EQ(tdo_grid_add_voxel(pl.grid(), 2, 2, 2), TDO_OK);
+  for (tdo_search_kind kind : kKinds)
+    EXPECT_EQ(run(pl.search(), make_input(pl.grid(), s, g, kind)).status, TDO_ERR_MAP_NOT_READY)
+        << "obstacles added, not finished";
+  ASSERT_EQ(tdo_grid_finish(pl.grid(), 0.0), TDO_OK);
+  for (tdo_search_kind kind : kKinds)
+    EXPECT_EQ(run(pl.search(), make_input(pl.grid(), s, g, kind)).status, TDO_OK);
+  // An obstacle added after finish must never be silently ignored.
+  const tdo_box on_goal{tdo_vec3{3.2, 3.2, 3.2}, tdo_vec3{3.8, 3.8, 3.8}};
+  ASSERT_EQ(tdo_grid_add_box(pl.grid(), &on_goal), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {
+    const tdo_status st = run(pl.search(), make_input(pl.grid(), s, g, kind)).status;
+    EXPECT_TRUE(st == TDO_ERR_MAP_NOT_READY || st == TDO_ERR_GOAL_BLOCKED) << tdo_status_str(st);
+  }
+}
+
+TEST_F(SearchTest, GivenNullPointers_WhenSearching_ThenInvalidArgument) {
+  const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  load(m);
+  tdo_search_output out{};
+  tdo_search_input in =
+      make_input(grid(), tdo_vec3{0.5, 0.5, 0.5}, tdo_vec3{3.5, 3.5, 3.5}, TDO_SEARCH_ASTAR);
+  EXPECT_EQ(tdo_search_run(nullptr, &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_search_run(search(), nullptr, &out), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_search_run(search(), &in, nullptr), TDO_ERR_INVALID_ARGUMENT);
+  in.grid = nullptr;
+  EXPECT_EQ(tdo_search_run(search(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+}
+
+TEST_F(SearchTest, GivenNegativeOrNonFiniteParameters_WhenSearching_ThenInvalidArgument) {
+  const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  load(m);
+  const tdo_vec3 s{0.5, 0.5, 0.5}, g{3.5, 3.5, 3.5};
+  for (tdo_search_kind kind : kKinds) {
+    for (double bad : {-1.0, -1e-300, kNan, kInfty, -kInfty}) {
+      EXPECT_EQ(run(search(), make_input(grid(), s, g, kind, bad, 0.0)).status,
+                TDO_ERR_INVALID_ARGUMENT)
+          << "lambda " << bad;
+      EXPECT_EQ(run(search(), make_input(grid(), s, g, kind, 0.0, bad)).status,
+                TDO_ERR_INVALID_ARGUMENT)
+          << "mu " << bad;
+    }
+    for (double bad : {kNan, kInfty, -kInfty}) {
+      EXPECT_EQ(run(search(), make_input(grid(), tdo_vec3{bad, 0.5, 0.5}, g, kind)).status,
+                TDO_ERR_INVALID_ARGUMENT)
+          << "start.x " << bad;
+      EXPECT_EQ(run(search(), make_input(grid(), s, tdo_vec3{3.5, 3.5, bad}, kind)).status,
+                TDO_ERR_INVALID_ARGUMENT)
+          << "goal.z " << bad;
+    }
+  }
+}
+
+TEST(SearchCapacity, GivenAGridLargerThanTheSearchContext_WhenSearching_ThenRefused) {
+  TestPlanner small(make_cap(64, 64, 64));
+  TestPlanner big(make_cap(1000, 1000, 1000));
+  ASSERT_EQ(small.status(), TDO_OK);
+  ASSERT_EQ(big.status(), TDO_OK);
+  const VoxelMap m(10, 10, 10, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  ASSERT_EQ(tdo_test::load_voxels(big.grid(), m), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {
+    const tdo_status st = run(small.search(), make_input(big.grid(), tdo_vec3{0.5, 0.5, 0.5},
+                                                         tdo_vec3{9.5, 9.5, 9.5}, kind))
+                              .status;
+    EXPECT_TRUE(st == TDO_ERR_MAP_CAPACITY || st == TDO_ERR_INVALID_ARGUMENT) << tdo_status_str(st);
+  }
+}
+
+}  // namespace

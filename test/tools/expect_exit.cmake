@@ -1,0 +1,22 @@
+# Run a command and check its exact exit status and its output.
+#   cmake -DEXE=prog "-DARGS=a|b|c" -DCODE=2 [-DSTDERR_REGEX=re] [-DSTDOUT_REGEX=re] -P expect_exit.cmake
+# ARGS separates arguments with '|'. With CODE=2 stderr must be exactly one line "tdo-plan: error: ...".
+if(NOT DEFINED EXE OR NOT DEFINED CODE)
+  message(FATAL_ERROR "expect_exit.cmake needs -DEXE and -DCODE")
+endif()
+string(REPLACE "|" ";" args "${ARGS}")
+execute_process(COMMAND ${EXE} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(report "command: ${EXE} ${args}\nexit status: ${rc}\nstdout:\n${out}\nstderr:\n${err}")
+if(NOT rc STREQUAL "${CODE}")
+  message(FATAL_ERROR "expected exit status ${CODE}\n${report}")
+endif()
+if(CODE STREQUAL "2" AND NOT err MATCHES "^tdo-plan: error: [^\n]+\n$")
+  message(FATAL_ERROR "expected one line 'tdo-plan: error: ...' on stderr\n${report}")
+endif()
+if(DEFINED STDERR_REGEX AND NOT err MATCHES "${STDERR_REGEX}")
+  message(FATAL_ERROR "stderr does not match '${STDERR_REGEX}'\n${report}")
+endif()
+if(DEFINED STDOUT_REGEX AND NOT out MATCHES "${STDOUT_REGEX}")
+  message(FATAL_ERROR "stdout does not match '${STDOUT_REGEX}'\n${report}")
+endif()
+message(STATUS "ok: exit status ${rc}")

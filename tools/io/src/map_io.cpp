@@ -1,0 +1,377 @@
+// Map and scenario readers for the host tools. See tdo_io/map_io.h.
+#include "tdo_io/map_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
+
+namespace tdo_io {
+namespace {
+
+// ---------------------------------------------------------------- small helpers
+
+/** Whole file into `text`; false when it cannot be opened or read. */
+bool read_file(const std::string& path, std::string* text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) return false;
+  *text = ss.str();
+  return true;
+}
+
+void set_error(std::string* error, const std::string& msg) {
+  if (error != nullptr) *error = msg;
+}
+
+std::string lower_extension(const std::string& path) {
+  const std::size_t slash = path.find_last_of("/\\");
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/** Thrown inside the parsers, turned into `false` + message at the API boundary. */
+struct ParseError {
+  std::string message;
+};
+
+/** Line-by-line tokenizer that knows its file name and line number for messages. */
+class LineReader {
+ public:
+  LineReader(const std::string& path, const std::string& text, bool hash_comments)
+      : path_(path), text_(text), comments_(hash_comments) {}
+
+  /** Next line with at least one token (comments removed); false at the end of the file. */
+  bool next() {
+    while (pos_ < text_.size()) {
+      std::size_t end = text_.find('\n', pos_);
+      if (end == std::string::npos) end = text_.size();
+      std::string_view line(text_.data() + pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_;
+      if (comments_) {
+        const std::size_t hash = line.find('#');
+        if (hash != std::string_view::npos) line = line.substr(0, hash);
+      }
+      tokens_.clear();
+      std::size_t i = 0;
+      while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])) != 0) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])) == 0) ++i;
+        if (i > start) tokens_.push_back(line.substr(start, i - start));
+      }
+      if (!tokens_.empty()) return true;
+    }
+    tokens_.clear();
+    return false;
+  }
+
+  int line() const { return line_ == 0 ? 1 : line_; }
+  const std::vector<std::string_view>& tokens() const { return tokens_; }
+
+  [[noreturn]] void fail(const std::string& msg) const {
+    throw ParseError{path_ + ":" + std::to_string(line()) + ": " + msg};
+  }
+
+  /** Exactly `count` tokens after the keyword (token 0). */
+  void expect_count(std::size_t count, const char* what) const {
+    const std::size_t have = tokens_.size() - 1;
+    if (have < count) {
+      fail("'" + std::string(tokens_[0]) + "' needs " + std::to_string(count) + " numbers (" +
+           what + "), got " + std::to_string(have));
+    }
+    if (have > count) {
+      fail("unexpected '" + std::string(tokens_[count + 1]) + "' after " + std::to_string(count) +
+           " numbers of '" + std::string(tokens_[0]) + "'");
+    }
+  }
+
+  /** Token `i` as a finite double. */
+  double number(std::size_t i) const {
+    const std::string tok(tokens_[i]);
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0') fail("expected a number, got '" + tok + "'");
+    if (!std::isfinite(v)) fail("non-finite number '" + tok + "'");
+    return v;
+  }
+
+  /** Token `i` as an integer in [lo, hi]. */
+  long long integer(std::size_t i, long long lo, long long hi, const char* what) const {
+    const std::string tok(tokens_[i]);
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(tok.c_str(), &end, 10);
+    if (end == tok.c_str() || *end != '\0')
+      fail(std::string("expected an integer ") + what + ", got '" + tok + "'");
+    if (errno == ERANGE || v < lo || v > hi) {
+      fail(std::string(what) + " " + tok + " is outside [" + std::to_string(lo) + ", " +
+           std::to_string(hi) + "]");
+    }
+    return v;
+  }
+
+  tdo_vec3 vec3(std::size_t first) const {
+    return tdo_vec3{number(first), number(first + 1), number(first + 2)};
+  }
+
+ private:
+  const std::string& path_;
+  const std::string& text_;
+  bool comments_;
+  std::size_t pos_ = 0;
+  int line_ = 0;
+  std::vector<std::string_view> tokens_;
+};
+
+const char* axis_name(int a) { return a == 0 ? "x" : (a == 1 ? "y" : "z"); }
+
+double axis(const tdo_vec3& v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
+
+// ---------------------------------------------------------------- .tdomap
+
+void parse_tdomap(const std::string& path, const std::string& text, Map* map) {
+  LineReader r(path, text, true);
+  if (!r.next()) r.fail("missing header 'tdomap 1' (empty file)");
+  if (r.tokens()[0] != "tdomap") {
+    r.fail("missing header 'tdomap 1' (found '" + std::string(r.tokens()[0]) + "')");
+  }
+  if (r.tokens().size() != 2 || r.tokens()[1] != "1") {
+    r.fail("unsupported header: expected 'tdomap 1'");
+  }
+  bool have_bounds = false;
+  bool have_res = false;
+  tdo_vec3 bmin{};
+  tdo_vec3 bmax{};
+  double res = 0.0;
+  while (r.next()) {
+    const std::string_view kw = r.tokens()[0];
+    if (kw == "bounds") {
+      if (have_bounds) r.fail("duplicate 'bounds'");
+      r.expect_count(6, "XMIN YMIN ZMIN XMAX YMAX ZMAX");
+      bmin = r.vec3(1);
+      bmax = r.vec3(4);
+      for (int a = 0; a < 3; ++a) {
+        if (!(axis(bmax, a) > axis(bmin, a))) {
+          r.fail(std::string("bounds inverted: max <= min on the ") + axis_name(a) + " axis");
+        }
+      }
+      have_bounds = true;
+    } else if (kw == "resolution") {
+      if (have_res) r.fail("duplicate 'resolution'");
+      r.expect_count(1, "R");
+      res = r.number(1);
+      if (!(res > 0.0)) r.fail("resolution must be > 0, got " + std::string(r.tokens()[1]));
+      have_res = true;
+    } else if (kw == "box") {
+      r.expect_count(6, "X0 Y0 Z0 X1 Y1 Z1");
+      const tdo_box b{r.vec3(1), r.vec3(4)};
+      for (int a = 0; a < 3; ++a) {
+        if (!(axis(b.max, a) > axis(b.min, a))) {
+          r.fail(std::string("inverted box: max <= min on the ") + axis_name(a) + " axis");
+        }
+      }
+      map->boxes.push_back(b);
+    } else if (kw == "start") {
+      if (map->has_start) r.fail("duplicate 'start'");
+      r.expect_count(3, "X Y Z");
+      map->start = r.vec3(1);
+      map->has_start = true;
+    } else if (kw == "goal") {
+      if (map->has_goal) r.fail("duplicate 'goal'");
+      r.expect_count(3, "X Y Z");
+      map->goal = r.vec3(1);
+      map->has_goal = true;
+    } else if (kw == "mover") {
+      r.expect_count(8, "ID X Y Z VX VY VZ RADIUS");
+      Mover m{};
+      m.id = static_cast<int>(r.integer(1, 0, std::numeric_limits<int>::max(), "mover id"));
+      m.pos = r.vec3(2);
+      m.vel = r.vec3(5);
+      m.radius = r.number(8);
+      if (!(m.radius > 0.0)) r.fail("mover radius must be > 0, got " + std::string(r.tokens()[8]));
+      map->movers.push_back(m);
+    } else if (kw == "tdomap") {
+      r.fail("duplicate header 'tdomap'");
+    } else {
+      r.fail("unknown keyword '" + std::string(kw) + "'");
+    }
+  }
+  if (!have_bounds) r.fail("missing 'bounds'");
+  if (!have_res) r.fail("missing 'resolution'");
+  int32_t n[3];
+  for (int a = 0; a < 3; ++a) {
+    const double cells = std::ceil((axis(bmax, a) - axis(bmin, a)) / res - 1e-9);
+    if (!(cells <= static_cast<double>(std::numeric_limits<int32_t>::max()))) {
+      throw ParseError{path + ": grid too large: " + std::string(axis_name(a)) +
+                       " extent / resolution exceeds 2^31-1 voxels"};
+    }
+    n[a] = std::max<int32_t>(1, static_cast<int32_t>(cells));
+  }
+  map->desc.nx = n[0];
+  map->desc.ny = n[1];
+  map->desc.nz = n[2];
+  map->desc.res = res;
+  map->desc.origin = bmin;
+}
+
+// ---------------------------------------------------------------- .3dmap
+
+void parse_3dmap(const std::string& path, const std::string& text, Map* map) {
+  LineReader r(path, text, false);
+  if (!r.next() || r.tokens()[0] != "voxel") r.fail("missing header 'voxel X Y Z'");
+  if (r.tokens().size() != 4) r.fail("header needs 'voxel X Y Z'");
+  const long long imax = std::numeric_limits<int32_t>::max();
+  const int32_t nx = static_cast<int32_t>(r.integer(1, 1, imax, "size X"));
+  const int32_t ny = static_cast<int32_t>(r.integer(2, 1, imax, "size Y"));
+  const int32_t nz = static_cast<int32_t>(r.integer(3, 1, imax, "size Z"));
+  map->desc.nx = nx;
+  map->desc.ny = ny;
+  map->desc.nz = nz;
+  map->desc.res = 1.0;
+  map->desc.origin = tdo_vec3{-0.5, -0.5, -0.5};
+  while (r.next()) {
+    if (r.tokens().size() != 3) {
+      r.fail("expected a voxel 'x y z', got " + std::to_string(r.tokens().size()) + " fields");
+    }
+    const long long x = r.integer(0, std::numeric_limits<int32_t>::min(), imax, "x");
+    const long long y = r.integer(1, std::numeric_limits<int32_t>::min(), imax, "y");
+    const long long z = r.integer(2, std::numeric_limits<int32_t>::min(), imax, "z");
+    if (x < 0 || x >= nx || y < 0 || y >= ny || z < 0 || z >= nz) {
+      r.fail("voxel " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) +
+             " outside the declared size " + std::to_string(nx) + " x " + std::to_string(ny) +
+             " x " + std::to_string(nz));
+    }
+    map->voxels.push_back(
+        tdo_voxel{static_cast<int32_t>(x), static_cast<int32_t>(y), static_cast<int32_t>(z)});
+  }
+}
+
+// ---------------------------------------------------------------- .3dscen
+
+void parse_3dscen(const std::string& path, const std::string& text, std::vector<ScenQuery>* out) {
+  LineReader r(path, text, false);
+  if (!r.next() || r.tokens()[0] != "version") r.fail("missing header 'version 1'");
+  if (r.tokens().size() != 2 || r.tokens()[1] != "1")
+    r.fail("unsupported header: expected 'version 1'");
+  if (!r.next()) r.fail("missing map name line");
+  while (r.next()) {
+    const std::size_t n = r.tokens().size();
+    if (n < 7 || n > 8) {
+      r.fail("expected 'sx sy sz gx gy gz cost ratio', got " + std::to_string(n) + " fields");
+    }
+    ScenQuery q{};
+    q.start = r.vec3(0);
+    q.goal = r.vec3(3);
+    q.cost = r.number(6);
+    if (n == 8) (void)r.number(7);
+    q.line = r.line();
+    out->push_back(q);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- API
+
+bool load_map(const std::string& path, Map* out, std::string* error) {
+  if (out == nullptr) {
+    set_error(error, path + ": no output map given");
+    return false;
+  }
+  *out = Map{};
+  out->path = path;
+  const std::string ext = lower_extension(path);
+  if (ext == "bt" || ext == "ot") {
+    out->kind = MapKind::OctoMap;
+    set_error(error, path + ": OctoMap input arrives with the pipeline issue");
+    return false;
+  }
+  if (ext != "tdomap" && ext != "3dmap") {
+    set_error(error, path + ": unknown map format '" + (ext.empty() ? std::string() : "." + ext) +
+                         "' (expected .tdomap, .3dmap, .bt or .ot)");
+    return false;
+  }
+  std::string text;
+  if (!read_file(path, &text)) {
+    set_error(error, path + ": cannot open");
+    return false;
+  }
+  try {
+    if (ext == "tdomap") {
+      out->kind = MapKind::TdoMap;
+      parse_tdomap(path, text, out);
+    } else {
+      out->kind = MapKind::MovingAI;
+      parse_3dmap(path, text, out);
+    }
+  } catch (const ParseError& e) {
+    set_error(error, e.message);
+    return false;
+  } catch (const std::exception& e) {
+    set_error(error, path + ": " + e.what());
+    return false;
+  }
+  return true;
+}
+
+bool load_scen(const std::string& path, std::vector<ScenQuery>* out, std::string* error) {
+  if (out == nullptr) {
+    set_error(error, path + ": no output given");
+    return false;
+  }
+  out->clear();
+  std::string text;
+  if (!read_file(path, &text)) {
+    set_error(error, path + ": cannot open");
+    return false;
+  }
+  try {
+    parse_3dscen(path, text, out);
+  } catch (const ParseError& e) {
+    set_error(error, e.message);
+    return false;
+  } catch (const std::exception& e) {
+    set_error(error, path + ": " + e.what());
+    return false;
+  }
+  return true;
+}
+
+tdo_capacity capacity_for(const Map& map, double clearance, uint32_t headings, uint32_t node_cap) {
+  tdo_capacity cap{};
+  const double ratio = map.desc.res > 0.0 ? clearance / map.desc.res : 0.0;
+  tdo_capacity_for_grid(&cap, map.desc.nx, map.desc.ny, map.desc.nz, ratio, headings, node_cap);
+  const std::size_t boxes = std::max<std::size_t>(map.boxes.size(), 1u);
+  cap.max_boxes = static_cast<uint32_t>(std::min<std::size_t>(boxes, 0xFFFFFFF0u));
+  return cap;
+}
+
+tdo_status load_into(const Map& map, tdo_grid* grid, double clearance) {
+  tdo_status st = tdo_grid_reset(grid, &map.desc);
+  if (st != TDO_OK) return st;
+  for (const tdo_box& b : map.boxes) {
+    st = tdo_grid_add_box(grid, &b);
+    if (st != TDO_OK) return st;
+  }
+  for (const tdo_voxel& v : map.voxels) {
+    st = tdo_grid_add_voxel(grid, v.i, v.j, v.k);
+    if (st != TDO_OK) return st;
+  }
+  return tdo_grid_finish(grid, clearance);
+}
+
+}  // namespace tdo_io
