@@ -19,7 +19,18 @@ configure=(cmake -S "$ROOT" -B "$BUILD_DIR")
 if [[ ! -f "$BUILD_DIR/CMakeCache.txt" ]]; then
   configure+=(-G Ninja)
 fi
-configure+=(-DCMAKE_BUILD_TYPE=Release -DTDO_WERROR=ON "${env_args[@]}" "$@")
+configure+=(-DCMAKE_BUILD_TYPE=Release -DTDO_WERROR=ON)
+# LCM for the apps: the lcm wheel in the project venv (scripts/setup.sh) ships lcmConfig.cmake in
+# <site-packages>/lib/lcm/cmake; ask the venv's Python where its site-packages is.
+venv_python="$ROOT/.venv/bin/python"
+if [[ -x "$venv_python" ]]; then
+  site="$("$venv_python" -c 'import sysconfig; print(sysconfig.get_path("platlib"))' 2>/dev/null ||
+    true)"
+  if [[ -n "$site" && -f "$site/lib/lcm/cmake/lcmConfig.cmake" ]]; then
+    configure+=("-Dlcm_DIR=$site/lib/lcm/cmake")
+  fi
+fi
+configure+=("${env_args[@]}" "$@")
 
 printf '[build] %s\n' "${configure[*]}"
 "${configure[@]}"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up a Debian bookworm machine for libtdo: the system packages the build, the tools and the
-# tests need (and, in later issues, a project-local Python virtual environment).
+# tests need, and a project-local Python virtual environment .venv with LCM.
 #
 # Idempotent: when every package is already installed, apt is not touched at all, so a second run
 # is fast and needs no network. Works as root, or through sudo for another user.
@@ -27,6 +27,7 @@ PACKAGES=(
   python3-venv
   python3-matplotlib
   python3-numpy
+  libglib2.0-dev # LCM: the wheel's liblcm links the system GLib (apps, lcm-gen)
 )
 
 log() { printf '[setup] %s\n' "$*"; }
@@ -62,8 +63,37 @@ else
     apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-# ---- Python virtual environment (.venv) --------------------------------------------------------
-# Reserved for later issues: create "$ROOT/.venv" (python3 -m venv) and `pip install lcm` into it,
-# skipping pip when the venv already has it, so the LCM programs and tests find it. Nothing yet.
+# ---- Python virtual environment (.venv) with LCM -----------------------------------------------
+# LCM 1.5 comes from the official wheel on PyPI (docs: shared/design/lcm.md): the C library, its
+# headers, lcmConfig.cmake, lcm-gen, lcm-logger/-logplayer/-spy and the Python bindings. It goes into
+# a project-local venv; scripts/build.sh hands its lcm/cmake directory to CMake. The venv sees the
+# system site packages (Debian's numpy and matplotlib) for the plotting scripts. pip is skipped when
+# the venv already imports this exact version. TDO_PYTHON overrides the interpreter.
+LCM_VERSION=1.5.3
+VENV="$ROOT/.venv"
+venv_lcm_version() {
+  "$VENV/bin/python" -c 'import importlib.metadata as m, lcm; print(m.version("lcm"))' 2>/dev/null
+}
+if [[ "$(venv_lcm_version || true)" == "$LCM_VERSION" ]]; then
+  log "lcm $LCM_VERSION present in .venv; pip skipped"
+else
+  python="${TDO_PYTHON:-}"
+  if [[ -z "$python" ]]; then
+    # Debian's interpreter (python3-venv is in PACKAGES) rather than whatever is first on PATH.
+    if [[ -x /usr/bin/python3 ]]; then python=/usr/bin/python3; else python=python3; fi
+  fi
+  if ! "$VENV/bin/python" -c 'import sys' >/dev/null 2>&1; then
+    log "creating .venv with $python"
+    "$python" -m venv --clear --system-site-packages "$VENV"
+  fi
+  log "installing lcm==$LCM_VERSION into .venv"
+  "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check --no-input \
+    "lcm==$LCM_VERSION"
+  got="$(venv_lcm_version || true)"
+  if [[ "$got" != "$LCM_VERSION" ]]; then
+    log "error: .venv does not import lcm $LCM_VERSION after pip install (got '${got:-nothing}')" >&2
+    exit 1
+  fi
+fi
 
 log "done"

@@ -26,6 +26,18 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   const uint32_t k = static_cast<uint32_t>(ceil(ratio + 0.5));
   cap->max_clear_cells = (2u * k + 1u) * (2u * k + 1u) * (2u * k + 1u);
   cap->max_expansions = cap->max_nodes < 0x7FFFFFFFu ? 2u * cap->max_nodes : 0xFFFFFFFFu;
+  // The box count is not known here (callers set max_boxes afterwards), and the bucket index needs
+  // at most 64 entries per box: 0 derives max_boxes * 64 at init, which can never overflow.
+  cap->max_box_refs = 0;
+  cap->dense_headings = headings >= 27u ? 1u : 0u;
+  cap->max_checks = 100000u;  // correction: a few checks per point and scale, far above need
+  cap->max_shrinks = 16u;     // radius x0.6 per shrink: 16 steps reach 0.03 % of the radius
+  // A flight of 64 samples (0.64 s at dt = 0.01 s) per path voxel covers a slow, stop-heavy path.
+  const uint64_t samples = 64u * static_cast<uint64_t>(cap->max_path) + 1024u;
+  cap->max_samples = static_cast<uint32_t>(samples < (1u << 22) ? samples : (1u << 22));
+  cap->max_profile = 8u * (3u * cap->max_path + 4u) + 1u;  // 8 pieces per path segment
+  cap->max_violations = 64u;  // enough to show a pattern; the total is always counted
+  cap->max_refinements = 8u;  // each round lowers local limits by 20 %: 8 rounds reach 17 %
 }
 
 extern "C" size_t tdo_planner_footprint(const tdo_planner_config* cfg) {

@@ -181,20 +181,239 @@ void compute_moves(tdo_grid* g) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Distance field: exact squared Euclidean distance transform (Felzenszwalb-Huttenlocher), one
+// axis at a time, in integer voxel units with exact int64 comparisons (no rounding decides which
+// parabola wins). Squared distances live in the df array as uint32 until the final conversion.
+
+inline uint32_t df_load(const float* df, int64_t v) {
+  uint32_t u;
+  memcpy(&u, df + v, sizeof u);
+  return u;
+}
+
+inline void df_store(float* df, int64_t v, uint32_t u) { memcpy(df + v, &u, sizeof u); }
+
+// F(x) = f(x) + x^2 of the parabola rooted at site x (voxel^2).
+inline int64_t parabola_key(const uint32_t* f, int32_t x) {
+  return static_cast<int64_t>(f[x]) + static_cast<int64_t>(x) * x;
+}
+
+// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to
+// df[base + q * stride]. Keys F <= 3 * 32767^2 and denominators <= 2 * 32767, so the cross
+// products stay below 2^48 and the results below 2^32. Bounded: every site is pushed and popped
+// at most once, and the evaluation sweep advances monotonically.
+void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base, int64_t stride) {
+  int32_t k = -1;
+  for (int32_t q = 0; q < n; ++q) {
+    if (f[q] == kDfInfinite) continue;
+    const int64_t fq = parabola_key(f, q);
+    // Pop the last site while the new parabola hides its part of the envelope:
+    // s(v[k], q) <= s(v[k-1], v[k]) with s(a, b) = (F(b) - F(a)) / (2 (b - a)).
+    while (k >= 1) {
+      const int32_t a = v[k - 1], b = v[k];
+      const int64_t fb = parabola_key(f, b);
+      const int64_t n1 = fq - fb, d1 = 2 * static_cast<int64_t>(q - b);
+      const int64_t n2 = fb - parabola_key(f, a), d2 = 2 * static_cast<int64_t>(b - a);
+      if (n1 * d2 > n2 * d1) break;
+      --k;
+    }
+    v[++k] = q;
+  }
+  if (k < 0) {  // no site on this line
+    for (int32_t q = 0; q < n; ++q) df_store(df, base + q * stride, kDfInfinite);
+    return;
+  }
+  int32_t j = 0;
+  for (int32_t q = 0; q < n; ++q) {
+    // Advance while the next parabola is lower from q on: s(v[j], v[j+1]) < q.
+    while (j < k) {
+      const int64_t num = parabola_key(f, v[j + 1]) - parabola_key(f, v[j]);
+      const int64_t den = 2 * static_cast<int64_t>(v[j + 1] - v[j]);
+      if (!(num < static_cast<int64_t>(q) * den)) break;
+      ++j;
+    }
+    const int64_t dq = q - v[j];
+    df_store(df, base + q * stride, static_cast<uint32_t>(dq * dq + f[v[j]]));
+  }
+}
+
+// df of every voxel; see tdo_grid::df. Three passes (x, y, z lines) then conversion to metres.
+void build_distance_field(tdo_grid* g) {
+  const tdo_grid_desc& d = g->desc;
+  const int32_t n_axis[3] = {d.nx, d.ny, d.nz};
+  const uint32_t line_cap = df_line_capacity(g->cap.max_voxels);
+  g->df_valid = 1;
+  for (int a = 0; a < 3; ++a)
+    if (static_cast<uint32_t>(n_axis[a]) > line_cap) g->df_valid = 0;
+  if (!g->df_valid) {  // 0 everywhere: a valid lower bound, collision queries stay exact
+    for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
+    return;
+  }
+  const int64_t strides[3] = {1, g->stride_y, g->stride_z};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int32_t n = n_axis[axis];
+    const int64_t stride = strides[axis];
+    // Lines along `axis`, one per (u, w) position on the two other axes.
+    const int32_t nu = axis == 0 ? d.ny : d.nx;
+    const int32_t nw = axis == 2 ? d.ny : d.nz;
+    for (int64_t w = 0; w < nw; ++w) {
+      for (int64_t u = 0; u < nu; ++u) {
+        const int64_t base = axis == 0   ? index_of(g, 0, u, w)
+                             : axis == 1 ? index_of(g, u, 0, w)
+                                         : index_of(g, u, w, 0);
+        for (int32_t q = 0; q < n; ++q) {
+          const int64_t v = base + q * stride;
+          g->df_f[q] = axis == 0 ? ((g->flags[v] & kFlagOccupied) != 0 ? 0u : kDfInfinite)
+                                 : df_load(g->df, v);
+        }
+        edt_line(g->df_f, g->df_v, n, g->df, base, stride);
+      }
+    }
+  }
+  const double res = d.res;
+  for (uint32_t v = 0; v < g->nvox; ++v) {
+    const uint32_t d2 = df_load(g->df, v);
+    float m = HUGE_VALF;
+    if (d2 == 0u) {
+      m = 0.0f;
+    } else if (d2 != kDfInfinite) {
+      // Round down: float conversion may round up, and one more ulp absorbs the double rounding.
+      const double exact = sqrt(static_cast<double>(d2)) * res;
+      m = static_cast<float>(exact);
+      m = nextafterf(m, 0.0f);
+      if (static_cast<double>(m) > exact) m = nextafterf(m, 0.0f);
+    }
+    g->df[v] = m;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bucket index of the boxes (see tdo_grid::cell_start).
+
+inline int32_t ceil_div(int32_t a, int32_t b) { return (a + b - 1) / b; }
+
+// Cell range [lo, hi] along one axis touched by the closed interval [a, b]; false when none.
+bool cell_range(double o, double e, int32_t nc, double a, double b, int32_t* lo, int32_t* hi) {
+  const double fa = floor((a - o) / e), fb = floor((b - o) / e);
+  if (fb < 0.0 || fa > static_cast<double>(nc - 1)) return false;
+  *lo = fa < 0.0 ? 0 : static_cast<int32_t>(fa);
+  *hi = fb > static_cast<double>(nc - 1) ? nc - 1 : static_cast<int32_t>(fb);
+  return true;
+}
+
+// Cells touched by box b grown by `grow` (m); false when it misses the grid's cells entirely.
+bool box_cells(const tdo_grid* g, const tdo_box& b, double grow, int32_t lo[3], int32_t hi[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double e = g->cell_edge;
+  return cell_range(d.origin.x, e, g->ncx, b.min.x - grow, b.max.x + grow, &lo[0], &hi[0]) &&
+         cell_range(d.origin.y, e, g->ncy, b.min.y - grow, b.max.y + grow, &lo[1], &hi[1]) &&
+         cell_range(d.origin.z, e, g->ncz, b.min.z - grow, b.max.z + grow, &lo[2], &hi[2]);
+}
+
+tdo_status build_buckets(tdo_grid* g, double clearance) {
+  const tdo_grid_desc& d = g->desc;
+  const uint32_t cell_cap = bucket_cell_capacity(g->cap.max_voxels);
+  // Grow the cell edge until the cells fit: bounded, 2^30 voxels cover any int32 axis.
+  int32_t e = kCellVoxels;
+  for (int step = 0; step < 30; ++step) {
+    const uint64_t cells = static_cast<uint64_t>(ceil_div(d.nx, e)) * ceil_div(d.ny, e) *
+                           static_cast<uint64_t>(ceil_div(d.nz, e));
+    if (cells <= cell_cap) break;
+    e = e <= (1 << 29) ? 2 * e : e;
+  }
+  g->cell_vox = e;
+  g->cell_edge = static_cast<double>(e) * d.res;
+  g->ncx = ceil_div(d.nx, e);
+  g->ncy = ceil_div(d.ny, e);
+  g->ncz = ceil_div(d.nz, e);
+  const uint32_t n_cells = static_cast<uint32_t>(g->ncx) * g->ncy * g->ncz;
+  if (n_cells > cell_cap) return TDO_ERR_MAP_CAPACITY;  // not reachable for int32 axes
+  g->bucket_reach = fmax(clearance, kReachVoxels * d.res);
+  // The slack keeps a box listed in every cell that a rounded query point may fall into.
+  const double grow = g->bucket_reach + 1e-6 * g->cell_edge;
+  const uint32_t ref_cap = box_ref_capacity(g->cap);
+  for (uint32_t c = 0; c <= n_cells; ++c) g->cell_start[c] = 0;
+  // Pass 1: count the entries of every cell (shifted by one for the prefix sum).
+  uint64_t total = 0;
+  uint32_t n_large = 0;
+  for (uint32_t b = 0; b < g->n_boxes; ++b) {
+    int32_t lo[3], hi[3];
+    if (!box_cells(g, g->boxes[b], grow, lo, hi)) continue;
+    const uint64_t touched = static_cast<uint64_t>(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) *
+                             static_cast<uint64_t>(hi[2] - lo[2] + 1);
+    if (touched > kLargeBoxCells) {
+      g->large_boxes[n_large++] = b;
+      continue;
+    }
+    total += touched;
+    if (total > ref_cap) return TDO_ERR_BOX_CAPACITY;
+    for (int32_t z = lo[2]; z <= hi[2]; ++z)
+      for (int32_t y = lo[1]; y <= hi[1]; ++y)
+        for (int32_t x = lo[0]; x <= hi[0]; ++x)
+          ++g->cell_start[1u + static_cast<uint32_t>(x + g->ncx * (y + g->ncy * z))];
+  }
+  for (uint32_t c = 0; c < n_cells; ++c) g->cell_start[c + 1] += g->cell_start[c];
+  // Pass 2: fill, boxes in index order within each cell; cell_start[c] runs ahead as the cursor
+  // and is shifted back afterwards.
+  for (uint32_t b = 0; b < g->n_boxes; ++b) {
+    int32_t lo[3], hi[3];
+    if (!box_cells(g, g->boxes[b], grow, lo, hi)) continue;
+    const uint64_t touched = static_cast<uint64_t>(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) *
+                             static_cast<uint64_t>(hi[2] - lo[2] + 1);
+    if (touched > kLargeBoxCells) continue;
+    for (int32_t z = lo[2]; z <= hi[2]; ++z)
+      for (int32_t y = lo[1]; y <= hi[1]; ++y)
+        for (int32_t x = lo[0]; x <= hi[0]; ++x)
+          g->box_refs[g->cell_start[static_cast<uint32_t>(x + g->ncx * (y + g->ncy * z))]++] = b;
+  }
+  for (uint32_t c = n_cells; c > 0; --c) g->cell_start[c] = g->cell_start[c - 1];
+  g->cell_start[0] = 0;
+  g->n_refs = static_cast<uint32_t>(total);
+  g->n_large = n_large;
+  return TDO_OK;
+}
+
+// kFlagSurface on every cube that is not buried (see is_buried).
+void mark_surface(tdo_grid* g) {
+  const tdo_grid_desc& d = g->desc;
+  for (int64_t k = 0; k < d.nz; ++k)
+    for (int64_t j = 0; j < d.ny; ++j)
+      for (int64_t i = 0; i < d.nx; ++i) {
+        uint8_t& f = g->flags[index_of(g, i, j, k)];
+        if ((f & kFlagCube) != 0 && !is_buried(g, i, j, k)) f |= kFlagSurface;
+      }
+}
+
 }  // namespace
 
+uint32_t box_ref_capacity(const GridCapacity& cap) {
+  if (cap.max_box_refs > 0) return cap.max_box_refs;
+  const uint64_t n = static_cast<uint64_t>(cap.max_boxes) * kRefsPerBoxDefault;
+  return static_cast<uint32_t>(n < 0xFFFFFFF0u ? n : 0xFFFFFFF0u);
+}
+
 size_t grid_footprint(const GridCapacity& cap) {
+  const size_t line = df_line_capacity(cap.max_voxels);
   return tdo_arena_round(sizeof(tdo_grid)) + tdo_arena_round(static_cast<size_t>(cap.max_voxels)) +
          tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(tdo_box) + 1u) +
-         tdo_arena_round(static_cast<size_t>(cap.max_clear_cells) * 3u * sizeof(int32_t) + 1u);
+         tdo_arena_round(static_cast<size_t>(cap.max_clear_cells) * 3u * sizeof(int32_t) + 1u) +
+         // distance field and its EDT line scratch
+         tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(float)) +
+         tdo_arena_round(line * sizeof(uint32_t)) + tdo_arena_round(line * sizeof(int32_t)) +
+         // bucket index: cell offsets, box references, large boxes
+         tdo_arena_round((static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) *
+                         sizeof(uint32_t)) +
+         tdo_arena_round(static_cast<size_t>(box_ref_capacity(cap)) * sizeof(uint32_t) + 1u) +
+         tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u);
 }
 
 tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) {
   if (out == nullptr || arena == nullptr || cap.max_voxels == 0) return TDO_ERR_INVALID_ARGUMENT;
   tdo_grid* g = static_cast<tdo_grid*>(tdo_arena_alloc(arena, sizeof(tdo_grid)));
   if (g == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(g, 0, sizeof(*g));
+  memset(static_cast<void*>(g), 0, sizeof(*g));  // all-zero is a valid tdo_grid
   g->cap = cap;
   g->flags = static_cast<uint8_t*>(tdo_arena_alloc(arena, cap.max_voxels));
   g->moves = static_cast<uint32_t*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(uint32_t)));
@@ -202,6 +421,19 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
   g->stencil = static_cast<int32_t*>(
       tdo_arena_alloc(arena, cap.max_clear_cells * 3u * sizeof(int32_t) + 1u));
   if (g->flags == nullptr || g->moves == nullptr || g->boxes == nullptr || g->stencil == nullptr)
+    return TDO_ERR_ARENA_TOO_SMALL;
+  const size_t line = df_line_capacity(cap.max_voxels);
+  g->df = static_cast<float*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(float)));
+  g->df_f = static_cast<uint32_t*>(tdo_arena_alloc(arena, line * sizeof(uint32_t)));
+  g->df_v = static_cast<int32_t*>(tdo_arena_alloc(arena, line * sizeof(int32_t)));
+  g->cell_start = static_cast<uint32_t*>(tdo_arena_alloc(
+      arena, (static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) * sizeof(uint32_t)));
+  g->box_refs = static_cast<uint32_t*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(box_ref_capacity(cap)) * sizeof(uint32_t) + 1u));
+  g->large_boxes = static_cast<uint32_t*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u));
+  if (g->df == nullptr || g->df_f == nullptr || g->df_v == nullptr || g->cell_start == nullptr ||
+      g->box_refs == nullptr || g->large_boxes == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   g->clearance = -1.0;
   *out = g;
@@ -279,6 +511,11 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
   g->n_blocked = blocked;
   compute_moves(g);
+  // Collision-query structures (collision.h): they change no blocked flag and no move.
+  if (g->n_cubes > 0) mark_surface(g);
+  build_distance_field(g);
+  const tdo_status bst = build_buckets(g, clearance);
+  if (bst != TDO_OK) return bst;
   g->clearance = clearance;
   g->ready = 1;
   return TDO_OK;

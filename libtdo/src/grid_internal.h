@@ -12,12 +12,33 @@ namespace tdo_internal {
 constexpr uint8_t kFlagOccupied = 1u;  // voxel intersects obstacle geometry
 constexpr uint8_t kFlagCube = 2u;      // voxel cube itself is an obstacle (voxel maps, OcTrees)
 constexpr uint8_t kFlagBlocked = 4u;   // occupied, or centre closer than clearance to an obstacle
+constexpr uint8_t kFlagSurface = 8u;   // cube with a face neighbour that is not a cube (or outside
+                                       // the grid): only these can hold the nearest obstacle point
 
 struct GridCapacity {
   uint32_t max_voxels;
   uint32_t max_boxes;
   uint32_t max_clear_cells;
+  uint32_t max_box_refs = 0;  // bucket index entries; 0 = max_boxes * kRefsPerBoxDefault
 };
+
+// Distance field and box buckets (collision queries, built by tdo_grid_finish).
+constexpr uint32_t kDfMaxAxis = 32768;         // longest axis the exact EDT handles (voxels):
+                                               // 3 * (n-1)^2 stays below 2^32
+constexpr uint32_t kDfInfinite = 0xFFFFFFFFu;  // squared distance "no occupied voxel on the line"
+constexpr int32_t kCellVoxels = 4;             // first choice of the bucket cell edge (voxels)
+constexpr int32_t kReachVoxels = 2;            // bucket reach: max(clearance, 2 voxel edges) (m)
+constexpr uint32_t kLargeBoxCells = 64;        // boxes touching more cells go to the large list
+constexpr uint32_t kRefsPerBoxDefault = kLargeBoxCells;  // so a derived capacity never overflows
+
+// Cells of the bucket index a grid of max_voxels may need (the cell edge grows until it fits).
+inline uint32_t bucket_cell_capacity(uint32_t max_voxels) { return max_voxels / 16u + 64u; }
+// Entries of the line scratch of the exact EDT.
+inline uint32_t df_line_capacity(uint32_t max_voxels) {
+  return max_voxels < kDfMaxAxis ? max_voxels : kDfMaxAxis;
+}
+// Bucket index entries: the configured capacity, or the derived default when it is 0.
+uint32_t box_ref_capacity(const GridCapacity& cap);
 size_t grid_footprint(const GridCapacity& cap);
 tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap);
 }  // namespace tdo_internal
@@ -37,6 +58,29 @@ struct tdo_grid {
   uint32_t n_blocked;  // blocked voxels after finish
   double clearance;    // m, of the last finish; -1 when not finished
   int ready;           // 1 after a successful finish
+
+  // Distance field (tdo_grid_finish): per voxel, the exact Euclidean distance (m) from its centre
+  // to the centre of the nearest occupied voxel, rounded down to float; +inf without any.
+  // df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is then 0, still a lower bound.
+  float* df;       // m, max_voxels entries
+  uint32_t* df_f;  // EDT line scratch: squared distances (voxel^2), df_line_capacity entries
+  int32_t* df_v;   // EDT line scratch: parabola sites (voxel index), df_line_capacity entries
+  int df_valid;    // 1 when df holds the exact field
+
+  // Bucket index of the boxes over coarse cells of cell_vox^3 voxels, CSR: the boxes of cell
+  // c = x + ncx * (y + ncy * z) are box_refs[cell_start[c] .. cell_start[c+1]). A box is listed in
+  // every cell that the box grown by bucket_reach (plus a rounding slack) touches, unless that is
+  // more than kLargeBoxCells cells: then it is in large_boxes, which every query scans.
+  uint32_t* cell_start;   // bucket_cell_capacity + 1 entries
+  uint32_t* box_refs;     // box_ref_capacity entries
+  uint32_t* large_boxes;  // max_boxes entries
+  uint32_t n_large;       // boxes in large_boxes
+  uint32_t n_refs;        // entries used in box_refs
+  int32_t cell_vox;       // cell edge (voxels)
+  double cell_edge;       // m, cell_vox * res
+  int32_t ncx, ncy, ncz;  // cells per axis
+  double bucket_reach;    // m, max(clearance, kReachVoxels * res): every box closer than this to
+                          // a point is listed in the point's cell
 };
 
 #endif  // TDO_SRC_GRID_INTERNAL_H

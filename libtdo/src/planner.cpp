@@ -19,7 +19,7 @@ GridCapacity grid_cap(const tdo_planner_config& cfg) {
 
 tdo_search_config search_cfg(const tdo_planner_config& cfg) {
   return tdo_search_config{cfg.cap.max_voxels, cfg.cap.max_nodes, cfg.cap.max_path,
-                           cfg.cap.max_expansions};
+                           cfg.cap.max_expansions, cfg.cap.dense_headings};
 }
 
 }  // namespace
@@ -29,7 +29,7 @@ size_t planner_footprint(const tdo_planner_config* cfg) {
   const tdo_search_config sc = search_cfg(*cfg);
   // The arena start may be misaligned by up to TDO_ARENA_ALIGN - 1 bytes.
   return (TDO_ARENA_ALIGN - 1u) + tdo_arena_round(sizeof(tdo_planner)) +
-         grid_footprint(grid_cap(*cfg)) + tdo_search_footprint(&sc);
+         grid_footprint(grid_cap(*cfg)) + tdo_search_footprint(&sc) + pipeline_footprint(cfg);
 }
 
 }  // namespace tdo_internal
@@ -51,6 +51,8 @@ extern "C" tdo_status tdo_planner_init(tdo_planner** out, void* memory, size_t b
   if (st != TDO_OK) return st;
   const tdo_search_config sc = search_cfg(*cfg);
   st = tdo_search_init(&p->search, &arena, &sc);
+  if (st != TDO_OK) return st;
+  st = pipeline_init(p, &arena);
   if (st != TDO_OK) return st;
   p->arena = arena;
   *out = p;

@@ -6,18 +6,28 @@
 
 #include "tdo/arena.h"
 #include "tdo/config.h"
+#include "tdo/correct.h"
 #include "tdo/grid.h"
 #include "tdo/search.h"
+#include "tdo/smooth.h"
+#include "tdo/trajectory.h"
 
 struct tdo_planner {
   tdo_planner_config cfg;
   tdo_arena arena;
   tdo_grid* grid;
   tdo_search* search;
+  tdo_correct* correct;
+  tdo_smooth* smooth;
+  tdo_traj* traj;
+  tdo_vec3* grid_path;  // max_path + 1 world points of the last plan
+  uint32_t n_grid_path;
 };
 
 namespace tdo_internal {
 size_t planner_footprint(const tdo_planner_config* cfg);
+size_t pipeline_footprint(const tdo_planner_config* cfg);
+tdo_status pipeline_init(tdo_planner* planner, tdo_arena* arena);
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_PLANNER_INTERNAL_H

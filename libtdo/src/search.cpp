@@ -19,6 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrt2 = 1.41421356237309504880;
 constexpr double kSqrt3 = 1.73205080756887729353;
 constexpr int32_t kMaxAxis = 0xFFFF;  // node coordinates are 16-bit
+// Smallest angle between two different step directions: acos(sqrt(2/3)), face to edge diagonal
+// and edge to corner diagonal (rad).
+constexpr double kMinTurn = 0.61547970867038734;
 
 struct Node {
   double g;          // m, cost from this side's root: length plus turn penalties
@@ -63,9 +66,10 @@ struct StackItem {
 };
 
 struct Side {
-  uint64_t* slot;  // per voxel: see kSlotClosed
-  Node* nodes;     // state pool, max_nodes
-  OpenItem* open;  // binary min-heap, max_nodes
+  uint64_t* slot;           // per voxel: see kSlotClosed
+  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is current
+  Node* nodes;              // state pool, max_nodes
+  OpenItem* open;           // binary min-heap, max_nodes
   uint32_t n_nodes;
   uint32_t n_open;
   int32_t tx, ty, tz;          // target voxel of this side's heuristic
@@ -103,6 +107,8 @@ struct Query {
   tdo_voxel v[2];
   int bidir;
   double mu;
+  double h_weight;        // >= 1
+  int first_meet;         // stop at the first meeting
   double d_th;            // deviation threshold, 0 = off
   double pivot_cost;      // m, surcharge of a pivot
   double pivot_turn_min;  // m, least turn cost of a pivot (0 when D_th moves in-cone steps there)
@@ -124,6 +130,16 @@ inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
 
 inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
   s.slot[v] = (static_cast<uint64_t>(ctx->gen) << 32) | idx;
+}
+
+// Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
+// this query, whose other entries are cleared first.
+inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
+  if (s.heading_index == nullptr) return;
+  uint32_t* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
+  if (first)
+    for (int h = 0; h < kNumHeadings; ++h) row[h] = kNil;
+  row[heading] = idx;
 }
 
 inline bool before(const OpenItem& a, const OpenItem& b) {
@@ -215,14 +231,27 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
   return acos(c) / kPi;
 }
 
+// Least turn penalty (m) still to pay from a state whose heading deviates by dev*pi from the
+// target direction: the turns must add up to dev*pi (the path's later steps would otherwise stay in
+// a cone that misses the target), each step turn is at least kMinTurn, and with a convex penalty
+// the cheapest split is into as many equal turns as allowed. Admissible, so h stays a lower bound.
+inline double turn_bound(const tdo_search* ctx, double dev) {
+  if (!(dev > 1e-9) || !(ctx->turn_lambda > 0.0)) return 0.0;
+  double k = floor(dev * kPi / kMinTurn);
+  if (k < 1.0) k = 1.0;
+  return ctx->turn_lambda * dev * dev / k;
+}
+
 template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
   const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
   *h_out = static_cast<float>(h);
-  if (!kHeaded || !(q.mu > 0.0) || n.heading >= kNumDirs) return n.g + h;
+  if (!kHeaded) return n.g + h;
+  if (n.heading >= kNumDirs) return n.g + q.h_weight * h;
   const int travel = back ? dir_opposite(n.heading) : n.heading;
-  return n.g + h + q.mu * deviation(ctx, s, travel, n.x, n.y, n.z);
+  const double dev = deviation(ctx, s, travel, n.x, n.y, n.z);
+  return n.g + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
 }
 
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
@@ -287,7 +316,11 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
   uint32_t idx = kNil;
   if (kHeaded) {
     idx = slot_first(ctx, s, w);
-    while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
+    if (s.heading_index != nullptr) {
+      if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
+    } else {
+      while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
+    }
   } else {
     const uint64_t word = s.slot[w];
     if ((word >> 32) == ctx->gen) {
@@ -321,6 +354,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     n.z = static_cast<uint16_t>(u.z + (step >= 0 ? dir_dz(step) : 0));
     n.heading = static_cast<uint8_t>(heading);
     n.closed = 0;
+    index_state(s, w, heading, idx, n.next == kNil);
     slot_set(ctx, s, w, idx);
     push(ctx, q, s, back, idx, kHeaded);
   }
@@ -446,6 +480,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   s.n_stack = 0;
   s.f_cur = -HUGE_VAL;  // the root goes to the heap
   s.use_stack = !q.bidir;
+  index_state(s, n.voxel, kHeadingNone, 0, true);
   slot_set(ctx, s, n.voxel, 0);
   push(ctx, q, s, back, 0, headed);
 }
@@ -472,7 +507,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       // it would have to pass an open state of both sides (consistent heuristics, exact compare).
       const double top_f = fw.n_open > 0 ? fw.open[0].f : HUGE_VAL;
       const double top_b = bw.n_open > 0 ? bw.open[0].f : HUGE_VAL;
-      if (!(q.best > top_f) || !(q.best > top_b))
+      if (!(q.best > top_f) || !(q.best > top_b) || (q.first_meet && q.best < HUGE_VAL))
         return q.best < HUGE_VAL ? TDO_OK : TDO_ERR_NO_PATH;
       back = fw.n_open <= bw.n_open ? 0 : 1;
     }
@@ -592,8 +627,14 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
   ctx->turn_lambda = lambda;
 }
 
+size_t heading_index_bytes(const tdo_search_config& cfg) {
+  return cfg.dense_headings ? static_cast<size_t>(cfg.max_voxels) * kNumHeadings * sizeof(uint32_t)
+                            : 0u;
+}
+
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
+         tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(OpenItem));
 }
@@ -637,6 +678,11 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   for (int k = 0; k < 2; ++k) {
     Side& s = ctx->side[k];
     s.slot = static_cast<uint64_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint64_t)));
+    s.heading_index = nullptr;
+    if (cfg->dense_headings) {
+      s.heading_index = static_cast<uint32_t*>(tdo_arena_alloc(arena, heading_index_bytes(*cfg)));
+      if (s.heading_index == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    }
     s.nodes = static_cast<Node*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(Node)));
     s.open = static_cast<OpenItem*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(OpenItem)));
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
@@ -660,9 +706,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
       g->desc.nz > kMaxAxis)
     return TDO_ERR_MAP_CAPACITY;
   if (!isfinite(in->lambda) || !isfinite(in->mu) || in->lambda < 0.0 || in->mu < 0.0 ||
-      !isfinite(in->theta_max) || !isfinite(in->d_th) ||
-      (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) || !finite3(in->start) ||
-      !finite3(in->goal))
+      !isfinite(in->theta_max) || !isfinite(in->d_th) || !isfinite(in->h_weight) ||
+      in->h_weight < 0.0 || (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) ||
+      !finite3(in->start) || !finite3(in->goal))
     return TDO_ERR_INVALID_ARGUMENT;
   Query q;
   memset(&q, 0, sizeof(q));
@@ -684,6 +730,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   }
   q.bidir = in->kind == TDO_SEARCH_BIDIR;
   q.mu = in->mu;
+  q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
+  q.first_meet = in->first_meet != 0;
   q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
   q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);

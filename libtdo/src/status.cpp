@@ -44,6 +44,8 @@ extern "C" const char* tdo_status_str(tdo_status status) {
       return "sample_capacity";
     case TDO_ERR_CLEARANCE_CAPACITY:
       return "clearance_capacity";
+    case TDO_ERR_NOT_CONFIGURED:
+      return "not_configured";
     case TDO_STATUS_COUNT:
       break;
   }

@@ -69,6 +69,7 @@ TEST(Status, GivenTheEnumIdentifiers_WhenNamed_ThenNameIsTheIdentifierWithoutPre
       {TDO_ERR_OBSTACLE_CAPACITY, "obstacle_capacity"},
       {TDO_ERR_SAMPLE_CAPACITY, "sample_capacity"},
       {TDO_ERR_CLEARANCE_CAPACITY, "clearance_capacity"},
+      {TDO_ERR_NOT_CONFIGURED, "not_configured"},
   };
   EXPECT_EQ(sizeof(table) / sizeof(table[0]), static_cast<size_t>(TDO_STATUS_COUNT))
       << "a status was added to status.h without a name in this table";

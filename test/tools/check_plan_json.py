@@ -17,6 +17,39 @@ def fail(msg, proc=None):
     sys.exit(1)
 
 
+def check_pipeline(doc, path, grid_length, proc):
+    """The full pipeline: waypoints, trajectory and feasibility as interfaces.md names them."""
+    for key in ("waypoints", "trajectory", "feasibility"):
+        if key not in doc:
+            fail(f"missing key '{key}'", proc)
+    m = doc["metrics"]
+    for key in ("min_clearance_m", "avg_curvature", "smoothness", "energy", "flight_time_s"):
+        if key not in m or not isinstance(m[key], (int, float)):
+            fail(f"missing or non-numeric metrics.{key}", proc)
+    wp = doc["waypoints"]
+    if wp[0] != path[0] or wp[-1] != path[-1]:
+        fail("waypoints do not begin and end at the grid path's exact start and goal", proc)
+    wp_length = sum(math.dist(a, b) for a, b in zip(wp, wp[1:]))
+    # Shortcuts and corner curves only shorten: path <= waypoint polyline <= grid polyline.
+    if wp_length > grid_length + 1e-9 or m["length_m"] > wp_length + 1e-9:
+        fail(f"lengths grow: grid {grid_length}, waypoints {wp_length}, path {m['length_m']}",
+             proc)
+    samples = doc["trajectory"]["samples"]
+    if len(samples) < 2 or any(len(q) != 10 for q in samples):
+        fail("trajectory.samples must be [t, x, y, z, vx, vy, vz, ax, ay, az] rows", proc)
+    if samples[0][1:4] != path[0] or samples[-1][1:4] != path[-1]:
+        fail("trajectory does not begin and end exactly at start and goal", proc)
+    f = doc["feasibility"]
+    for key in ("ok", "max_speed", "max_acc", "max_jerk", "min_turn_radius", "min_clearance_m",
+                "violations"):
+        if key not in f:
+            fail(f"missing feasibility.{key}", proc)
+    if f["ok"] is not True or f["violations"]:
+        fail("status ok but the feasibility report is not clean", proc)
+    if abs(m["flight_time_s"] - samples[-1][0]) > 1e-9:
+        fail("flight_time_s is not the last sample's time", proc)
+
+
 def main():
     cmd = sys.argv[1:] + ["--json"]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
@@ -55,8 +88,11 @@ def main():
         if path[-1] != goal:
             fail(f"grid_path ends at {path[-1]}, not at the exact goal {goal}", proc)
     length = sum(math.dist(a, b) for a, b in zip(path, path[1:]))
-    if abs(length - m["length_m"]) > 1e-9 * max(1.0, length):
-        fail(f"length_m {m['length_m']} is not the polyline length {length}", proc)
+    if doc["planner"] in ("astar", "bidir"):
+        if abs(length - m["length_m"]) > 1e-9 * max(1.0, length):
+            fail(f"length_m {m['length_m']} is not the polyline length {length}", proc)
+    else:
+        check_pipeline(doc, path, length, proc)
     if m["turns"] < 0 or m["total_turn_deg"] < 0 or m["expansions"] <= 0:
         fail("metrics out of range", proc)
     print("ok:", doc["planner"], doc["status"], f"{len(path)} points, {m['length_m']:.3f} m")

@@ -295,6 +295,13 @@ int run_map(const Options& o, const std::string& name, MapResult* res) {
   return 0;
 }
 
+std::string load_average() {
+  std::ifstream f("/proc/loadavg");
+  std::string a, b, c;
+  if (!(f >> a >> b >> c)) return "unknown";
+  return a + " " + b + " " + c;
+}
+
 std::string cpu_model() {
   std::ifstream f("/proc/cpuinfo");
   std::string line;
@@ -326,6 +333,7 @@ int main(int argc, char** argv) {
     }
   }
 
+  const std::string load_before = load_average();
   std::vector<MapResult> results;
   for (const std::string& name : o.maps) {
     results.emplace_back();
@@ -334,8 +342,11 @@ int main(int argc, char** argv) {
   }
 
   std::printf("# tdo-bench-search\n\n");
-  std::printf("machine: %u hardware threads, CPU %s\n", std::thread::hardware_concurrency(),
-              cpu_model().c_str());
+  std::printf("command:");
+  for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
+  std::printf("\nmachine: %u hardware threads, CPU %s; load average %s before, %s after\n",
+              std::thread::hardware_concurrency(), cpu_model().c_str(), load_before.c_str(),
+              load_average().c_str());
   std::printf("queries per map: %s, repeat %llu (min kept), warm-up %llu, tolerance %g\n\n",
               o.limit > 0 ? std::to_string(o.limit).c_str() : "all",
               static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),

@@ -34,7 +34,7 @@ struct Options {
   std::string map_path;
   std::vector<double> start;
   std::vector<double> goal;
-  std::string planner = "bidir";
+  std::string planner = "tdo";
   bool json = false;
   double clearance = 0.0; /**< m; default depends on the map kind */
   long long max_expansions = 0;
@@ -50,6 +50,13 @@ struct Options {
   double k = 1.0;          /**< corner radius scale */
   double dt = 0.01;        /**< s, trajectory sample period */
   std::string smoothing = "g2";
+  std::string correction = "multiscale";
+  double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
+  std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
+  double d_th = 0.0;               /**< deviation threshold, 0 = off */
+  double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
+  double v_cruise = 0.0;           /**< m/s, 0 = v_max */
+  double stop_angle = 150.0;       /**< deg */
   long long seed = 0;
   long long max_voxels = 100000000; /**< hidden: voxel capacity of the planner */
   long long arena_bytes = -1;       /**< hidden: arena size override (-1 = footprint) */
@@ -102,6 +109,15 @@ void validate(const Options& o) {
   check_positive(o.j_max, "--j-max");
   check_positive(o.k, "--k");
   check_positive(o.dt, "--dt");
+  check_finite(o.h_weight, "--h-weight");
+  if (o.h_weight < 1.0) throw BadInput{"--h-weight must be >= 1, got " + fmt(o.h_weight)};
+  check_nonneg(o.d_th, "--d-th");
+  if (o.d_th >= 1.0) throw BadInput{"--d-th must be below 1 (0 = off), got " + fmt(o.d_th)};
+  check_nonneg(o.a_lat_max, "--a-lat-max");
+  check_nonneg(o.v_cruise, "--v-cruise");
+  check_positive(o.stop_angle, "--stop-angle");
+  if (o.stop_angle > 180.0)
+    throw BadInput{"--stop-angle must be at most 180 degrees, got " + fmt(o.stop_angle)};
   if (o.max_expansions < 0 || o.max_expansions > 0xFFFFFFFFLL) {
     throw BadInput{"--max-expansions must be in [0, 4294967295], got " +
                    std::to_string(o.max_expansions)};
@@ -154,7 +170,7 @@ double voxel_count(const tdo_grid_desc& d) {
 
 /** Size, allocate and initialise the planner, then load the map. Throws BadInput. */
 void build_planner(const Options& o, const tdo_io::Map& map, double clearance, Planner* p) {
-  const uint32_t headings = (o.lambda > 0.0 || o.mu > 0.0) ? 27u : 1u;
+  const uint32_t headings = (o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo") ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   const double nvox = voxel_count(map.desc);
@@ -270,6 +286,13 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["lambda"] = o.lambda;
   p["mu"] = o.mu;
   p["theta_max_deg"] = o.theta_max;
+  p["h_weight"] = o.h_weight;
+  p["d_th"] = o.d_th;
+  p["stop"] = o.stop;
+  p["correction"] = o.correction;
+  p["a_lat_max"] = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
+  p["v_cruise"] = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
+  p["stop_angle_deg"] = o.stop_angle;
   p["clearance"] = clearance;
   p["v_max"] = o.v_max;
   p["a_max"] = o.a_max;
@@ -281,6 +304,76 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["max_expansions"] = max_expansions;
   p["max_nodes"] = o.max_nodes;
   return p;
+}
+
+/** The pipeline parameters of a planner preset, with the command line's values. */
+tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
+  tdo_plan_params pp;
+  tdo_plan_params_default(&pp);
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  pp.search = kind;
+  pp.lambda = o.lambda;
+  pp.mu = o.mu;
+  pp.theta_max = o.planner == "tdo" ? o.theta_max * kDeg : 0.0;
+  pp.h_weight = o.h_weight;
+  pp.first_meet = o.planner == "tdo" ? (o.stop == "first-meet" ? 1 : 0) : 0;
+  pp.d_th = o.d_th;
+  pp.max_expansions = static_cast<uint32_t>(o.max_expansions);
+  pp.correction = o.correction == "greedy" ? TDO_CORRECT_GREEDY_LOS
+                  : o.correction == "none" ? TDO_CORRECT_NONE
+                                           : TDO_CORRECT_MULTISCALE;
+  pp.smoothing = o.smoothing == "arc"    ? TDO_SMOOTHING_ARC
+                 : o.smoothing == "none" ? TDO_SMOOTHING_NONE
+                                         : TDO_SMOOTHING_G2;
+  pp.k = o.k;
+  pp.v_max = o.v_max;
+  pp.a_max = o.a_max;
+  pp.j_max = o.j_max;
+  pp.a_lat_max = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
+  pp.v_cruise = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
+  pp.stop_angle = o.stop_angle * kDeg;
+  pp.dt = o.dt;
+  pp.depth = (o.planner == "astar" || o.planner == "bidir") ? TDO_PLAN_SEARCH : TDO_PLAN_TRAJECTORY;
+  return pp;
+}
+
+nlohmann::json points_json(const tdo_vec3* pts, uint32_t n) {
+  nlohmann::json a = nlohmann::json::array();
+  for (uint32_t i = 0; i < n; ++i) a.push_back({pts[i].x, pts[i].y, pts[i].z});
+  return a;
+}
+
+const char* quantity_name(tdo_quantity q) {
+  switch (q) {
+    case TDO_QUANTITY_SPEED:
+      return "speed";
+    case TDO_QUANTITY_ACCELERATION:
+      return "acceleration";
+    case TDO_QUANTITY_JERK:
+      return "jerk";
+    case TDO_QUANTITY_TURN_RADIUS:
+      return "turn_radius";
+    case TDO_QUANTITY_CLEARANCE:
+      return "clearance";
+  }
+  return "?";
+}
+
+nlohmann::json feasibility_json(const tdo_feasibility& f) {
+  nlohmann::json v = nlohmann::json::array();
+  for (uint32_t i = 0; i < f.n_violations; ++i) {
+    const tdo_violation& x = f.violations[i];
+    v.push_back(
+        {{"t", x.t}, {"quantity", quantity_name(x.what)}, {"value", x.value}, {"limit", x.limit}});
+  }
+  return {{"ok", f.ok != 0},
+          {"max_speed", f.max_speed},
+          {"max_acc", f.max_acc},
+          {"max_jerk", f.max_jerk},
+          {"min_turn_radius", std::isfinite(f.min_turn_radius) ? f.min_turn_radius : -1.0},
+          {"min_clearance_m", f.min_clearance},
+          {"violations", v},
+          {"violations_total", f.n_violations_total}};
 }
 
 /** --scen mode: every query (or the first --limit) with the search only, costs against the file. */
@@ -360,77 +453,92 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   Planner p;
   build_planner(o, map, clearance, &p);
 
-  tdo_search_input in{};
-  in.grid = p.grid;
-  in.start = start;
-  in.goal = goal;
-  in.kind = kind;
-  in.lambda = o.lambda;
-  in.mu = o.mu;
-  in.max_expansions = static_cast<uint32_t>(o.max_expansions);
-  tdo_search_output out{};
+  tdo_plan_request req{};
+  req.start = start;
+  req.goal = goal;
+  req.params = plan_params(o, kind);
+  tdo_plan_result res{};
   const auto t0 = std::chrono::steady_clock::now();
-  const tdo_status st = tdo_search_run(p.search, &in, &out);
+  const tdo_status st = tdo_planner_plan(p.planner, &req, &res);
   const auto t1 = std::chrono::steady_clock::now();
   const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-
-  std::vector<tdo_vec3> path;
-  if (st == TDO_OK && out.path != nullptr && out.n_path > 0) {
-    path.reserve(out.n_path + 1u);
-    for (uint32_t i = 0; i < out.n_path; ++i)
-      path.push_back(tdo_grid_voxel_center(p.grid, out.path[i]));
-    if (path.size() == 1) {
-      path[0] = start;
-      path.push_back(goal);
-    } else {
-      path.front() = start;
-      path.back() = goal;
-    }
-  }
-  const double length = tdo_tools::polyline_length(path);
-  const tdo_tools::TurnStats turns = tdo_tools::turn_stats(path);
+  const bool planned = st == TDO_OK || st == TDO_ERR_INFEASIBLE;
+  const tdo_metrics& m = res.metrics;
 
   if (o.json) {
     nlohmann::json j;
     j["status"] = tdo_status_str(st);
     j["planner"] = o.planner;
     j["params"] = params_json(o, clearance, o.max_expansions);
-    nlohmann::json gp = nlohmann::json::array();
-    for (const tdo_vec3& q : path) gp.push_back({q.x, q.y, q.z});
-    j["grid_path"] = gp;
-    j["metrics"] = {{"length_m", length},
-                    {"turns", turns.turns},
-                    {"total_turn_deg", turns.total_turn_deg},
-                    {"plan_time_ms", plan_ms},
-                    {"expansions", out.expansions}};
-    if (st == TDO_OK) j["search_cost"] = out.cost;
+    j["grid_path"] = points_json(res.grid_path, res.n_grid_path);
+    if (res.reached >= TDO_PLAN_CORRECT)
+      j["waypoints"] = points_json(res.waypoints, res.n_waypoints);
+    if (res.n_samples > 0) {
+      nlohmann::json samples = nlohmann::json::array();
+      for (uint32_t i = 0; i < res.n_samples; ++i) {
+        const tdo_sample& q = res.samples[i];
+        samples.push_back({q.t, q.p.x, q.p.y, q.p.z, q.v.x, q.v.y, q.v.z, q.a.x, q.a.y, q.a.z});
+      }
+      j["trajectory"] = {{"dt", req.params.dt}, {"samples", samples}};
+    }
+    if (planned) {
+      j["metrics"] = {{"length_m", m.length_m},
+                      {"turns", m.turns},
+                      {"total_turn_deg", m.total_turn_deg},
+                      {"min_clearance_m", m.min_clearance_m},
+                      {"avg_curvature", m.avg_curvature},
+                      {"smoothness", m.smoothness},
+                      {"energy", m.energy},
+                      {"flight_time_s", m.flight_time_s},
+                      {"plan_time_ms", plan_ms},
+                      {"expansions", res.search.expansions},
+                      {"smooth", m.curvature_continuous != 0 && st == TDO_OK &&
+                                     res.reached == TDO_PLAN_TRAJECTORY}};
+    } else {
+      j["metrics"] = {{"plan_time_ms", plan_ms}, {"expansions", res.search.expansions}};
+    }
+    if (res.reached == TDO_PLAN_TRAJECTORY) j["feasibility"] = feasibility_json(res.feasibility);
+    if (st == TDO_OK || planned) j["search_cost"] = res.search.cost;
     j["arena_bytes"] = p.bytes;
     std::cout << j.dump() << std::endl;
   } else {
     const tdo_grid_desc& d = map.desc;
-    std::printf("map             %s (%s, %d x %d x %d voxels, res %s m)\n", map.path.c_str(),
+    std::printf("map              %s (%s, %d x %d x %d voxels, res %s m)\n", map.path.c_str(),
                 kind_name(map.kind), d.nx, d.ny, d.nz, fmt(d.res).c_str());
-    std::printf("planner         %s (lambda %s, mu %s, clearance %s m)\n", o.planner.c_str(),
-                fmt(o.lambda).c_str(), fmt(o.mu).c_str(), fmt(clearance).c_str());
-    std::printf("start           %s\n", fmt_vec(start).c_str());
-    std::printf("goal            %s\n", fmt_vec(goal).c_str());
-    std::printf("status          %s\n", tdo_status_str(st));
-    if (st == TDO_OK) {
-      std::printf("search_cost     %.8f\n", out.cost);
-      std::printf("length_m        %.6f\n", length);
-      std::printf("grid_path       %zu points\n", path.size());
-      std::printf("turns           %d\n", turns.turns);
-      std::printf("total_turn_deg  %.3f\n", turns.total_turn_deg);
+    std::printf("planner          %s (lambda %s, mu %s, theta_max %s deg, clearance %s m)\n",
+                o.planner.c_str(), fmt(o.lambda).c_str(), fmt(o.mu).c_str(),
+                fmt(o.theta_max).c_str(), fmt(clearance).c_str());
+    std::printf("start -> goal    %s -> %s\n", fmt_vec(start).c_str(), fmt_vec(goal).c_str());
+    std::printf("status           %s\n", tdo_status_str(st));
+    if (planned) {
+      std::printf("grid path        %u voxels, search cost %.6f m\n", res.n_grid_path,
+                  res.search.cost);
+      if (res.reached >= TDO_PLAN_CORRECT)
+        std::printf("waypoints        %u (%u kept for clearance)\n", res.n_waypoints,
+                    res.n_safety_critical);
+      std::printf("length_m         %.3f\n", m.length_m);
+      std::printf("turns            %u (%.1f deg in total)\n", m.turns, m.total_turn_deg);
+      std::printf("min_clearance_m  %.3f\n", m.min_clearance_m);
+      std::printf("avg_curvature    %.4f 1/m\n", m.avg_curvature);
+      std::printf("smoothness       %.4f\n", m.smoothness);
+      if (res.reached == TDO_PLAN_TRAJECTORY) {
+        const tdo_feasibility& f = res.feasibility;
+        std::printf("energy           %.3f m^2/s^3\n", m.energy);
+        std::printf("flight_time_s    %.2f\n", m.flight_time_s);
+        std::printf("feasible         %s (max speed %.3f, acc %.3f, jerk %.3f; %u violations)\n",
+                    f.ok ? "yes" : "no", f.max_speed, f.max_acc, f.max_jerk, f.n_violations_total);
+      }
     }
-    std::printf("expansions      %" PRIu32 "\n", out.expansions);
-    std::printf("plan_time_ms    %.3f\n", plan_ms);
-    std::printf("arena_bytes     %zu\n", p.bytes);
+    std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
+    std::printf("plan_time_ms     %.3f\n", plan_ms);
+    std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
   }
 
   if (st == TDO_OK) return kExitOk;
   if (is_bad_input(st)) throw BadInput{explain(st, p.grid, start, goal, clearance)};
-  std::fprintf(stderr, "tdo-plan: no plan: %s\n", explain_no_plan(st, in.max_expansions).c_str());
+  std::fprintf(stderr, "tdo-plan: no plan: %s\n",
+               explain_no_plan(st, req.params.max_expansions).c_str());
   return kExitNoPlan;
 }
 
@@ -444,9 +552,10 @@ int run(int argc, char** argv) {
       ->required();
   app.add_option("--start", o.start, "start X Y Z in m (default: the map's 'start')")->expected(3);
   app.add_option("--goal", o.goal, "goal X Y Z in m (default: the map's 'goal')")->expected(3);
-  app.add_option(
-         "--planner", o.planner,
-         "astar | bidir (default bidir for now; tdo and msf-mtpo arrive with the pipeline issue)")
+  app.add_option("--planner", o.planner,
+                 "tdo (the full TDO-MSF pipeline) | astar | bidir (raw grid paths, no penalties) | "
+                 "msf-mtpo (the paper's baseline)")
+      ->check(CLI::IsMember({"tdo", "astar", "bidir", "msf-mtpo"}))
       ->capture_default_str();
   app.add_flag("--json", o.json, "print one JSON object on stdout");
   app.add_option(
@@ -461,25 +570,34 @@ int run(int argc, char** argv) {
                               "MovingAI .3dscen: plan its queries, compare costs (1e-4)");
   app.add_option("--limit", o.limit, "with --scen: only the first N queries (0 = all)")
       ->capture_default_str();
-  app.add_option("--lambda", o.lambda,
-                 "turn penalty, m of cost per (turn/pi)^2 (default 0 for astar/bidir)")
+  app.add_option("--lambda", o.lambda, "turn penalty, m of cost per (turn/pi)^2 (tdo: 50, else 0)");
+  app.add_option("--mu", o.mu, "deviation weight, m of f (tdo: 20, else 0)");
+  app.add_option("--theta-max", o.theta_max, "deg, direction constraint of the tdo search")
       ->capture_default_str();
-  app.add_option("--mu", o.mu, "deviation weight, m of f (default 0 for astar/bidir)")
+  app.add_option("--h-weight", o.h_weight,
+                 "heuristic weight (>= 1) of the turn-penalised search: speed for optimality")
       ->capture_default_str();
-  app.add_option("--theta-max", o.theta_max,
-                 "deg, direction constraint (tdo; accepted, unused for now)")
+  app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
+      ->check(CLI::IsMember({"first-meet", "optimal"}))
       ->capture_default_str();
-  app.add_option("--v-max", o.v_max, "m/s (accepted, unused for now)")->capture_default_str();
-  app.add_option("--a-max", o.a_max, "m/s^2 (accepted, unused for now)")->capture_default_str();
-  app.add_option("--j-max", o.j_max, "m/s^3 (accepted, unused for now)")->capture_default_str();
-  app.add_option("--k", o.k, "corner radius scale (accepted, unused for now)")
+  app.add_option("--d-th", o.d_th, "deviation threshold in (0,1) of the tdo search (0 = off)")
       ->capture_default_str();
-  app.add_option("--dt", o.dt, "s, trajectory sample period (accepted, unused for now)")
+  app.add_option("--correction", o.correction, "multiscale | greedy | none (msf-mtpo: greedy)")
+      ->check(CLI::IsMember({"multiscale", "greedy", "none"}));
+  app.add_option("--smoothing", o.smoothing, "g2 | arc | none (msf-mtpo: arc)")
+      ->check(CLI::IsMember({"g2", "arc", "none"}));
+  app.add_option("--k", o.k, "corner radius scale")->capture_default_str();
+  app.add_option("--v-max", o.v_max, "m/s")->capture_default_str();
+  app.add_option("--a-max", o.a_max, "m/s^2")->capture_default_str();
+  app.add_option("--j-max", o.j_max, "m/s^3")->capture_default_str();
+  app.add_option("--a-lat-max", o.a_lat_max, "m/s^2, lateral limit of corners (default a-max)");
+  app.add_option("--v-cruise", o.v_cruise,
+                 "m/s, sets R_min = v_cruise^2/a_lat_max (default v-max)");
+  app.add_option("--stop-angle", o.stop_angle, "deg, sharper corners become stop points")
       ->capture_default_str();
-  app.add_option("--smoothing", o.smoothing, "arc | g2 (accepted, unused for now)")
-      ->check(CLI::IsMember({"arc", "g2"}))
+  app.add_option("--dt", o.dt, "s, trajectory sample period")->capture_default_str();
+  app.add_option("--seed", o.seed, "random seed (stochastic planners; unused by tdo)")
       ->capture_default_str();
-  app.add_option("--seed", o.seed, "random seed (accepted, unused for now)")->capture_default_str();
   // Advanced, hidden from --help: capacities for tests of the overflow paths.
   app.add_option("--max-voxels", o.max_voxels, "voxel capacity of the planner")->group("");
   app.add_option("--arena-bytes", o.arena_bytes, "arena size in bytes (default: the footprint)")
@@ -497,18 +615,17 @@ int run(int argc, char** argv) {
     throw BadInput{e.what()};
   }
   o.clearance_given = app.count("--clearance") > 0;
-  validate(o);
 
-  tdo_search_kind kind = TDO_SEARCH_BIDIR;
-  if (o.planner == "astar") {
-    kind = TDO_SEARCH_ASTAR;
-  } else if (o.planner == "bidir") {
-    kind = TDO_SEARCH_BIDIR;
-  } else if (o.planner == "tdo" || o.planner == "msf-mtpo") {
-    throw BadInput{"planner '" + o.planner + "' arrives with the pipeline issue"};
-  } else {
-    throw BadInput{"unknown planner '" + o.planner + "' (expected astar or bidir)"};
+  // Planner presets; options given on the command line win.
+  const bool tdo = o.planner == "tdo";
+  if (app.count("--lambda") == 0) o.lambda = tdo ? 50.0 : 0.0;
+  if (app.count("--mu") == 0) o.mu = tdo ? 20.0 : 0.0;
+  if (o.planner == "msf-mtpo") {
+    if (app.count("--correction") == 0) o.correction = "greedy";
+    if (app.count("--smoothing") == 0) o.smoothing = "arc";
   }
+  validate(o);
+  const tdo_search_kind kind = o.planner == "astar" ? TDO_SEARCH_ASTAR : TDO_SEARCH_BIDIR;
 
   tdo_io::Map map;
   std::string err;

@@ -26,6 +26,24 @@ typedef struct tdo_capacity {
   uint32_t max_clear_cells; /**< offsets in the clearance stencil: (2K+1)^3 with
                                  K = ceil(clearance/res + 0.5) covers a clearance (12 bytes each) */
   uint32_t max_expansions;  /**< default expansion budget of one search (both directions) */
+  uint32_t max_box_refs;    /**< entries of the box bucket index of collision queries (4 bytes
+                                 each): a box is listed in every coarse cell (4^3 voxels or more)
+                                 that the box grown by max(clearance, 2 voxel edges) touches, when
+                                 that is at most 64 cells (larger boxes go to a list every query
+                                 scans). 0 = max_boxes * 64, which can never overflow; a non-zero
+                                 value too small for the map makes tdo_grid_finish return
+                                 TDO_ERR_BOX_CAPACITY. The grid also keeps a distance field (4 bytes
+                                 per voxel) and a few cell offsets (1/4 byte per voxel). */
+  uint32_t dense_headings;  /**< 1: every voxel gets a 27-entry heading index per search direction
+                                 (108 bytes per voxel and direction), so turn-penalised searches
+                                 find a (voxel, heading) state in one read; 0: states of a voxel
+                                 are chained (compact, slower with penalties) */
+  uint32_t max_checks;      /**< segment clearance checks of one inflection correction (budget) */
+  uint32_t max_shrinks;     /**< radius reductions per corner when smoothing (budget) */
+  uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (80 bytes each) */
+  uint32_t max_profile;     /**< speed-profile pieces: 8 per path segment + 1 (see trajectory.h) */
+  uint32_t max_violations;  /**< violations listed in a feasibility report (40 bytes each) */
+  uint32_t max_refinements; /**< feasibility refinement rounds before TDO_ERR_INFEASIBLE */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */

@@ -32,6 +32,8 @@ typedef struct tdo_search_config {
   uint32_t max_nodes;      /**< states per direction */
   uint32_t max_path;       /**< voxels in the returned path */
   uint32_t max_expansions; /**< default budget when the input gives 0 */
+  uint32_t dense_headings; /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
+                                direction) for turn-penalised searches; 0: per-voxel chains */
 } tdo_search_config;
 
 /** One query. */
@@ -45,9 +47,16 @@ typedef struct tdo_search_input {
   double theta_max;        /**< rad; steps within theta_max of the heading are expanded directly,
                                 sharper ones only through a pivot (turn in place at the turn cost
                                 plus a surcharge). <= 0 or >= pi: unconstrained */
+  double h_weight;         /**< heuristic weight w >= 1 of turn-penalised searches: f = g + w*h.
+                                1 (or 0) keeps h admissible; larger trades cost for speed (the
+                                cost found is at most w times the best). Ignored without
+                                penalties, so plain A* and bidir stay optimal */
   double d_th;             /**< deviation threshold in (0, 1): steps deviating more from the target
                                 direction go through a pivot too. <= 0 or >= 1: off */
   uint32_t max_expansions; /**< expansions allowed (both directions); 0 = configured default */
+  int first_meet;          /**< bidirectional only: 1 = stop as soon as the two searches meet (the
+                                paper's Algorithm 1, line 12); 0 = stop by the optimal rule (the
+                                smaller f of either side reaches the best meeting cost) */
 } tdo_search_input;
 
 /**

@@ -32,8 +32,9 @@ typedef enum tdo_status {
   TDO_ERR_OBSTACLE_CAPACITY = 18,  /**< more moving obstacles than the configured capacity */
   TDO_ERR_SAMPLE_CAPACITY = 19,    /**< more trajectory samples than the configured capacity */
   TDO_ERR_CLEARANCE_CAPACITY =
-      20,               /**< clearance reaches further than the configured voxel radius */
-  TDO_STATUS_COUNT = 21 /**< number of statuses (not a status) */
+      20,                      /**< clearance reaches further than the configured voxel radius */
+  TDO_ERR_NOT_CONFIGURED = 21, /**< a pipeline stage was asked for but its capacities are zero */
+  TDO_STATUS_COUNT = 22        /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

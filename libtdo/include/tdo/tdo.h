@@ -6,11 +6,18 @@
 #define TDO_TDO_H
 
 #include "tdo/arena.h"
+#include "tdo/collision.h"
 #include "tdo/config.h"
+#include "tdo/correct.h"
 #include "tdo/grid.h"
+#include "tdo/metrics.h"
+#include "tdo/path.h"
+#include "tdo/pipeline.h"
 #include "tdo/planner.h"
 #include "tdo/search.h"
+#include "tdo/smooth.h"
 #include "tdo/status.h"
+#include "tdo/trajectory.h"
 #include "tdo/types.h"
 
 #endif /* TDO_TDO_H */

@@ -33,22 +33,32 @@ typedef enum tdo_quantity {
   TDO_QUANTITY_CLEARANCE = 4     /**< distance to obstacles < clearance (m) */
 } tdo_quantity;
 
-/** One violation of a limit. */
+/**
+ * One violation of a limit. A dynamic quantity violates when it misses its limit by more than 1 %
+ * (speed, acceleration, jerk: value > 1.01 * limit; turn radius: 1.01 * value < limit), the
+ * clearance when value < limit - 1e-9 m.
+ */
 typedef struct tdo_violation {
-  double t;          /**< s, sample time */
+  double t;          /**< s, centre time of the finite-difference stencil (the sample time for
+                          the clearance) */
   tdo_quantity what; /**< which limit */
   double value;      /**< measured value, unit of the quantity */
   double limit;      /**< the limit, same unit */
 } tdo_violation;
 
-/** Feasibility report of a sampled trajectory (finite differences at dt, paper eq. 15-19). */
+/**
+ * Feasibility report of a sampled trajectory, computed from the sampled positions only (paper
+ * eq. 15-19): v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt, j_i = (a_{i+1} - a_i)/dt as
+ * vectors; the turn radius uses the centred velocity (v_i + v_{i+1})/2 of a_i.
+ */
 typedef struct tdo_feasibility {
   int ok;                          /**< 1 when no violation */
   double max_speed;                /**< m/s */
   double max_acc;                  /**< m/s^2 */
   double max_jerk;                 /**< m/s^3 */
   double min_turn_radius;          /**< m, minimum of |v|^2/|a_perp| (HUGE_VAL when straight) */
-  double min_clearance;            /**< m, minimum exact distance of the samples to obstacles */
+  double min_clearance;            /**< m, minimum exact distance of the samples to obstacles,
+                                        capped at clearance + 1 m; HUGE_VAL without a grid */
   uint32_t n_violations;           /**< violations listed */
   uint32_t n_violations_total;     /**< violations found (may exceed the listed ones: capacity) */
   const tdo_violation* violations; /**< the first n_violations */
@@ -56,41 +66,69 @@ typedef struct tdo_feasibility {
 
 typedef struct tdo_traj tdo_traj;
 
-/** Capacities. */
+/** Constant-jerk pieces of the speed profile per path segment, at most (sizes max_profile). */
+#define TDO_TRAJ_PIECES_PER_SEGMENT 8u
+
+/** Capacities. Every one sizes an arena array; see tdo_traj_footprint. */
 typedef struct tdo_traj_config {
-  uint32_t max_samples;     /**< samples at dt: flight time / dt + 1 */
-  uint32_t max_segments;    /**< path segments */
-  uint32_t max_profile;     /**< arclength stations of the speed profile */
-  uint32_t max_violations;  /**< violations listed in the report */
-  uint32_t max_refinements; /**< refinement rounds before TDO_ERR_INFEASIBLE */
+  uint32_t max_samples;     /**< samples at dt: flight time / dt + 1 (>= 2) */
+  uint32_t max_segments;    /**< path segments (>= 1) */
+  uint32_t max_profile;     /**< stations of the speed profile, i.e. its constant-jerk pieces:
+                                 at most TDO_TRAJ_PIECES_PER_SEGMENT * segments + 1 (>= 1) */
+  uint32_t max_violations;  /**< violations listed in the report (0: only counted) */
+  uint32_t max_refinements; /**< refinement rounds before TDO_ERR_INFEASIBLE (0: none) */
 } tdo_traj_config;
 
 /** Input. */
 typedef struct tdo_traj_input {
-  tdo_path path;        /**< geometric path (stage 3) */
-  const tdo_grid* grid; /**< for the clearance column of the report (may be NULL: not checked) */
-  double clearance;     /**< m */
+  tdo_path path;        /**< geometric path (stage 3); each segment's `length` as path.h says */
+  const tdo_grid* grid; /**< for the clearance column of the report (may be NULL: not checked);
+                             when given it must be finished */
+  double clearance;     /**< m, >= 0; every sample keeps it (checked only with a grid) */
   double v_max;         /**< m/s, > 0 */
   double a_max;         /**< m/s^2, > 0 */
   double j_max;         /**< m/s^3, > 0 */
-  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds */
-  double dt;            /**< s, sample period, > 0 */
+  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.78 a_max
+                             is used, so that tangential plus lateral stays within a_max) */
+  double dt;            /**< s, sample period, > 0 (default 0.01) */
 } tdo_traj_input;
 
 /** Output; storage in the context, valid until the next run. */
 typedef struct tdo_traj_output {
-  const tdo_sample* samples; /**< from t = 0 (at start, at rest) to the end (at goal, at rest) */
+  const tdo_sample* samples; /**< every dt from t = 0 (at start, at rest) to the end (exactly at
+                                  the goal, at rest); a sample falls on every stop point */
   uint32_t n_samples;
-  double duration;        /**< s */
-  uint32_t refinements;   /**< rounds used */
+  double duration;        /**< s, (n_samples - 1) * dt */
+  uint32_t refinements;   /**< refinement rounds used (0: the first profile passed) */
   tdo_feasibility report; /**< of the returned samples */
 } tdo_traj_output;
 
+/** @return arena bytes tdo_traj_init carves for `cfg`; 0 for an invalid configuration. */
 size_t tdo_traj_footprint(const tdo_traj_config* cfg);
-tdo_status tdo_traj_init(tdo_traj** ctx, tdo_arena* arena, const tdo_traj_config* cfg);
+
 /**
- * @return TDO_OK only for a trajectory that passed every check; TDO_ERR_INFEASIBLE with the report
- *         of the last attempt otherwise; TDO_ERR_SAMPLE_CAPACITY; TDO_ERR_INVALID_ARGUMENT.
+ * @brief Carve a trajectory context from `arena`.
+ * @return TDO_ERR_INVALID_ARGUMENT for null pointers or capacities below their minimum;
+ *         TDO_ERR_ARENA_TOO_SMALL when the arena has no room.
+ */
+tdo_status tdo_traj_init(tdo_traj** ctx, tdo_arena* arena, const tdo_traj_config* cfg);
+
+/**
+ * @brief Time-parameterise the path rest to rest (also at rest at every stop point and tangent
+ *        kink), sample it every dt, verify the samples and refine: lower the speed, acceleration
+ *        and jerk limits (x0.8) of the segments around each violation, at most max_refinements
+ *        times. Allocates nothing; bounded work.
+ * @return TDO_OK only for a trajectory that passed every check;
+ *         TDO_ERR_INFEASIBLE with the samples and report of the last attempt otherwise (clearance
+ *         violations stop the refinement at once: flying slower does not move the path);
+ *         TDO_ERR_SAMPLE_CAPACITY when the samples or the profile pieces do not fit (during a
+ *         refinement round `out` keeps the previous, failed attempt);
+ *         TDO_ERR_PATH_CAPACITY for more than max_segments segments;
+ *         TDO_ERR_MAP_NOT_READY for an unfinished grid;
+ *         TDO_ERR_INVALID_ARGUMENT for null pointers, a limit or dt zero, negative or non-finite, a
+ *         negative or non-finite clearance, an empty or zero-length path, an unknown segment kind,
+ *         non-finite points, curvature or lengths, a negative length, a v_limit not > 0, or
+ *         consecutive segments whose end points are more than 1e-6 m apart.
  */
 tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_traj_output* out);
 

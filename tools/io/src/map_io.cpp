@@ -8,8 +8,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <string_view>
+
+#include "octomap_io.h"
 
 namespace tdo_io {
 namespace {
@@ -288,6 +291,10 @@ void parse_3dscen(const std::string& path, const std::string& text, std::vector<
 // ---------------------------------------------------------------- API
 
 bool load_map(const std::string& path, Map* out, std::string* error) {
+  return load_map(path, LoadOptions{}, out, error);
+}
+
+bool load_map(const std::string& path, const LoadOptions& options, Map* out, std::string* error) {
   if (out == nullptr) {
     set_error(error, path + ": no output map given");
     return false;
@@ -296,9 +303,17 @@ bool load_map(const std::string& path, Map* out, std::string* error) {
   out->path = path;
   const std::string ext = lower_extension(path);
   if (ext == "bt" || ext == "ot") {
-    out->kind = MapKind::OctoMap;
-    set_error(error, path + ": OctoMap input arrives with the pipeline issue");
-    return false;
+    std::string msg;
+    bool ok = false;
+    try {
+      ok = detail::load_octomap(path, options, out, &msg);
+    } catch (const std::bad_alloc&) {
+      msg = path + ": out of memory while voxelizing the OcTree (try a coarser resolution)";
+    } catch (const std::exception& e) {
+      msg = path + ": " + e.what();
+    }
+    if (!ok) set_error(error, msg);
+    return ok;
   }
   if (ext != "tdomap" && ext != "3dmap") {
     set_error(error, path + ": unknown map format '" + (ext.empty() ? std::string() : "." + ext) +

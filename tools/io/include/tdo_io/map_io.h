@@ -2,9 +2,10 @@
  * @file map_io.h
  * @brief Host-side map and scenario readers for the tools (tdo-plan, bench). Not part of libtdo.
  *
- * Formats: `.tdomap` (docs: interfaces.md), MovingAI `.3dmap` / `.3dscen`. OctoMap `.bt`/`.ot`
- * arrive with the pipeline issue. Every function reports failure as `false` plus a message of the
- * form "FILE:LINE: message" (or "FILE: message" when no line applies); none throws.
+ * Formats: `.tdomap` (docs: interfaces.md), MovingAI `.3dmap` / `.3dscen`, OctoMap OcTrees `.bt`
+ * (binary) and `.ot` (full), read with the OctoMap library and voxelized (see load_map). Every
+ * function reports failure as `false` plus a message of the form "FILE:LINE: message" (or
+ * "FILE: message" when no line applies); none throws.
  */
 #ifndef TDO_IO_MAP_IO_H
 #define TDO_IO_MAP_IO_H
@@ -45,13 +46,29 @@ struct Map {
   std::string path;              /**< the file it was read from */
 };
 
+/** Options of load_map; the defaults are what load_map(path, out, error) uses. */
+struct LoadOptions {
+  double resolution = 0.0;         /**< m, voxel edge for OcTrees; 0 = the tree's resolution */
+  uint64_t max_voxels = 100000000; /**< cap on nx*ny*nz of an OcTree grid (0 = no cap): larger is
+                                        an error, not an allocation of gigabytes */
+};
+
 /**
  * @brief Read a map, choosing the format by extension (.tdomap, .3dmap, .bt/.ot).
+ *
+ * OcTrees (`.bt` binary or `.ot` full format, told apart by the file's first line): the grid has
+ * `options.resolution` (default: the tree's), its bounds are the tree's metric bounding box of
+ * known space padded by one voxel on every side, and every occupied leaf, at any depth, marks each
+ * grid voxel its cube intersects (as `voxels`). Unknown space is free. The OctoMap library's own
+ * messages on stderr are captured and folded into `error`.
  * @param[out] out the map (replaced)
  * @param[out] error "FILE:LINE: message" on failure (may be null)
  * @return true on success.
  */
 bool load_map(const std::string& path, Map* out, std::string* error);
+
+/** load_map with options (OcTree resolution, voxel cap). */
+bool load_map(const std::string& path, const LoadOptions& options, Map* out, std::string* error);
 
 /** One MovingAI scenario query. */
 struct ScenQuery {

@@ -1,0 +1,58 @@
+/**
+ * @file check.h
+ * @brief The outcome of every adapter and wire check: a named reason plus a human-readable detail.
+ *
+ * Reasons are the keys the apps count in their status_t heartbeat and the `status` string of an
+ * error answer, so their names are stable.
+ */
+#ifndef TDO_LCM_CHECK_H
+#define TDO_LCM_CHECK_H
+
+#include <string>
+#include <utility>
+
+namespace tdo_lcm {
+
+/** Why a message was not accepted. Reason::ok is the only success. */
+enum class Reason {
+  ok = 0,
+  // ---- wire level (before decoding)
+  bad_fingerprint, /**< the message's fingerprint is not the expected type's */
+  truncated,       /**< fewer bytes than the fields and array counts need */
+  trailing_bytes,  /**< more bytes than the message needs */
+  negative_count,  /**< an array count is negative */
+  bad_string,      /**< a string without its terminating zero, or of length 0 on the wire */
+  decode_error,    /**< the generated decoder failed after the wire check passed */
+  // ---- content
+  count_mismatch,       /**< an array count field differs from its array's size */
+  non_finite,           /**< a NaN or infinite number where a finite one is required */
+  out_of_range,         /**< a number outside its documented range */
+  bad_enum,             /**< an enum-like field outside its constants */
+  other_vehicle,        /**< addressed to another vehicle (ignored, not answered) */
+  map_capacity,         /**< the map exceeds the planner's configured capacities */
+  bad_encoding,         /**< unknown map encoding */
+  unsupported_encoding, /**< a known encoding this build cannot decode */
+  rle_mismatch,         /**< the run lengths do not add up to the voxel count */
+  grid_error,           /**< the library refused the map (detail: the tdo_status name) */
+  no_map,               /**< a request before any map was loaded */
+  unknown_map,          /**< a request for a map id other than the loaded one */
+  too_large,            /**< a library result does not fit in a message (count > INT32_MAX) */
+};
+
+/** @return the stable lower-case name of a reason, e.g. "non_finite". */
+const char* reason_str(Reason reason);
+
+/** Outcome of a check: the reason and a detail naming the offending field and value. */
+struct Check {
+  Reason reason = Reason::ok;
+  std::string detail; /**< empty when ok */
+
+  bool ok() const { return reason == Reason::ok; }
+};
+
+/** @return a failed check. */
+inline Check fail(Reason reason, std::string detail) { return Check{reason, std::move(detail)}; }
+
+}  // namespace tdo_lcm
+
+#endif  // TDO_LCM_CHECK_H

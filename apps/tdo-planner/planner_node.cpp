@@ -1,0 +1,220 @@
+// tdo-planner's node: decode -> adapter -> tdo_planner_plan -> encode (planner_node.h).
+#include "planner_node.h"
+
+#include <cmath>
+#include <new>
+#include <utility>
+
+#include "tdo/pipeline.h"
+#include "tdo_lcm/wire.h"
+
+namespace tdo_lcm {
+
+int64_t now_utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+PlannerNode::PlannerNode(Bus* bus, PlannerConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
+  started_ = std::chrono::steady_clock::now();
+  next_status_ = started_;
+}
+
+bool PlannerNode::start(std::string* error) {
+  auto fail_with = [&](const std::string& msg) {
+    if (error != nullptr) *error = msg;
+    return false;
+  };
+  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
+  if (cfg_.max_nx <= 0 || cfg_.max_ny <= 0 || cfg_.max_nz <= 0)
+    return fail_with("the capacity sizes must be > 0");
+  if (!(cfg_.max_clearance_ratio >= 0.0) || !std::isfinite(cfg_.max_clearance_ratio))
+    return fail_with("the clearance ratio must be finite and >= 0");
+  tdo_capacity_for_grid(&cfg_tdo_.cap, cfg_.max_nx, cfg_.max_ny, cfg_.max_nz,
+                        cfg_.max_clearance_ratio, 27u, cfg_.max_nodes);
+  cfg_tdo_.cap.max_boxes = cfg_.max_boxes > 0 ? cfg_.max_boxes : 1u;
+  arena_bytes_ = tdo_planner_footprint(&cfg_tdo_);
+  if (arena_bytes_ == 0) return fail_with("invalid planner configuration");
+  const std::size_t words =
+      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+  arena_.reset(new (std::nothrow) std::max_align_t[words]);
+  if (!arena_)
+    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+  const tdo_status st = tdo_planner_init(&planner_, arena_.get(), arena_bytes_, &cfg_tdo_);
+  if (st != TDO_OK) return fail_with(std::string("tdo_planner_init: ") + tdo_status_str(st));
+  const bool ok =
+      bus_->subscribe(cfg_.map_channel,
+                      [this](const void* d, std::size_t n, const std::string&) { on_map(d, n); }) &&
+      bus_->subscribe(cfg_.request_channel, [this](const void* d, std::size_t n,
+                                                   const std::string&) { on_request(d, n); });
+  return ok ? true : fail_with("cannot subscribe");
+}
+
+void PlannerNode::refuse(const std::string& what, const Check& c) {
+  if (c.reason == Reason::other_vehicle)
+    ++counters_.ignored;
+  else
+    ++counters_.rejected;
+  ++counters_.reasons[what + "." + reason_str(c.reason)];
+}
+
+void PlannerNode::answer(const tdo::trajectory_t& traj, const tdo::feasibility_t& feas) {
+  // The generated encoders trust the counts; the adapters keep them right, this makes sure.
+  if (!check_counts(traj).ok() || !check_counts(feas).ok()) return;
+  bus_->publish(cfg_.trajectory_channel, traj);
+  bus_->publish(cfg_.feasibility_channel, feas);
+  ++counters_.answered;
+}
+
+void PlannerNode::answer_error(const AnswerIds& ids, const std::string& what, const Check& c) {
+  refuse(what, c);
+  tdo::trajectory_t traj{};
+  tdo::feasibility_t feas{};
+  error_answer(ids, tdo::trajectory_t::STATUS_REJECTED, reason_str(c.reason), c.detail, &traj,
+               &feas);
+  answer(traj, feas);
+}
+
+void PlannerNode::on_map(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::map_t m{};
+  Check c = decode(data, size, &m);
+  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
+    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  // Everything is checked before the grid is touched, so a bad map leaves the current one in place.
+  if (c.ok()) c = map_check(m, cfg_tdo_.cap, -1.0);
+  if (!c.ok()) {
+    refuse("map", c);
+    return;
+  }
+  c = map_to_grid(m, cfg_tdo_.cap, -1.0, tdo_planner_grid(planner_));
+  if (!c.ok()) {  // the library refused after the reset: no map until the next good one
+    have_map_ = false;
+    map_id_ = -1;
+    refuse("map", c);
+    return;
+  }
+  have_map_ = true;
+  map_id_ = m.map_id;
+  map_res_ = m.resolution;
+  map_clearance_ = m.clearance;
+  ++counters_.maps_loaded;
+}
+
+bool PlannerNode::set_clearance(double clearance, Check* why) {
+  tdo_grid* grid = tdo_planner_grid(planner_);
+  // Bit-exact: the grid was finished with this very clearance.
+  if (!(std::fabs(tdo_grid_clearance(grid) - clearance) > 0.0)) return true;
+  *why = clearance_check(clearance, map_res_, cfg_tdo_.cap);
+  if (!why->ok()) return false;
+  const double previous = tdo_grid_clearance(grid);
+  tdo_status st = tdo_grid_finish(grid, clearance);
+  if (st == TDO_OK) return true;
+  *why = fail(Reason::grid_error, std::string("tdo_grid_finish: ") + tdo_status_str(st));
+  if (previous < 0.0 || tdo_grid_finish(grid, previous) != TDO_OK) {
+    have_map_ = false;
+    map_id_ = -1;
+  }
+  return false;
+}
+
+void PlannerNode::on_request(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::plan_request_t m{};
+  Check c = decode(data, size, &m);
+  if (!c.ok()) {  // no request id to answer to
+    refuse("request", c);
+    return;
+  }
+  AnswerIds ids;
+  ids.utime = now_utime();
+  ids.request_id = m.request_id;
+  ids.vehicle_id = m.vehicle_id;
+  ids.map_id = map_id();
+
+  tdo_plan_request req{};
+  double clearance = -1.0;
+  c = plan_request_from_msg(m, cfg_.vehicle_id, &req, &clearance);
+  if (c.reason == Reason::other_vehicle) {
+    refuse("request", c);
+    return;
+  }
+  if (c.ok() && !have_map_) c = fail(Reason::no_map, "no map received yet on " + cfg_.map_channel);
+  if (c.ok() && m.map_id >= 0 && m.map_id != map_id_)
+    c = fail(Reason::unknown_map, "request for map " + std::to_string(m.map_id) +
+                                      ", the planner has map " + std::to_string(map_id_));
+  if (c.ok()) {
+    if (clearance < 0.0) clearance = map_clearance_;
+    set_clearance(clearance, &c);
+  }
+  if (!c.ok()) {
+    ids.map_id = map_id();
+    answer_error(ids, "request", c);
+    return;
+  }
+
+  tdo_plan_result result{};
+  const auto t0 = std::chrono::steady_clock::now();
+  const tdo_status st = tdo_planner_plan(planner_, &req, &result);
+  const auto t1 = std::chrono::steady_clock::now();
+  const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  counters_.last_plan_ms = plan_ms;
+
+  tdo::trajectory_t traj{};
+  tdo::feasibility_t feas{};
+  ids.utime = now_utime();
+  c = trajectory_to_msg(result, req, ids, plan_ms, &traj);
+  if (c.ok()) c = feasibility_to_msg(result, req, clearance, ids, &feas);
+  if (!c.ok()) {
+    answer_error(ids, "result", c);
+    return;
+  }
+  if (st == TDO_OK)
+    ++counters_.succeeded;
+  else
+    ++counters_.failed;
+  answer(traj, feas);
+}
+
+tdo::status_t PlannerNode::status_message() const {
+  tdo::status_t s{};
+  s.utime = now_utime();
+  s.seq = status_seq_;
+  s.program = "tdo-planner";
+  s.vehicle_id = cfg_.vehicle_id;
+  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  s.map_id = map_id();
+  s.received = counters_.received;
+  s.maps_loaded = counters_.maps_loaded;
+  s.answered = counters_.answered;
+  s.succeeded = counters_.succeeded;
+  s.failed = counters_.failed;
+  s.rejected = counters_.rejected;
+  s.ignored = counters_.ignored;
+  s.last_plan_ms = counters_.last_plan_ms;
+  for (const auto& kv : counters_.reasons) {
+    s.reason.push_back(kv.first);
+    s.reason_count.push_back(kv.second);
+  }
+  s.n_reasons = static_cast<int32_t>(s.reason.size());
+  return s;
+}
+
+void PlannerNode::publish_status() {
+  const tdo::status_t s = status_message();
+  if (!check_counts(s).ok()) return;
+  bus_->publish(cfg_.status_channel, s);
+  ++status_seq_;
+}
+
+void PlannerNode::poll(std::chrono::steady_clock::time_point now) {
+  if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
+  publish_status();
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(cfg_.heartbeat_period_s));
+  next_status_ += period;
+  if (next_status_ <= now) next_status_ = now + period;  // fell behind: no burst of heartbeats
+}
+
+}  // namespace tdo_lcm

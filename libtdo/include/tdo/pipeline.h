@@ -1,0 +1,98 @@
+/**
+ * @file pipeline.h
+ * @brief The whole TDO-MSF static pipeline in one call: search -> inflection correction ->
+ *        smoothing -> time parameterisation and feasibility -> metrics.
+ *
+ * Every stage can be switched for the baselines and the ablation (tdo_plan_params).
+ */
+#ifndef TDO_PIPELINE_H
+#define TDO_PIPELINE_H
+
+#include "tdo/correct.h"
+#include "tdo/metrics.h"
+#include "tdo/path.h"
+#include "tdo/planner.h"
+#include "tdo/search.h"
+#include "tdo/smooth.h"
+#include "tdo/status.h"
+#include "tdo/trajectory.h"
+#include "tdo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** How far the pipeline runs. */
+typedef enum tdo_plan_depth {
+  TDO_PLAN_SEARCH = 0,    /**< grid path only (the raw A* / bidir baselines) */
+  TDO_PLAN_CORRECT = 1,   /**< plus inflection correction */
+  TDO_PLAN_SMOOTH = 2,    /**< plus corner smoothing (geometric path) */
+  TDO_PLAN_TRAJECTORY = 3 /**< plus time parameterisation and feasibility (default) */
+} tdo_plan_depth;
+
+/** Every parameter of the pipeline (names as in pipeline.md). */
+typedef struct tdo_plan_params {
+  tdo_plan_depth depth;        /**< stages to run */
+  tdo_search_kind search;      /**< bidirectional (default) or A* */
+  double lambda;               /**< m, turn penalty weight (default 50) */
+  double mu;                   /**< m, deviation weight (default 20) */
+  double theta_max;            /**< rad, direction constraint (default pi/4); 0 = off */
+  double d_th;                 /**< deviation threshold in (0,1); 0 = off (default) */
+  double h_weight;             /**< heuristic weight >= 1 of the turn-penalised search */
+  int first_meet;              /**< bidirectional: stop at the first meeting (paper, default 1) */
+  uint32_t max_expansions;     /**< search budget; 0 = the configured default */
+  tdo_correct_mode correction; /**< multi-scale (default), greedy line of sight, none */
+  double turn_threshold;   /**< rad, "straight" turns for the correction windows (default 10 deg) */
+  tdo_smoothing smoothing; /**< g2 (default), arc, none */
+  double k;                /**< radius scale (default 1) */
+  double v_max;            /**< m/s (default 3) */
+  double a_max;            /**< m/s^2 (default 3) */
+  double j_max;            /**< m/s^3 (default 10) */
+  double a_lat_max;        /**< m/s^2, lateral limit for corner radii (default = a_max) */
+  double v_cruise;   /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max (default = v_max) */
+  double stop_angle; /**< rad, corners sharper than this stop (default 150 deg) */
+  double dt;         /**< s, trajectory sample period (default 0.01) */
+} tdo_plan_params;
+
+/** Fill `p` with the defaults documented in tdo_plan_params. */
+void tdo_plan_params_default(tdo_plan_params* p);
+
+/** One planning request. */
+typedef struct tdo_plan_request {
+  tdo_vec3 start;         /**< m, world frame */
+  tdo_vec3 goal;          /**< m, world frame */
+  tdo_plan_params params; /**< parameters */
+} tdo_plan_request;
+
+/** Everything a plan produced. Arrays point into the planner arena, valid until the next plan. */
+typedef struct tdo_plan_result {
+  tdo_status status;         /**< overall status (TDO_OK only when every stage run passed) */
+  tdo_plan_depth reached;    /**< last stage that produced output */
+  tdo_search_output search;  /**< stage 1 */
+  const tdo_vec3* grid_path; /**< m, voxel centres with the exact start and goal at the ends */
+  uint32_t n_grid_path;
+  const tdo_vec3* waypoints; /**< m, polyline P2 (stage 2) */
+  uint32_t n_waypoints;
+  uint32_t n_safety_critical; /**< waypoints kept for clearance */
+  tdo_path path;              /**< stage 3 */
+  const tdo_sample* samples;  /**< stage 5, every dt */
+  uint32_t n_samples;
+  tdo_feasibility feasibility; /**< stage 5 report (also when infeasible) */
+  uint32_t refinements;        /**< feasibility refinement rounds */
+  tdo_metrics metrics;         /**< stage 6, of the deepest output */
+} tdo_plan_result;
+
+/**
+ * @brief Plan on the planner's finished grid (its clearance applies). Allocates nothing.
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for a zero, negative or non-finite parameter;
+ *         the search statuses; TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the
+ *         limits; capacity and budget statuses.
+ */
+tdo_status tdo_planner_plan(tdo_planner* planner, const tdo_plan_request* req,
+                            tdo_plan_result* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TDO_PIPELINE_H */

@@ -1,0 +1,573 @@
+// Exact continuous clearance queries against the grid's obstacle geometry (collision.h).
+//
+// Geometry = the boxes (exact, also their parts outside the grid bounds) + the occupied voxel
+// cubes of voxel maps. Two independent parts answer every query:
+// - Boxes: the segment is cut at the coarse bucket cells it crosses (a 3D DDA); every box listed
+//   in a cell is tested exactly against the piece of the segment inside that cell. A box is listed
+//   in every cell its box grown by bucket_reach touches, so every box closer than bucket_reach to
+//   a point of the piece is tested. Queries that reach further scan every box.
+// - Cubes: the segment is split recursively (explicit fixed-size stack). A piece with midpoint m
+//   and half-length L is clear when df(voxel of m) - |m - centre| - res*sqrt(3)/2 - L >= clearance:
+//   the distance field bounds the distance to every occupied voxel from below. Pieces at voxel
+//   scale test the nearby surface cubes exactly.
+// Segment-to-box distances are exact: the squared distance is a convex piecewise quadratic in the
+// segment parameter; it is minimised in closed form on each piece between slab crossings.
+#include "tdo/collision.h"
+
+#include <math.h>
+
+#include "grid_internal.h"
+
+namespace tdo_internal {
+namespace {
+
+constexpr double kHalfDiag = 0.86602540378443864676;  // sqrt(3) / 2
+constexpr int kStackCap = 64;              // subdivision stack entries (depth 63: pieces of 2^-63)
+constexpr uint32_t kMaxPieces = 1u << 20;  // pieces of one cube query; beyond: "not clear"
+constexpr int kBezierStackCap = 40;        // Bezier subdivision stack entries
+constexpr uint32_t kMaxBezierPieces = 1u << 14;  // Bezier pieces of one query; beyond: "not clear"
+constexpr double kMinTolerance = 1e-9;           // m, smallest Bezier tolerance honoured
+
+bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+inline void load(const tdo_vec3& v, double p[3]) {
+  p[0] = v.x;
+  p[1] = v.y;
+  p[2] = v.z;
+}
+
+inline double dmin(double a, double b) { return b < a ? b : a; }
+inline double dmax(double a, double b) { return b > a ? b : a; }
+
+// Point of the segment a + t (b - a); the end points are returned exactly.
+inline void seg_point(const double a[3], const double b[3], double t, double p[3]) {
+  if (!(t > 0.0)) {
+    for (int i = 0; i < 3; ++i) p[i] = a[i];
+  } else if (!(t < 1.0)) {
+    for (int i = 0; i < 3; ++i) p[i] = b[i];
+  } else {
+    for (int i = 0; i < 3; ++i) p[i] = a[i] + t * (b[i] - a[i]);
+  }
+}
+
+// Squared distance (m^2) from point p to the closed box [lo, hi].
+inline double point_box_d2(const double p[3], const double lo[3], const double hi[3]) {
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    // Branch-free (max instructions): at most one of the two gaps is positive.
+    const double g = dmax(lo[i] - p[i], 0.0) + dmax(p[i] - hi[i], 0.0);
+    s += g * g;
+  }
+  return s;
+}
+
+// Exact minimum squared distance (m^2) from the segment [a, b] to the closed box [lo, hi].
+// F(t) = sum_i gap_i(a + t d)^2 is convex and quadratic between the breakpoints where a coordinate
+// crosses a slab face. Candidates: both ends, every breakpoint and the vertex of each piece's
+// quadratic when it lies inside the piece; every candidate is evaluated as the distance of an
+// actual point, so rounding can only make the result larger by rounding of that evaluation.
+double segment_box_d2(const double a[3], const double b[3], const double lo[3],
+                      const double hi[3]) {
+  double d[3];
+  for (int i = 0; i < 3; ++i) d[i] = b[i] - a[i];
+  double bp[8];
+  int n = 0;
+  bp[n++] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (!(d[i] < 0.0 || d[i] > 0.0)) continue;
+    const double t1 = (lo[i] - a[i]) / d[i];
+    const double t2 = (hi[i] - a[i]) / d[i];
+    if (t1 > 0.0 && t1 < 1.0) bp[n++] = t1;
+    if (t2 > 0.0 && t2 < 1.0) bp[n++] = t2;
+  }
+  bp[n++] = 1.0;
+  for (int i = 2; i < n - 1; ++i) {  // insertion sort of the interior breakpoints
+    const double x = bp[i];
+    int j = i - 1;
+    while (j >= 1 && bp[j] > x) {
+      bp[j + 1] = bp[j];
+      --j;
+    }
+    bp[j + 1] = x;
+  }
+  double best = point_box_d2(a, lo, hi);
+  if (!(best > 0.0)) return 0.0;
+  double p[3];
+  for (int k = 1; k < n; ++k) {
+    seg_point(a, b, bp[k], p);
+    best = dmin(best, point_box_d2(p, lo, hi));
+    const double t0 = bp[k - 1], t1 = bp[k];
+    if (!(t1 > t0)) continue;
+    // The active slab faces on (t0, t1) are those of its midpoint.
+    const double tm = 0.5 * (t0 + t1);
+    double qa = 0.0, qb = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double x = a[i] + tm * d[i];
+      const double face = x < lo[i] ? lo[i] : (x > hi[i] ? hi[i] : x);
+      if (!(x < face || x > face)) continue;  // inside the slab: no term
+      qa += d[i] * d[i];
+      qb += (a[i] - face) * d[i];
+    }
+    if (!(qa > 0.0)) continue;
+    const double tv = -qb / qa;
+    if (tv > t0 && tv < t1) {
+      seg_point(a, b, tv, p);
+      best = dmin(best, point_box_d2(p, lo, hi));
+    }
+  }
+  return best;
+}
+
+inline void box_bounds(const tdo_box& b, double lo[3], double hi[3]) {
+  load(b.min, lo);
+  load(b.max, hi);
+}
+
+// The segment's bounding box grown by r misses [lo, hi]: no point of it is within r.
+inline bool far_apart(const double a[3], const double b[3], const double lo[3], const double hi[3],
+                      double r) {
+  for (int i = 0; i < 3; ++i) {
+    if (lo[i] - r > dmax(a[i], b[i]) || hi[i] + r < dmin(a[i], b[i])) return true;
+  }
+  return false;
+}
+
+// A distance d (as d^2) violates clearance c: closer than c, or touching at all.
+inline bool violates(double d2, double c) { return !(d2 >= c * c) || !(d2 > 0.0); }
+
+bool inside_bounds(const tdo_grid* g, const double p[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  for (int i = 0; i < 3; ++i)
+    if (!(p[i] >= o[i]) || !(p[i] <= o[i] + static_cast<double>(n[i]) * d.res)) return false;
+  return true;
+}
+
+// Distance (m) from p to the closed grid bounds, 0 inside.
+double bounds_distance(const tdo_grid* g, const double p[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double lo[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const double hi[3] = {d.origin.x + d.nx * d.res, d.origin.y + d.ny * d.res,
+                        d.origin.z + d.nz * d.res};
+  return sqrt(point_box_d2(p, lo, hi));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Boxes.
+
+// Cut [a, b] (inside the grid bounds) at the bucket cell faces and call f(p0, p1, cell) for every
+// non-empty piece, in order; the cell is that of the piece's midpoint. Stops when f returns false.
+// Bounded: every iteration crosses one cell face, at most ncx + ncy + ncz + 3 iterations.
+template <class F>
+bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3], F&& f) {
+  const tdo_grid_desc& desc = g->desc;
+  const double o[3] = {desc.origin.x, desc.origin.y, desc.origin.z};
+  const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
+  const double e = g->cell_edge;
+  double d[3], next[3];
+  int32_t face[3];
+  for (int i = 0; i < 3; ++i) {
+    d[i] = b[i] - a[i];
+    double c = floor((a[i] - o[i]) / e);
+    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+    const int32_t ci = static_cast<int32_t>(c);
+    next[i] = HUGE_VAL;
+    face[i] = 0;
+    if (d[i] > 0.0) {
+      face[i] = ci + 1;
+      if (face[i] < nc[i]) next[i] = (o[i] + face[i] * e - a[i]) / d[i];
+    } else if (d[i] < 0.0) {
+      face[i] = ci;
+      if (face[i] > 0) next[i] = (o[i] + face[i] * e - a[i]) / d[i];
+    }
+  }
+  const int64_t guard = static_cast<int64_t>(nc[0]) + nc[1] + nc[2] + 3;
+  double t0 = 0.0;
+  for (int64_t it = 0; it < guard; ++it) {
+    const double t1 = dmin(1.0, dmin(next[0], dmin(next[1], next[2])));
+    if (t1 > t0 || it == 0) {
+      double p0[3], p1[3];
+      seg_point(a, b, t0, p0);
+      seg_point(a, b, t1 > t0 ? t1 : t0, p1);
+      int32_t cell[3];
+      for (int i = 0; i < 3; ++i) {
+        double c = floor((0.5 * (p0[i] + p1[i]) - o[i]) / e);
+        c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+        cell[i] = static_cast<int32_t>(c);
+      }
+      if (!f(p0, p1, static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]))))
+        return false;
+    }
+    if (!(t1 < 1.0)) return true;
+    for (int i = 0; i < 3; ++i) {
+      if (next[i] > t1) continue;
+      next[i] = HUGE_VAL;
+      if (d[i] > 0.0) {
+        ++face[i];
+        if (face[i] < nc[i]) next[i] = (o[i] + face[i] * e - a[i]) / d[i];
+      } else {
+        --face[i];
+        if (face[i] > 0) next[i] = (o[i] + face[i] * e - a[i]) / d[i];
+      }
+    }
+    t0 = dmax(t0, t1);
+  }
+  return true;
+}
+
+// 1 when box `b` keeps clearance c from [p0, p1].
+inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], double c) {
+  double lo[3], hi[3];
+  box_bounds(b, lo, hi);
+  if (far_apart(p0, p1, lo, hi, c)) return true;
+  return !violates(segment_box_d2(p0, p1, lo, hi), c);
+}
+
+// Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
+inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], double* best) {
+  double lo[3], hi[3];
+  box_bounds(b, lo, hi);
+  if (far_apart(p0, p1, lo, hi, *best)) return;
+  const double d2 = segment_box_d2(p0, p1, lo, hi);
+  if (d2 < *best * *best) *best = sqrt(d2);
+}
+
+bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+  if (g->n_boxes == 0) return true;
+  if (!(c <= g->bucket_reach)) {
+    for (uint32_t k = 0; k < g->n_boxes; ++k)
+      if (!box_clear(g->boxes[k], a, b, c)) return false;
+    return true;
+  }
+  for (uint32_t k = 0; k < g->n_large; ++k)
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, c)) return false;
+  return for_each_cell_piece(g, a, b, [g, c](const double* p0, const double* p1, uint32_t cell) {
+    for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
+      if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, c)) return false;
+    return true;
+  });
+}
+
+// min(cap, distance from [a, b] to the boxes).
+double boxes_min(const tdo_grid* g, const double a[3], const double b[3], double cap, bool inside) {
+  double best = cap;
+  if (g->n_boxes == 0) return best;
+  if (inside) {
+    // Every box closer than bucket_reach to a point of the segment is listed in that point's cell:
+    // a result below the reach (or a cap within it) is exact.
+    const double reach = dmin(cap, g->bucket_reach);
+    double near = reach;
+    for (uint32_t k = 0; k < g->n_large; ++k) box_min(g->boxes[g->large_boxes[k]], a, b, &near);
+    for_each_cell_piece(g, a, b, [g, &near](const double* p0, const double* p1, uint32_t cell) {
+      for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
+        box_min(g->boxes[g->box_refs[r]], p0, p1, &near);
+      return true;
+    });
+    if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
+  }
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, &best);
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cubes.
+
+struct Piece {
+  double t0, t1;  // parameter interval of the segment
+};
+
+// Geometry of a piece relative to the distance field.
+struct PieceInfo {
+  double p0[3], p1[3];  // m, end points
+  double lb;            // m, lower bound of the distance from the piece to every cube
+  double ub;            // m, upper bound of the distance from the midpoint to obstacle geometry
+  bool leaf;            // at voxel scale: test the cubes exactly
+  bool in_cube;         // the midpoint lies in a cube: distance 0
+};
+
+PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
+  PieceInfo pi;
+  seg_point(a, b, pc.t0, pi.p0);
+  seg_point(a, b, pc.t1, pi.p1);
+  double m[3], half2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    m[i] = 0.5 * (pi.p0[i] + pi.p1[i]);
+    const double h = 0.5 * (pi.p1[i] - pi.p0[i]);
+    half2 += h * h;
+  }
+  const double half = sqrt(half2);
+  const double res = g->desc.res;
+  pi.leaf = !(2.0 * half > res);
+  pi.in_cube = false;
+  tdo_voxel v;
+  const tdo_vec3 mv{m[0], m[1], m[2]};
+  if (!tdo_grid_world_to_voxel(g, mv, &v)) {
+    // Outside the (half-open) grid: the cubes lie inside the bounds.
+    pi.lb = bounds_distance(g, m) - half;
+    pi.ub = HUGE_VAL;
+    if (inside_bounds(g, m)) pi.lb = -1.0;  // on a max face: no bound used
+    return pi;
+  }
+  const int64_t idx = v.i + v.j * g->stride_y + v.k * g->stride_z;
+  pi.in_cube = (g->flags[idx] & kFlagCube) != 0;
+  const tdo_vec3 c = tdo_grid_voxel_center(g, v);
+  const double dx = m[0] - c.x, dy = m[1] - c.y, dz = m[2] - c.z;
+  const double off = sqrt(dx * dx + dy * dy + dz * dz);
+  const double df = static_cast<double>(g->df[idx]);
+  pi.lb = df - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);
+  pi.ub = g->df_valid ? df + off + kHalfDiag * res : HUGE_VAL;
+  return pi;
+}
+
+// Call f(cube lo, cube hi) for every surface cube whose cube may lie within r of [p0, p1];
+// stops when f returns false. Bounded by the voxels of the grown bounding box, clamped to the grid.
+template <class F>
+bool for_each_cube_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                        F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  int64_t lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) {
+    // One voxel of margin on each side: a cube touching the range exactly (or within rounding)
+    // is included; far_apart filters the extra ones.
+    const double a = floor((dmin(p0[i], p1[i]) - r - o[i]) / d.res) - 1.0;
+    const double b = floor((dmax(p0[i], p1[i]) + r - o[i]) / d.res) + 1.0;
+    if (b < 0.0 || a > static_cast<double>(n[i] - 1)) return true;
+    lo[i] = a < 0.0 ? 0 : static_cast<int64_t>(a);
+    hi[i] = b > static_cast<double>(n[i] - 1) ? n[i] - 1 : static_cast<int64_t>(b);
+  }
+  for (int64_t k = lo[2]; k <= hi[2]; ++k) {
+    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
+      const uint8_t* row = g->flags + j * g->stride_y + k * g->stride_z;
+      for (int64_t i = lo[0]; i <= hi[0]; ++i) {
+        if ((row[i] & kFlagSurface) == 0) continue;
+        const double clo[3] = {o[0] + static_cast<double>(i) * d.res,
+                               o[1] + static_cast<double>(j) * d.res,
+                               o[2] + static_cast<double>(k) * d.res};
+        const double chi[3] = {o[0] + static_cast<double>(i + 1) * d.res,
+                               o[1] + static_cast<double>(j + 1) * d.res,
+                               o[2] + static_cast<double>(k + 1) * d.res};
+        if (!f(clo, chi)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+  if (g->n_cubes == 0) return true;
+  Piece stack[kStackCap];
+  int top = 0;
+  stack[top++] = Piece{0.0, 1.0};
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    if (pieces >= kMaxPieces) return false;
+    const Piece pc = stack[--top];
+    const PieceInfo pi = piece_info(g, a, b, pc);
+    if (pi.lb >= c && pi.lb > 0.0) continue;
+    if (pi.leaf) {
+      if (pi.in_cube) return false;
+      const bool ok =
+          for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
+            if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
+            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi), c);
+          });
+      if (!ok) return false;
+      continue;
+    }
+    if (top + 2 > kStackCap) return false;  // never "clear" on overflow
+    const double tm = 0.5 * (pc.t0 + pc.t1);
+    stack[top++] = Piece{tm, pc.t1};
+    stack[top++] = Piece{pc.t0, tm};
+  }
+  return true;
+}
+
+// min(best, distance from [a, b] to the cubes); `best` already holds the boxes' distance.
+double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
+  if (g->n_cubes == 0) return best;
+  Piece stack[kStackCap];
+  int top = 0;
+  stack[top++] = Piece{0.0, 1.0};
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    if (pieces >= kMaxPieces) return 0.0;  // a lower bound, never reached on int32 grids
+    const Piece pc = stack[--top];
+    const PieceInfo pi = piece_info(g, a, b, pc);
+    if (pi.lb >= best) continue;
+    if (pi.leaf) {
+      if (pi.in_cube) return 0.0;
+      // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
+      // lower the result (the boxes' part of `best` is exact).
+      const double r = dmin(best, pi.ub);
+      for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, &best](const double* lo, const double* hi) {
+        if (far_apart(pi.p0, pi.p1, lo, hi, best)) return true;
+        const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
+        if (d2 < best * best) best = sqrt(d2);
+        return best > 0.0;
+      });
+      if (!(best > 0.0)) return 0.0;
+      continue;
+    }
+    if (top + 2 > kStackCap) return 0.0;
+    const double tm = 0.5 * (pc.t0 + pc.t1);
+    stack[top++] = Piece{tm, pc.t1};
+    stack[top++] = Piece{pc.t0, tm};
+  }
+  return best;
+}
+
+bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }
+
+// Lower *best (m) to the distance of point p to box b when that is smaller.
+inline void box_min_point(const tdo_box& b, const double p[3], double* best) {
+  double lo[3], hi[3];
+  box_bounds(b, lo, hi);
+  const double d2 = point_box_d2(p, lo, hi);
+  if (d2 < *best * *best) *best = sqrt(d2);
+}
+
+// boxes_min for a point: one cell of the index, point-to-box distances only.
+double boxes_min_point(const tdo_grid* g, const double p[3], double cap, bool inside) {
+  double best = cap;
+  if (g->n_boxes == 0) return best;
+  if (inside) {
+    const tdo_grid_desc& d = g->desc;
+    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+    const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
+    int32_t cell[3];
+    for (int i = 0; i < 3; ++i) {
+      double c = floor((p[i] - o[i]) / g->cell_edge);
+      c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+      cell[i] = static_cast<int32_t>(c);
+    }
+    const uint32_t ci = static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+    double near = dmin(cap, g->bucket_reach);
+    for (uint32_t k = 0; k < g->n_large; ++k) box_min_point(g->boxes[g->large_boxes[k]], p, &near);
+    for (uint32_t r = g->cell_start[ci]; r < g->cell_start[ci + 1]; ++r)
+      box_min_point(g->boxes[g->box_refs[r]], p, &near);
+    if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
+  }
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min_point(g->boxes[k], p, &best);
+  return best;
+}
+
+double segment_distance(const tdo_grid* g, const double a[3], const double b[3], double cap) {
+  const bool inside = inside_bounds(g, a) && inside_bounds(g, b);
+  const double best = boxes_min(g, a, b, cap, inside);
+  return cubes_min(g, a, b, best);
+}
+
+double point_distance(const tdo_grid* g, const double p[3], double cap) {
+  const double best = boxes_min_point(g, p, cap, inside_bounds(g, p));
+  return cubes_min(g, p, p, best);
+}
+
+bool segment_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+  if (!inside_bounds(g, a) || !inside_bounds(g, b)) return false;
+  return boxes_clear(g, a, b, c) && cubes_clear(g, a, b, c);
+}
+
+// Distance (m) from p to the segment [a, b].
+double point_segment_distance(const double p[3], const double a[3], const double b[3]) {
+  double d[3], w[3], dd = 0.0, wd = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    d[i] = b[i] - a[i];
+    w[i] = p[i] - a[i];
+    dd += d[i] * d[i];
+    wd += w[i] * d[i];
+  }
+  double t = dd > 0.0 ? wd / dd : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double e = w[i] - t * d[i];
+    s += e * e;
+  }
+  return sqrt(s);
+}
+
+struct Bezier {
+  double c[4][3];  // m, control points
+};
+
+}  // namespace
+}  // namespace tdo_internal
+
+using namespace tdo_internal;
+
+extern "C" double tdo_collision_point_distance(const tdo_grid* grid, tdo_vec3 p, double cap) {
+  if (!ready(grid) || !finite3(p) || !(cap >= 0.0)) return -1.0;
+  double q[3];
+  load(p, q);
+  return point_distance(grid, q, cap);
+}
+
+extern "C" double tdo_collision_segment_distance(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,
+                                                 double cap) {
+  if (!ready(grid) || !finite3(a) || !finite3(b) || !(cap >= 0.0)) return -1.0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  return segment_distance(grid, pa, pb, cap);
+}
+
+extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,
+                                           double clearance) {
+  if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
+    return 0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  return segment_clear(grid, pa, pb, clearance) ? 1 : 0;
+}
+
+extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c[4],
+                                          double clearance, double tolerance) {
+  if (!ready(grid) || c == nullptr || !(clearance >= 0.0) || !isfinite(clearance) ||
+      !(tolerance >= 0.0) || !isfinite(tolerance))
+    return 0;
+  for (int i = 0; i < 4; ++i)
+    if (!finite3(c[i])) return 0;
+  const double tol = dmax(tolerance, kMinTolerance);
+  Bezier stack[kBezierStackCap];
+  int top = 0;
+  for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
+  top = 1;
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    if (pieces >= kMaxBezierPieces) return 0;
+    const Bezier bz = stack[--top];
+    // The curve lies in the hull of its control points, hence within `bound` of the chord; the
+    // hull lies in the bounds when the control points do.
+    const double bound = dmax(point_segment_distance(bz.c[1], bz.c[0], bz.c[3]),
+                              point_segment_distance(bz.c[2], bz.c[0], bz.c[3]));
+    bool in = true;
+    for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
+    if (in && segment_clear(grid, bz.c[0], bz.c[3], clearance + bound)) continue;
+    // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
+    // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.
+    if (!(bound > 0.5 * tol)) return 0;
+    if (top + 2 > kBezierStackCap) return 0;  // never "clear" on overflow
+    // de Casteljau at 1/2.
+    Bezier l, r;
+    for (int i = 0; i < 3; ++i) {
+      const double p01 = 0.5 * (bz.c[0][i] + bz.c[1][i]);
+      const double p12 = 0.5 * (bz.c[1][i] + bz.c[2][i]);
+      const double p23 = 0.5 * (bz.c[2][i] + bz.c[3][i]);
+      const double p012 = 0.5 * (p01 + p12);
+      const double p123 = 0.5 * (p12 + p23);
+      const double mid = 0.5 * (p012 + p123);
+      l.c[0][i] = bz.c[0][i];
+      l.c[1][i] = p01;
+      l.c[2][i] = p012;
+      l.c[3][i] = mid;
+      r.c[0][i] = mid;
+      r.c[1][i] = p123;
+      r.c[2][i] = p23;
+      r.c[3][i] = bz.c[3][i];
+    }
+    stack[top++] = r;
+    stack[top++] = l;
+  }
+  return 1;
+}

@@ -1,0 +1,305 @@
+// Stage 2: multi-scale inflection correction of the grid path (pipeline.md s.2, correct.h).
+//
+// 1. Every input segment is verified with tdo_collision_segment_clear at the clearance; one that
+//    fails makes the run TDO_ERR_NO_PATH.
+// 2. Collinear interior points (turn below kCollinearRad) and repeated points are dropped; the
+//    merged segment of a run of collinear points is verified once, and when it fails (rounding
+//    at the limit) the run's points stay.
+// 3. MULTISCALE (TDO-MSF): passes over the scales s = 3, 5, 7 until a pass removes nothing. At
+//    each scale two sweeps run left to right over the windows of s consecutive points:
+//      sweep A tries only "gentle" windows, whose interior turns are all below turn_threshold
+//      (staircase remnants, straightened first so the larger turns see straight neighbours);
+//      sweep B tries every window.
+//    A window's interior points are removed when the chord from its first to its last point is
+//    clear at the clearance; the sweep then retries the window at the same start (so a clear
+//    run keeps shrinking at that scale), otherwise it moves one point on. A chord that failed is
+//    remembered by the input indices of its ends (the last 8 per start point; the same two input
+//    points give the same chord, so skipping it is exact) and not checked again while remembered.
+//    A removal that would break clearance is never made.
+//    GREEDY_LOS (MSF-MTPO baseline): from the current point, the farthest later point whose chord
+//    is clear becomes the next waypoint (scanning from the last point backwards).
+//    NONE: step 2 only.
+// Safety-critical points: interior output points whose own removal (the chord between their two
+// neighbours) was checked and failed. In MULTISCALE and GREEDY_LOS every interior output point is
+// one at convergence; NONE checks none and reports 0.
+#include "tdo/correct.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+
+namespace {
+
+constexpr double kCollinearRad = 1e-9;  // rad, turns below this are "collinear"
+constexpr uint32_t kMemo = 8;           // failed chords remembered per start point
+constexpr uint32_t kNone = 0xFFFFFFFFu;
+constexpr uint32_t kScales[3] = {3u, 5u, 7u};
+
+bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+bool same(const tdo_vec3& a, const tdo_vec3& b) {
+  return !(a.x < b.x || a.x > b.x || a.y < b.y || a.y > b.y || a.z < b.z || a.z > b.z);
+}
+
+tdo_vec3 sub(const tdo_vec3& a, const tdo_vec3& b) {
+  return tdo_vec3{a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+// Turn angle (rad) at b of the polyline a -> b -> c, in [0, pi]; 0 for a zero-length side.
+double turn_angle(const tdo_vec3& a, const tdo_vec3& b, const tdo_vec3& c) {
+  const tdo_vec3 u = sub(b, a), v = sub(c, b);
+  const double cx = u.y * v.z - u.z * v.y, cy = u.z * v.x - u.x * v.z, cz = u.x * v.y - u.y * v.x;
+  const double cross = sqrt(cx * cx + cy * cy + cz * cz);
+  const double dot = u.x * v.x + u.y * v.y + u.z * v.z;
+  if (!(cross > 0.0) && !(dot < 0.0)) return 0.0;
+  return atan2(cross, dot);
+}
+
+size_t round16(size_t n) { return tdo_arena_round(n); }
+
+}  // namespace
+
+struct tdo_correct {
+  tdo_correct_config cfg;
+  tdo_vec3* pts;     // m, working polyline; the output after a run (max_points)
+  uint32_t* orig;    // original input index of each working point (max_points)
+  uint32_t* memo;    // kMemo failed chord ends (original indices) per original start point
+  uint8_t* memo_at;  // next ring slot of each start point's memo
+};
+
+namespace {
+
+struct Run {
+  tdo_correct* ctx;
+  const tdo_grid* grid;
+  double clearance;  // m
+  uint32_t checks;   // checks done
+  uint32_t budget;   // checks allowed
+};
+
+// 1 clear, 0 not clear, -1 budget exhausted.
+int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) {
+  if (r.checks >= r.budget) return -1;
+  ++r.checks;
+  return tdo_collision_segment_clear(r.grid, a, b, r.clearance) ? 1 : 0;
+}
+
+bool memo_failed(const tdo_correct* ctx, uint32_t oi, uint32_t oj) {
+  const uint32_t* m = ctx->memo + static_cast<size_t>(oi) * kMemo;
+  for (uint32_t k = 0; k < kMemo; ++k)
+    if (m[k] == oj) return true;
+  return false;
+}
+
+void memo_add(tdo_correct* ctx, uint32_t oi, uint32_t oj) {
+  uint8_t& at = ctx->memo_at[oi];
+  ctx->memo[static_cast<size_t>(oi) * kMemo + at] = oj;
+  at = static_cast<uint8_t>((at + 1u) % kMemo);
+}
+
+// Remove working points (i, j) exclusive; returns the new count.
+uint32_t remove_between(tdo_correct* ctx, uint32_t m, uint32_t i, uint32_t j) {
+  const uint32_t gap = j - i - 1u;
+  for (uint32_t k = j; k < m; ++k) {
+    ctx->pts[k - gap] = ctx->pts[k];
+    ctx->orig[k - gap] = ctx->orig[k];
+  }
+  return m - gap;
+}
+
+// Step 2: drop repeated and collinear interior points in place. Returns TDO_OK and *m, or the
+// budget status.
+tdo_status drop_collinear(Run& r, uint32_t n, uint32_t* m_out) {
+  tdo_correct* ctx = r.ctx;
+  tdo_vec3* p = ctx->pts;
+  uint32_t* o = ctx->orig;
+  uint32_t w = 1;            // next write position; p[0] is kept
+  uint32_t pending = kNone;  // first input index of the collinear run since the last kept point
+  for (uint32_t i = 1; i < n; ++i) {
+    if (i + 1u < n) {
+      const tdo_vec3 a = p[w - 1u], b = p[i], c = p[i + 1u];
+      if (same(b, a) || same(b, c)) continue;  // a repeated point: the segments are unchanged
+      if (turn_angle(a, b, c) < kCollinearRad) {
+        if (pending == kNone) pending = i;
+        continue;
+      }
+    }
+    const tdo_vec3 keep = p[i];
+    const uint32_t keep_o = o[i];
+    if (pending != kNone) {
+      const int ok = check(r, p[w - 1u], keep);
+      if (ok < 0) return TDO_ERR_BUDGET;
+      if (ok == 0) {  // the merged segment fails at the limit: the run's points stay
+        for (uint32_t k = pending; k < i; ++k) {
+          if (same(p[k], p[w - 1u])) continue;
+          p[w] = p[k];
+          o[w] = o[k];
+          ++w;
+        }
+      }
+      pending = kNone;
+    }
+    p[w] = keep;
+    o[w] = keep_o;
+    ++w;
+  }
+  *m_out = w;
+  return TDO_OK;
+}
+
+tdo_status greedy(Run& r, uint32_t* m_io, uint32_t* critical) {
+  tdo_correct* ctx = r.ctx;
+  const uint32_t m = *m_io;
+  uint32_t w = 1;  // output written in place: w <= cur + 1 always
+  uint32_t cur = 0;
+  // Bounded: cur grows every iteration.
+  while (cur + 1u < m) {
+    uint32_t next = cur + 1u;  // always clear: a verified segment
+    for (uint32_t j = m - 1u; j > cur + 1u; --j) {
+      const int ok = check(r, ctx->pts[cur], ctx->pts[j]);
+      if (ok < 0) return TDO_ERR_BUDGET;
+      if (ok == 1) {
+        next = j;
+        break;
+      }
+    }
+    // next is interior: every later point was checked from cur and failed, so removing next
+    // (joining cur to the point after it) breaks clearance.
+    if (next + 1u < m) ++*critical;
+    // In place: w <= next, and only points from next on are read later.
+    ctx->pts[w] = ctx->pts[next];
+    ctx->orig[w] = ctx->orig[next];
+    ++w;
+    cur = next;
+  }
+  *m_io = w;
+  return TDO_OK;
+}
+
+tdo_status multiscale(Run& r, uint32_t* m_io, double turn_threshold, uint32_t* critical) {
+  tdo_correct* ctx = r.ctx;
+  uint32_t m = *m_io;
+  // Bounded: every pass but the last removes at least one point.
+  const uint32_t max_passes = m + 1u;
+  for (uint32_t pass = 0; pass < max_passes; ++pass) {
+    bool changed = false;
+    for (uint32_t s : kScales) {
+      for (int sweep = 0; sweep < 2; ++sweep) {
+        uint32_t i = 0;
+        // Bounded: each iteration removes points or advances i.
+        while (i + s - 1u < m) {
+          const uint32_t j = i + s - 1u;
+          if (sweep == 0) {
+            bool gentle = true;
+            for (uint32_t k = i + 1u; k < j && gentle; ++k)
+              gentle = turn_angle(ctx->pts[k - 1u], ctx->pts[k], ctx->pts[k + 1u]) < turn_threshold;
+            if (!gentle) {
+              ++i;
+              continue;
+            }
+          }
+          if (memo_failed(ctx, ctx->orig[i], ctx->orig[j])) {
+            ++i;
+            continue;
+          }
+          const int ok = check(r, ctx->pts[i], ctx->pts[j]);
+          if (ok < 0) return TDO_ERR_BUDGET;
+          if (ok == 1) {
+            m = remove_between(ctx, m, i, j);
+            changed = true;
+          } else {
+            memo_add(ctx, ctx->orig[i], ctx->orig[j]);
+            ++i;
+          }
+        }
+      }
+    }
+    if (!changed) break;
+  }
+  // The last pass removed nothing, and its sweep B tried every 3-window (checked, or known to
+  // have failed): the chord around every interior point fails, so every one is safety-critical.
+  *critical = m >= 2u ? m - 2u : 0u;
+  *m_io = m;
+  return TDO_OK;
+}
+
+}  // namespace
+
+extern "C" size_t tdo_correct_footprint(const tdo_correct_config* cfg) {
+  if (cfg == nullptr || cfg->max_points == 0u) return 0;
+  const size_t n = cfg->max_points;
+  return round16(sizeof(tdo_correct)) + round16(n * sizeof(tdo_vec3)) +
+         round16(n * sizeof(uint32_t)) + round16(n * kMemo * sizeof(uint32_t)) + round16(n);
+}
+
+extern "C" tdo_status tdo_correct_init(tdo_correct** out, tdo_arena* arena,
+                                       const tdo_correct_config* cfg) {
+  if (out == nullptr || arena == nullptr || tdo_correct_footprint(cfg) == 0)
+    return TDO_ERR_INVALID_ARGUMENT;
+  *out = nullptr;
+  const size_t n = cfg->max_points;
+  tdo_correct* ctx = static_cast<tdo_correct*>(tdo_arena_alloc(arena, sizeof(tdo_correct)));
+  if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(ctx, 0, sizeof(*ctx));
+  ctx->cfg = *cfg;
+  ctx->pts = static_cast<tdo_vec3*>(tdo_arena_alloc(arena, n * sizeof(tdo_vec3)));
+  ctx->orig = static_cast<uint32_t*>(tdo_arena_alloc(arena, n * sizeof(uint32_t)));
+  ctx->memo = static_cast<uint32_t*>(tdo_arena_alloc(arena, n * kMemo * sizeof(uint32_t)));
+  ctx->memo_at = static_cast<uint8_t*>(tdo_arena_alloc(arena, n));
+  if (ctx->pts == nullptr || ctx->orig == nullptr || ctx->memo == nullptr ||
+      ctx->memo_at == nullptr)
+    return TDO_ERR_ARENA_TOO_SMALL;
+  *out = ctx;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input* in,
+                                      tdo_correct_output* out) {
+  if (ctx == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  if (in->grid == nullptr || in->points == nullptr || in->n_points < 2u ||
+      !isfinite(in->clearance) || in->clearance < 0.0 || !isfinite(in->turn_threshold) ||
+      in->turn_threshold < 0.0 ||
+      (in->mode != TDO_CORRECT_MULTISCALE && in->mode != TDO_CORRECT_GREEDY_LOS &&
+       in->mode != TDO_CORRECT_NONE))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (tdo_grid_clearance(in->grid) < 0.0) return TDO_ERR_MAP_NOT_READY;
+  if (in->n_points > ctx->cfg.max_points) return TDO_ERR_PATH_CAPACITY;
+  const uint32_t n = in->n_points;
+  for (uint32_t i = 0; i < n; ++i)
+    if (!finite3(in->points[i])) return TDO_ERR_INVALID_ARGUMENT;
+
+  // max_checks 0: no budget beyond the stage's own bound (like the search's max_expansions).
+  Run r{ctx, in->grid, in->clearance, 0u,
+        ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu};
+  tdo_status st = TDO_OK;
+  // 1. The input itself must keep clearance.
+  for (uint32_t i = 1; i < n && st == TDO_OK; ++i) {
+    const int ok = check(r, in->points[i - 1u], in->points[i]);
+    if (ok < 0) st = TDO_ERR_BUDGET;
+    if (ok == 0) st = TDO_ERR_NO_PATH;
+  }
+  uint32_t m = 0, critical = 0;
+  if (st == TDO_OK) {
+    for (uint32_t i = 0; i < n; ++i) {
+      ctx->pts[i] = in->points[i];
+      ctx->orig[i] = i;
+      ctx->memo_at[i] = 0;
+    }
+    for (size_t k = 0; k < static_cast<size_t>(n) * kMemo; ++k) ctx->memo[k] = kNone;
+    // 2. Collinear and repeated points.
+    st = drop_collinear(r, n, &m);
+  }
+  // 3. The variant.
+  if (st == TDO_OK && in->mode == TDO_CORRECT_MULTISCALE)
+    st = multiscale(r, &m, in->turn_threshold, &critical);
+  else if (st == TDO_OK && in->mode == TDO_CORRECT_GREEDY_LOS)
+    st = greedy(r, &m, &critical);
+  out->checks = r.checks;
+  if (st != TDO_OK) return st;
+  out->waypoints = ctx->pts;
+  out->n_waypoints = m;
+  out->n_safety_critical = critical;
+  return TDO_OK;
+}

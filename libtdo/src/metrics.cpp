@@ -1,0 +1,345 @@
+// Stage 6: trajectory quality metrics (pipeline.md s.6), identical for every planner.
+//
+// Curvature integrals use composite 8-point Gauss-Legendre per curved segment (lines contribute
+// nothing). Without a geometric path the waypoint polyline is measured with its discrete
+// curvature: the turn angle theta_i concentrated at vertex i, so integral |kappa| ds = sum theta_i
+// (exact for the polyline as a limit of ever tighter fillets) and integral kappa^2 ds =
+// sum theta_i^2 / l_i with l_i the mean length of the two segments at the vertex (the usual
+// discrete bending energy; the exact value is infinite for a sharp corner).
+//
+// The clearance of curves is a proven lower bound: each curve is cut into chords, the exact
+// segment-to-obstacle distance of a chord is computed by the collision module, and the largest
+// distance from the curve piece to its chord (sagitta bound) is subtracted. For a Bezier piece the
+// bound is the distance of its inner control points to the chord (convex hull property); for an
+// arc piece it is the circular sagitta.
+#include "tdo/metrics.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+
+namespace tdo_internal {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTurnThresholdDeg = 1.0;   // deg, interior waypoints turning more are "turns"
+constexpr double kAngleTol = 1e-6;          // rad, tangent continuity at segment junctions
+constexpr double kCurvatureJumpTol = 1e-4;  // 1/m, curvature continuity at segment junctions
+constexpr uint32_t kPanels = 4;             // Gauss-Legendre panels per curved segment
+constexpr double kSagittaTarget = 1e-4;     // m, aimed chord sagitta for the clearance bound
+constexpr uint32_t kMaxChords = 256;        // chords per curved segment, at most
+constexpr double kSagittaSlack = 1e-12;     // m, rounding of chord end points on an arc
+
+// 8-point Gauss-Legendre on [-1, 1] (nodes and weights of the positive half).
+constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
+                            0.7966664774136267395915539, 0.9602898564975362316835609};
+constexpr double kGlW[4] = {0.3626837833783619829651504, 0.3137066458778872873379622,
+                            0.2223810344533744705443560, 0.1012285362903762591525314};
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 mk(const tdo_vec3& a) { return V3{a.x, a.y, a.z}; }
+inline tdo_vec3 tv(const V3& a) { return tdo_vec3{a.x, a.y, a.z}; }
+inline V3 sub(const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 add(const V3& a, const V3& b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 mul(const V3& a, double k) { return V3{a.x * k, a.y * k, a.z * k}; }
+inline double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double norm(const V3& a) { return sqrt(dot(a, a)); }
+inline V3 cross(const V3& a, const V3& b) {
+  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline V3 lerp(const V3& a, const V3& b, double t) { return add(a, mul(sub(b, a), t)); }
+inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+inline double dmin(double a, double b) { return a < b ? a : b; }
+inline double dmax(double a, double b) { return a > b ? a : b; }
+
+/** rad, angle between two vectors (0 when either is zero). */
+double angle(const V3& a, const V3& b) {
+  if (!(norm(a) > 0.0) || !(norm(b) > 0.0)) return 0.0;
+  return atan2(norm(cross(a, b)), dot(a, b));
+}
+
+/** m, distance from q to the segment [a, b]. */
+double point_segment(const V3& q, const V3& a, const V3& b) {
+  const V3 d = sub(b, a);
+  const double dd = dot(d, d);
+  double t = dd > 0.0 ? dot(sub(q, a), d) / dd : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  return norm(sub(q, add(a, mul(d, t))));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Turns on the waypoints (repeated points merged).
+
+struct Turns {
+  uint32_t turns;
+  double total_deg;  // deg, deflections above the threshold
+  double sum_abs;    // rad, every deflection (discrete integral |kappa| ds)
+  double sum_sq;     // 1/m, sum theta^2 / mean adjacent length (discrete integral kappa^2 ds)
+  double length;     // m, polyline length
+  double max_theta;  // rad
+};
+
+Turns turn_stats(const tdo_vec3* w, uint32_t n) {
+  Turns r{0u, 0.0, 0.0, 0.0, 0.0, 0.0};
+  // prev = last distinct point before `at`; a vertex is evaluated once its successor is known.
+  uint32_t prev = 0, at = 0;
+  bool have_at = false;
+  for (uint32_t i = 1; i < n; ++i) {
+    const V3 p = mk(w[i]);
+    const V3 last = mk(w[have_at ? at : prev]);
+    const double seg = norm(sub(p, last));
+    if (!(seg > 0.0)) continue;  // repeated point
+    r.length += seg;
+    if (have_at) {
+      const V3 a = sub(mk(w[at]), mk(w[prev]));
+      const V3 b = sub(p, mk(w[at]));
+      const double theta = angle(a, b);
+      const double deg = theta * 180.0 / kPi;
+      if (deg > kTurnThresholdDeg) {
+        ++r.turns;
+        r.total_deg += deg;
+      }
+      r.sum_abs += theta;
+      r.sum_sq += theta * theta / (0.5 * (norm(a) + norm(b)));
+      r.max_theta = dmax(r.max_theta, theta);
+      prev = at;
+    }
+    at = i;
+    have_at = true;
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Curvature integrals of a path.
+
+/** Adds integral |kappa| ds and integral kappa^2 ds of one segment. */
+void curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
+  if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0)) return;
+  const double h = seg.length / kPanels;
+  for (uint32_t p = 0; p < kPanels; ++p) {
+    const double mid = h * (p + 0.5);
+    double a = 0.0, q = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double dx = 0.5 * h * kGlX[i];
+      const double k0 = tdo_segment_curvature(&seg, mid - dx);
+      const double k1 = tdo_segment_curvature(&seg, mid + dx);
+      a += kGlW[i] * (k0 + k1);
+      q += kGlW[i] * (k0 * k0 + k1 * k1);
+    }
+    *abs_int += 0.5 * h * a;
+    *sq_int += 0.5 * h * q;
+  }
+}
+
+/** 1 when tangent and curvature vector agree at every junction of positive-length segments. */
+int curvature_continuous(const tdo_path& path) {
+  int have = 0;
+  tdo_segment_state end;
+  memset(&end, 0, sizeof(end));
+  for (uint32_t i = 0; i < path.n; ++i) {
+    const tdo_path_segment& seg = path.seg[i];
+    if (!(seg.length > 0.0)) continue;
+    if (have) {
+      tdo_segment_state start;
+      tdo_segment_eval(&seg, 0.0, &start);
+      if (angle(mk(end.t), mk(start.t)) > kAngleTol) return 0;
+      if (norm(sub(mk(end.kn), mk(start.kn))) > kCurvatureJumpTol) return 0;
+    }
+    tdo_segment_eval(&seg, seg.length, &end);
+    have = 1;
+  }
+  return 1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Clearance lower bounds.
+
+/** Lower bound (m) of the distance of a chord-approximated piece: chord distance minus sagitta. */
+double piece_bound(const tdo_grid* grid, const V3& a, const V3& b, double sagitta, double cap) {
+  const double d = tdo_collision_segment_distance(grid, tv(a), tv(b), cap + sagitta);
+  return d - sagitta;
+}
+
+uint32_t chords_for(double flatness) {
+  if (!(flatness > 0.0)) return 1u;
+  const double k = ceil(sqrt(flatness / kSagittaTarget));
+  if (!(k < static_cast<double>(kMaxChords))) return kMaxChords;
+  return k < 1.0 ? 1u : static_cast<uint32_t>(k);
+}
+
+struct Bezier {
+  V3 p[4];
+};
+
+V3 bez_point(const Bezier& b, double u) {
+  if (u <= 0.0) return b.p[0];
+  if (u >= 1.0) return b.p[3];
+  const V3 a0 = lerp(b.p[0], b.p[1], u), a1 = lerp(b.p[1], b.p[2], u), a2 = lerp(b.p[2], b.p[3], u);
+  return lerp(lerp(a0, a1, u), lerp(a1, a2, u), u);
+}
+
+V3 bez_d1(const Bezier& b, double u) {
+  const double w = 1.0 - u;
+  const V3 d0 = sub(b.p[1], b.p[0]), d1 = sub(b.p[2], b.p[1]), d2 = sub(b.p[3], b.p[2]);
+  return mul(add(add(mul(d0, w * w), mul(d1, 2.0 * w * u)), mul(d2, u * u)), 3.0);
+}
+
+double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap) {
+  const Bezier b{{mk(seg.p[0]), mk(seg.p[1]), mk(seg.p[2]), mk(seg.p[3])}};
+  const double flat =
+      dmax(point_segment(b.p[1], b.p[0], b.p[3]), point_segment(b.p[2], b.p[0], b.p[3]));
+  const uint32_t k = chords_for(flat);
+  double best = HUGE_VAL;
+  V3 q0 = b.p[0], d0 = bez_d1(b, 0.0);
+  for (uint32_t i = 0; i < k; ++i) {
+    const double u1 = i + 1u == k ? 1.0 : static_cast<double>(i + 1u) / k;
+    const double u0 = static_cast<double>(i) / k;
+    const double du = u1 - u0;
+    const V3 q3 = bez_point(b, u1), d1 = bez_d1(b, u1);
+    // Control points of the piece [u0, u1] (exact for a cubic: Hermite data at both ends).
+    const V3 q1 = add(q0, mul(d0, du / 3.0));
+    const V3 q2 = sub(q3, mul(d1, du / 3.0));
+    const double sag = dmax(point_segment(q1, q0, q3), point_segment(q2, q0, q3));
+    best = dmin(best, piece_bound(grid, q0, q3, sag, cap));
+    q0 = q3;
+    d0 = d1;
+  }
+  return best;
+}
+
+double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap) {
+  const double r = norm(sub(mk(seg.p[0]), mk(seg.p[2])));
+  const double whole = norm(sub(mk(seg.p[1]), mk(seg.p[0])));
+  // Sagitta of a chord c on a circle of radius r: (c^2/4) / (r + sqrt(r^2 - c^2/4)).
+  const auto sagitta = [r](double c) {
+    const double q = 0.25 * c * c;
+    const double root = r * r - q;
+    return q / (r + sqrt(root > 0.0 ? root : 0.0)) + kSagittaSlack;
+  };
+  const uint32_t k = chords_for(sagitta(whole));
+  double best = HUGE_VAL;
+  V3 a = mk(seg.p[0]);
+  for (uint32_t i = 0; i < k; ++i) {
+    const V3 b =
+        i + 1u == k ? mk(seg.p[1]) : mk(tdo_segment_point(&seg, seg.length * (i + 1u) / k));
+    best = dmin(best, piece_bound(grid, a, b, sagitta(norm(sub(b, a))), cap));
+    a = b;
+  }
+  return best;
+}
+
+double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
+  double best = HUGE_VAL;
+  for (uint32_t i = 0; i < path.n; ++i) {
+    const tdo_path_segment& seg = path.seg[i];
+    double d;
+    if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0))
+      d = tdo_collision_segment_distance(grid, seg.p[0], tdo_segment_point(&seg, seg.length), cap);
+    else if (seg.kind == TDO_SEGMENT_ARC)
+      d = arc_clearance(grid, seg, cap);
+    else
+      d = bezier_clearance(grid, seg, cap);
+    best = dmin(best, d);
+  }
+  return best;
+}
+
+double polyline_clearance(const tdo_grid* grid, const tdo_vec3* w, uint32_t n, double cap) {
+  double best = HUGE_VAL;
+  for (uint32_t i = 1; i < n; ++i)
+    best = dmin(best, tdo_collision_segment_distance(grid, w[i - 1], w[i], cap));
+  return best;
+}
+
+tdo_status validate(const tdo_metrics_input* in) {
+  if (in->waypoints == nullptr || in->n_waypoints < 2u) return TDO_ERR_INVALID_ARGUMENT;
+  for (uint32_t i = 0; i < in->n_waypoints; ++i)
+    if (!finite3(in->waypoints[i])) return TDO_ERR_INVALID_ARGUMENT;
+  if (in->path != nullptr) {
+    const tdo_path& p = *in->path;
+    if (p.seg == nullptr || p.n == 0u) return TDO_ERR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < p.n; ++i) {
+      const tdo_path_segment& s = p.seg[i];
+      if (s.kind != TDO_SEGMENT_LINE && s.kind != TDO_SEGMENT_BEZIER && s.kind != TDO_SEGMENT_ARC)
+        return TDO_ERR_INVALID_ARGUMENT;
+      const int np = s.kind == TDO_SEGMENT_BEZIER ? 4 : (s.kind == TDO_SEGMENT_ARC ? 3 : 2);
+      for (int k = 0; k < np; ++k)
+        if (!finite3(s.p[k])) return TDO_ERR_INVALID_ARGUMENT;
+      if (!(isfinite(s.length) && s.length >= 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    }
+  }
+  if (in->samples != nullptr && in->n_samples > 0u) {
+    if (!(isfinite(in->dt) && in->dt > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < in->n_samples; ++i) {
+      const tdo_sample& s = in->samples[i];
+      if (!isfinite(s.t) || !finite3(s.a)) return TDO_ERR_INVALID_ARGUMENT;
+      if (i > 0u && !(s.t > in->samples[i - 1u].t)) return TDO_ERR_INVALID_ARGUMENT;
+    }
+  }
+  if (in->grid != nullptr) {
+    if (isnan(in->clearance_cap) || !(in->clearance_cap > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    if (tdo_grid_clearance(in->grid) < 0.0) return TDO_ERR_MAP_NOT_READY;
+  }
+  return TDO_OK;
+}
+
+}  // namespace
+}  // namespace tdo_internal
+
+using namespace tdo_internal;
+
+extern "C" tdo_status tdo_metrics_compute(const tdo_metrics_input* in, tdo_metrics* out) {
+  if (in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  out->min_clearance_m = HUGE_VAL;
+  const tdo_status st = validate(in);
+  if (st != TDO_OK) return st;
+
+  const Turns tw = turn_stats(in->waypoints, in->n_waypoints);
+  out->turns = tw.turns;
+  out->total_turn_deg = tw.total_deg;
+
+  double length = 0.0, abs_int = 0.0, sq_int = 0.0;
+  if (in->path != nullptr) {
+    for (uint32_t i = 0; i < in->path->n; ++i) {
+      length += in->path->seg[i].length;
+      curvature_integrals(in->path->seg[i], &abs_int, &sq_int);
+    }
+    out->curvature_continuous = curvature_continuous(*in->path);
+  } else {
+    length = tw.length;
+    abs_int = tw.sum_abs;
+    sq_int = tw.sum_sq;
+    out->curvature_continuous = tw.max_theta > kAngleTol ? 0 : 1;
+  }
+  out->length_m = length;
+  out->avg_curvature = length > 0.0 ? abs_int / length : 0.0;
+  out->smoothness = 1.0 / (1.0 + sq_int * 1.0);  // integral kappa^2 ds (1/m) times 1 m
+
+  if (in->grid != nullptr) {
+    const double cap = in->clearance_cap;
+    double d = in->path != nullptr
+                   ? path_clearance(in->grid, *in->path, cap)
+                   : polyline_clearance(in->grid, in->waypoints, in->n_waypoints, cap);
+    if (d < 0.0) d = 0.0;  // a lower bound below zero means touching
+    out->min_clearance_m = d < cap ? d : cap;
+  }
+
+  if (in->samples != nullptr && in->n_samples >= 2u) {
+    double energy = 0.0;
+    for (uint32_t i = 1; i < in->n_samples; ++i) {
+      const tdo_sample& a = in->samples[i - 1u];
+      const tdo_sample& b = in->samples[i];
+      const double qa = dot(mk(a.a), mk(a.a));
+      const double qb = dot(mk(b.a), mk(b.a));
+      energy += 0.5 * (qa + qb) * (b.t - a.t);
+    }
+    out->energy = energy;
+    out->flight_time_s = in->samples[in->n_samples - 1u].t - in->samples[0].t;
+  }
+  return TDO_OK;
+}

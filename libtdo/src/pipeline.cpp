@@ -1,0 +1,268 @@
+// The TDO-MSF static pipeline: search -> correction -> smoothing -> trajectory -> metrics.
+#include "tdo/pipeline.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "grid_internal.h"
+#include "planner_internal.h"
+
+namespace tdo_internal {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool positive(double v) { return isfinite(v) && v > 0.0; }
+bool non_negative(double v) { return isfinite(v) && v >= 0.0; }
+
+tdo_status check_params(const tdo_plan_params& p) {
+  if (p.depth < TDO_PLAN_SEARCH || p.depth > TDO_PLAN_TRAJECTORY) return TDO_ERR_INVALID_ARGUMENT;
+  if (p.search != TDO_SEARCH_ASTAR && p.search != TDO_SEARCH_BIDIR) return TDO_ERR_INVALID_ARGUMENT;
+  if (!non_negative(p.lambda) || !non_negative(p.mu) || !non_negative(p.theta_max) ||
+      !non_negative(p.d_th) || !(p.h_weight >= 1.0) || !isfinite(p.h_weight))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (p.depth >= TDO_PLAN_CORRECT &&
+      (!non_negative(p.turn_threshold) || p.correction < TDO_CORRECT_MULTISCALE ||
+       p.correction > TDO_CORRECT_NONE))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (p.depth >= TDO_PLAN_SMOOTH &&
+      (!positive(p.k) || !positive(p.v_max) || !positive(p.a_max) || !positive(p.j_max) ||
+       !positive(p.a_lat_max) || !positive(p.v_cruise) || !positive(p.stop_angle) ||
+       p.smoothing < TDO_SMOOTHING_G2 || p.smoothing > TDO_SMOOTHING_NONE))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (p.depth >= TDO_PLAN_TRAJECTORY && !positive(p.dt)) return TDO_ERR_INVALID_ARGUMENT;
+  return TDO_OK;
+}
+
+// Voxel centres of the search path, with the exact start and goal at the ends.
+void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_output& s) {
+  tdo_vec3* w = pl->grid_path;
+  for (uint32_t i = 0; i < s.n_path; ++i) w[i] = tdo_grid_voxel_center(pl->grid, s.path[i]);
+  if (s.n_path == 1) {  // start and goal share a voxel: the straight segment between them
+    w[0] = req.start;
+    w[1] = req.goal;
+    pl->n_grid_path = 2;
+    return;
+  }
+  w[0] = req.start;
+  w[s.n_path - 1] = req.goal;
+  pl->n_grid_path = s.n_path;
+}
+
+void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path,
+                const tdo_plan_params& p) {
+  tdo_metrics_input mi;
+  memset(&mi, 0, sizeof(mi));
+  if (r->reached >= TDO_PLAN_CORRECT) {
+    mi.waypoints = r->waypoints;
+    mi.n_waypoints = r->n_waypoints;
+  } else {
+    mi.waypoints = r->grid_path;
+    mi.n_waypoints = r->n_grid_path;
+  }
+  mi.path = path;
+  mi.samples = r->n_samples > 0 ? r->samples : nullptr;
+  mi.n_samples = r->n_samples;
+  mi.dt = p.dt;
+  mi.grid = pl->grid;
+  mi.clearance_cap = 10.0;
+  tdo_metrics_compute(&mi, &r->metrics);
+}
+
+}  // namespace
+
+// Stages past the search exist only when their capacities are set: correction and smoothing need
+// max_checks, the trajectory stage max_samples and max_profile. A search-only planner stays small.
+bool has_geometry(const tdo_capacity& c) { return c.max_checks > 0; }
+bool has_trajectory(const tdo_capacity& c) {
+  return has_geometry(c) && c.max_samples > 0 && c.max_profile > 0;
+}
+
+tdo_correct_config correct_cfg(const tdo_capacity& c) {
+  return tdo_correct_config{c.max_path + 1u, c.max_checks};
+}
+tdo_smooth_config smooth_cfg(const tdo_capacity& c) {
+  return tdo_smooth_config{c.max_path + 1u, 3u * c.max_path + 7u, c.max_shrinks};
+}
+tdo_traj_config traj_cfg(const tdo_capacity& c) {
+  return tdo_traj_config{c.max_samples, 3u * c.max_path + 7u, c.max_profile, c.max_violations,
+                         c.max_refinements};
+}
+
+size_t pipeline_footprint(const tdo_planner_config* cfg) {
+  const tdo_capacity& c = cfg->cap;
+  size_t bytes = tdo_arena_round(static_cast<size_t>(c.max_path + 1u) * sizeof(tdo_vec3));
+  if (has_geometry(c)) {
+    const tdo_correct_config cc = correct_cfg(c);
+    const tdo_smooth_config sc = smooth_cfg(c);
+    bytes += tdo_correct_footprint(&cc) + tdo_smooth_footprint(&sc);
+  }
+  if (has_trajectory(c)) {
+    const tdo_traj_config tc = traj_cfg(c);
+    bytes += tdo_traj_footprint(&tc);
+  }
+  return bytes;
+}
+
+tdo_status pipeline_init(tdo_planner* pl, tdo_arena* arena) {
+  const tdo_capacity& c = pl->cfg.cap;
+  pl->grid_path =
+      static_cast<tdo_vec3*>(tdo_arena_alloc(arena, (c.max_path + 1u) * sizeof(tdo_vec3)));
+  if (pl->grid_path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  pl->correct = nullptr;
+  pl->smooth = nullptr;
+  pl->traj = nullptr;
+  tdo_status st = TDO_OK;
+  if (has_geometry(c)) {
+    const tdo_correct_config cc = correct_cfg(c);
+    const tdo_smooth_config sc = smooth_cfg(c);
+    st = tdo_correct_init(&pl->correct, arena, &cc);
+    if (st == TDO_OK) st = tdo_smooth_init(&pl->smooth, arena, &sc);
+  }
+  if (st == TDO_OK && has_trajectory(c)) {
+    const tdo_traj_config tc = traj_cfg(c);
+    st = tdo_traj_init(&pl->traj, arena, &tc);
+  }
+  return st;
+}
+
+}  // namespace tdo_internal
+
+using namespace tdo_internal;
+
+extern "C" void tdo_plan_params_default(tdo_plan_params* p) {
+  if (p == nullptr) return;
+  memset(p, 0, sizeof(*p));
+  p->depth = TDO_PLAN_TRAJECTORY;
+  p->search = TDO_SEARCH_BIDIR;
+  p->lambda = 50.0;
+  p->mu = 20.0;
+  p->theta_max = 0.25 * kPi;
+  p->d_th = 0.0;
+  p->h_weight = 1.0;
+  p->first_meet = 1;
+  p->max_expansions = 0;
+  p->correction = TDO_CORRECT_MULTISCALE;
+  p->turn_threshold = 10.0 * kPi / 180.0;
+  p->smoothing = TDO_SMOOTHING_G2;
+  p->k = 1.0;
+  p->v_max = 3.0;
+  p->a_max = 3.0;
+  p->j_max = 10.0;
+  p->a_lat_max = 3.0;
+  p->v_cruise = 3.0;
+  p->stop_angle = 150.0 * kPi / 180.0;
+  p->dt = 0.01;
+}
+
+extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* req,
+                                       tdo_plan_result* out) {
+  if (pl == nullptr || req == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  const tdo_plan_params& p = req->params;
+  out->status = check_params(p);
+  if (out->status != TDO_OK) return out->status;
+  const double clearance = tdo_grid_clearance(pl->grid);
+  if (clearance < 0.0) return out->status = TDO_ERR_MAP_NOT_READY;
+  if ((p.depth >= TDO_PLAN_CORRECT && pl->correct == nullptr) ||
+      (p.depth >= TDO_PLAN_TRAJECTORY && pl->traj == nullptr))
+    return out->status = TDO_ERR_NOT_CONFIGURED;
+
+  // Stage 1: search.
+  tdo_search_input si;
+  memset(&si, 0, sizeof(si));
+  si.grid = pl->grid;
+  si.start = req->start;
+  si.goal = req->goal;
+  si.kind = p.search;
+  si.lambda = p.lambda;
+  si.mu = p.mu;
+  si.theta_max = p.theta_max;
+  si.d_th = p.d_th;
+  si.h_weight = p.h_weight;
+  si.first_meet = p.first_meet;
+  si.max_expansions = p.max_expansions;
+  out->status = tdo_search_run(pl->search, &si, &out->search);
+  if (out->status != TDO_OK) return out->status;
+  world_path(pl, *req, out->search);
+  out->grid_path = pl->grid_path;
+  out->n_grid_path = pl->n_grid_path;
+  out->reached = TDO_PLAN_SEARCH;
+  if (p.depth == TDO_PLAN_SEARCH) {
+    metrics_of(pl, out, nullptr, p);
+    return out->status;
+  }
+
+  // Stage 2: inflection correction.
+  tdo_correct_input ci;
+  memset(&ci, 0, sizeof(ci));
+  ci.grid = pl->grid;
+  ci.points = out->grid_path;
+  ci.n_points = out->n_grid_path;
+  ci.mode = p.correction;
+  ci.clearance = clearance;
+  ci.turn_threshold = p.turn_threshold;
+  tdo_correct_output co;
+  out->status = tdo_correct_run(pl->correct, &ci, &co);
+  if (out->status != TDO_OK) return out->status;
+  out->waypoints = co.waypoints;
+  out->n_waypoints = co.n_waypoints;
+  out->n_safety_critical = co.n_safety_critical;
+  out->reached = TDO_PLAN_CORRECT;
+  if (p.depth == TDO_PLAN_CORRECT) {
+    metrics_of(pl, out, nullptr, p);
+    return out->status;
+  }
+
+  // Stage 3: smoothing; stage 5: time parameterisation with feasibility refinement. When the
+  // trajectory stays infeasible, the corners are enlarged where there is room (k x 1.5) and the
+  // whole check runs again, a bounded number of times.
+  tdo_smooth_input mi;
+  memset(&mi, 0, sizeof(mi));
+  mi.grid = pl->grid;
+  mi.waypoints = out->waypoints;
+  mi.n_waypoints = out->n_waypoints;
+  mi.mode = p.smoothing;
+  mi.clearance = clearance;
+  mi.k = p.k;
+  mi.v_cruise = p.v_cruise;
+  mi.v_max = p.v_max;
+  mi.a_lat_max = p.a_lat_max;
+  mi.j_max = p.j_max;
+  mi.stop_angle = p.stop_angle;
+  const uint32_t rounds = p.depth == TDO_PLAN_TRAJECTORY ? 3u : 1u;
+  for (uint32_t round = 0; round < rounds; ++round) {
+    tdo_smooth_output so;
+    out->status = tdo_smooth_run(pl->smooth, &mi, &so);
+    if (out->status != TDO_OK) return out->status;
+    out->path = so.path;
+    out->reached = TDO_PLAN_SMOOTH;
+    if (p.depth == TDO_PLAN_SMOOTH) break;
+    tdo_traj_input ti;
+    memset(&ti, 0, sizeof(ti));
+    ti.path = so.path;
+    ti.grid = pl->grid;
+    ti.clearance = clearance;
+    ti.v_max = p.v_max;
+    ti.a_max = p.a_max;
+    ti.j_max = p.j_max;
+    ti.a_lat_max = p.a_lat_max;
+    ti.dt = p.dt;
+    tdo_traj_output to;
+    out->status = tdo_traj_run(pl->traj, &ti, &to);
+    out->feasibility = to.report;
+    out->refinements += to.refinements;
+    out->samples = to.samples;
+    out->n_samples = to.n_samples;
+    out->reached = TDO_PLAN_TRAJECTORY;
+    if (out->status != TDO_ERR_INFEASIBLE) break;
+    mi.k *= 1.5;
+  }
+  if (out->status != TDO_OK && out->status != TDO_ERR_INFEASIBLE) return out->status;
+  metrics_of(pl, out, &out->path, p);
+  if (out->status == TDO_ERR_INFEASIBLE) {  // never hand out a violating trajectory as usable
+    out->samples = nullptr;
+    out->n_samples = 0;
+  }
+  return out->status;
+}

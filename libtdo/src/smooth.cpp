@@ -1,0 +1,485 @@
+// Stage 3: curvature-constrained adaptive-radius corner smoothing (pipeline.md s.3, paper eq. 8-9).
+//
+// Per interior waypoint: deflection theta, radius r = k theta / (2 sin(theta/2)) R_min (eq. 8),
+// corner curve tangent to both segments in their plane: the G2 cubic Bezier spiral pair of Yang and
+// Sukkarieh (2010) or a circular arc. Corners are fitted into the room the neighbouring corners
+// leave, checked for clearance and shrunk when needed; corners that cannot be filleted become stop
+// points. Fixed memory from the arena, every loop bounded, deterministic.
+//
+// The G2 corner (derivation; the tests verify every property numerically). Let u_in, u_out be the
+// unit directions into and out of the waypoint w, theta the deflection, beta = theta / 2, d the
+// tangent length. The first Bezier is
+//   B0 = w - d u_in,  B1 = w - (d - g) u_in,  B2 = w - (d - g - h) u_in,  B3 = J,
+// the second one mirrors it about the bisector (E0 = w + d u_out, ...) and both meet at
+//   J = (B2 + E2) / 2,
+// so B2, J, E2 are collinear: tangent continuity at J by construction, equal curvature at J by
+// symmetry. B0, B1, B2 collinear gives curvature 0 at the lines. With h = c3 d, g = c2 h:
+//   kappa(J) = (2/3) h sin(beta) / k^2,  k = |J - B2| = (d - g - h) cos(beta) = q d cos(beta),
+//   q = 1 - c3 (1 + c2),
+// hence d = (2/3) c3 sin(beta) / (kappa_max q^2 cos^2(beta)). Yang and Sukkarieh write this as
+// d = (c2 + 4)^2 sin(beta) / (54 c3 kappa_max cos^2(beta)) with k = 6 c3 cos(beta) d / (c2 + 4),
+// which equals the geometric k only when c1 = (c2 + 1)(c2 + 4) = 7.2351427678...; the published
+// c1 = 7.2364 is a rounding that makes J miss the midpoint or (with J the midpoint) lets the
+// curvature overshoot 1/r by up to 3e-5 relative near the junction. With the exact c1 and
+// c2 = 2 (sqrt 6 - 1) / 5 the curvature rises monotonically from 0 to kappa_max with dkappa/ds = 0
+// at J, so the peak is exactly 1/r (verified in test_smooth.cpp for 0.1..170 degrees).
+#include "tdo/smooth.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Yang-Sukkarieh constants, c1 derived exactly (see the header comment).
+constexpr double kC2 = 0.5797958971132712392789;   // 2 (sqrt(6) - 1) / 5
+constexpr double kC1 = (kC2 + 1.0) * (kC2 + 4.0);  // 7.2351427678757392...
+constexpr double kC3 = (kC2 + 4.0) / (kC1 + 6.0);  // 0.3460329803339428...
+constexpr double kQ = 1.0 - kC3 * (1.0 + kC2);     // 0.4533385174025598... = 6 c3 / (c2 + 4)
+
+constexpr double kStraightAngle = 1e-7;  // rad; smaller deflections pass straight, no corner
+constexpr double kNearPi = 1e-6;         // rad; deflections within this of pi always stop
+constexpr double kDuplicate = 1e-9;      // m; consecutive waypoints closer than this are merged
+constexpr double kMergeRel = 1e-9;       // lines shorter than this (relative, >= 1 m) are dropped
+constexpr double kShrink = 0.6;          // radius factor per clearance shrink step
+constexpr double kDefaultMinRadius = 0.05;  // of R_min, when the input gives 0
+constexpr double kAbsMinRadius = 1e-6;      // m; no corner radius below this, whatever the input
+constexpr double kClearTolerance = 0.005;   // m; conservativeness allowed to the Bezier check
+constexpr uint32_t kMaxChords = 64u;        // chords per arc clearance check
+constexpr int kRateSamples = 32;            // t samples of the curvature-rate maximum search
+constexpr int kRateGolden = 40;  // golden-section steps refining it (bracket 1/16 -> 1e-10)
+constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximum
+
+struct V {
+  double x, y, z;
+};
+inline V mk(const tdo_vec3& a) { return V{a.x, a.y, a.z}; }
+inline tdo_vec3 tv(const V& a) { return tdo_vec3{a.x, a.y, a.z}; }
+inline V add(const V& a, const V& b) { return V{a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V sub(const V& a, const V& b) { return V{a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V mul(const V& a, double k) { return V{a.x * k, a.y * k, a.z * k}; }
+inline double dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V cross(const V& a, const V& b) {
+  return V{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(const V& a) { return sqrt(dot(a, a)); }
+inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+inline bool positive(double x) { return isfinite(x) && x > 0.0; }
+inline double dmin(double a, double b) { return a < b ? a : b; }
+inline double dmax(double a, double b) { return a > b ? a : b; }
+
+enum CornerKind : uint8_t {
+  kCornerStraight = 0,  // no turn: the lines meet end to end
+  kCornerStop = 1,      // polyline corner, vehicle at rest there
+  kCornerCurve = 2      // filleted
+};
+
+/** Per-waypoint state. Index 0 and n-1 are start and goal (kCornerStraight, no room needed). */
+struct Corner {
+  V w;             // m, waypoint
+  V u;             // unit direction of the segment from this waypoint to the next
+  double len;      // m, length of that segment
+  double tau;      // tangent length per metre of radius (dimensionless)
+  double rate;     // max|dkappa/ds| * r^2 of the G2 shape (dimensionless); 0 for arcs
+  double r_des;    // m, wanted radius
+  double t_des;    // m, wanted tangent length
+  double r;        // m, final radius
+  double t;        // m, final tangent length
+  double v;        // m/s, speed cap of the corner curve
+  V entry, exit;   // m, where the curve leaves the incoming line and joins the outgoing one
+  uint8_t kind;    // CornerKind
+  uint8_t shrunk;  // 1 when r < r_des
+};
+
+/** Tangent length per metre of radius of the G2 corner with half-deflection beta. */
+double g2_tau(double beta) {
+  const double cb = cos(beta);
+  return (2.0 / 3.0) * kC3 * sin(beta) / (kQ * kQ * cb * cb);
+}
+
+/**
+ * |dkappa/ds| at parameter t of the first Bezier of the unit-radius G2 corner in the plane
+ * (u_in = x axis, turning left by theta): control points on the x axis and at the junction.
+ */
+double g2_rate_at(const double px[4], const double py[4], double t) {
+  const double u = 1.0 - t;
+  double d1[2], d2[2], d3[2];
+  const double* p[2] = {px, py};
+  for (int i = 0; i < 2; ++i) {
+    const double* c = p[i];
+    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
+    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
+    d3[i] = 6.0 * (c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]);
+  }
+  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
+  const double sp = sqrt(sp2);
+  if (!(sp > 0.0)) return 0.0;
+  // Signed curvature kappa = c / sp^3 with c = d1 x d2 (>= 0 for a left turn), c' = d1 x d3.
+  const double c = d1[0] * d2[1] - d1[1] * d2[0];
+  const double cp = d1[0] * d3[1] - d1[1] * d3[0];
+  const double sp3 = sp2 * sp;
+  const double dk_dt = cp / sp3 - 3.0 * c * (d1[0] * d2[0] + d1[1] * d2[1]) / (sp3 * sp2);
+  return fabs(dk_dt / sp);
+}
+
+/**
+ * max |dkappa/ds| of the unit-radius G2 corner (both halves are mirror images): 32 uniform samples
+ * in t, then golden-section refinement around the best one; a 1e-6 relative safety margin.
+ * Scale: a corner of radius r has max |dkappa/ds| = g2_rate(beta) / r^2.
+ */
+double g2_rate(double beta) {
+  const double d = g2_tau(beta);
+  const double h = kC3 * d, g = kC2 * h;
+  const double theta = 2.0 * beta;
+  // Waypoint at the origin, incoming along +x, outgoing along (cos theta, sin theta).
+  const double b2 = d - g - h;
+  const double px[4] = {-d, -(d - g), -b2, 0.5 * (-b2 + b2 * cos(theta))};
+  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
+  int best = 0;
+  double best_v = -1.0;
+  for (int i = 0; i <= kRateSamples; ++i) {
+    const double v = g2_rate_at(px, py, static_cast<double>(i) / kRateSamples);
+    if (v > best_v) {
+      best_v = v;
+      best = i;
+    }
+  }
+  double lo = static_cast<double>(best > 0 ? best - 1 : 0) / kRateSamples;
+  double hi = static_cast<double>(best < kRateSamples ? best + 1 : kRateSamples) / kRateSamples;
+  const double gr = 0.6180339887498948482;
+  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+  double f1 = g2_rate_at(px, py, x1), f2 = g2_rate_at(px, py, x2);
+  for (int it = 0; it < kRateGolden; ++it) {
+    if (f1 < f2) {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + gr * (hi - lo);
+      f2 = g2_rate_at(px, py, x2);
+    } else {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - gr * (hi - lo);
+      f1 = g2_rate_at(px, py, x1);
+    }
+  }
+  return dmax(best_v, dmax(f1, f2)) * kRateMargin;
+}
+
+tdo_path_segment blank_segment(tdo_segment_kind kind) {
+  tdo_path_segment s;
+  memset(&s, 0, sizeof(s));
+  s.kind = kind;
+  return s;
+}
+
+/** The two Beziers of a G2 corner at waypoint w with tangent length d from entry to exit. */
+void g2_corner(const V& w, const V& u_in, const V& u_out, double d, const V& entry, const V& exit,
+               tdo_path_segment out[2]) {
+  const double h = kC3 * d, g = kC2 * h;
+  const V b1 = sub(w, mul(u_in, d - g));
+  const V b2 = sub(w, mul(u_in, d - g - h));
+  const V e1 = add(w, mul(u_out, d - g));
+  const V e2 = add(w, mul(u_out, d - g - h));
+  const V j = mul(add(b2, e2), 0.5);
+  out[0] = blank_segment(TDO_SEGMENT_BEZIER);
+  out[0].p[0] = tv(entry);
+  out[0].p[1] = tv(b1);
+  out[0].p[2] = tv(b2);
+  out[0].p[3] = tv(j);
+  out[1] = blank_segment(TDO_SEGMENT_BEZIER);
+  out[1].p[0] = tv(j);
+  out[1].p[1] = tv(e2);
+  out[1].p[2] = tv(e1);
+  out[1].p[3] = tv(exit);
+}
+
+/** The arc of radius r at waypoint w with tangent length t, from entry to exit. */
+tdo_path_segment arc_corner(const V& w, const V& u_in, const V& u_out, double r, double t,
+                            const V& entry, const V& exit) {
+  tdo_path_segment s = blank_segment(TDO_SEGMENT_ARC);
+  const V n_raw = sub(u_out, mul(u_in, dot(u_in, u_out)));  // in-plane normal towards the turn
+  const V n = mul(n_raw, 1.0 / norm(n_raw));
+  const V c = add(sub(w, mul(u_in, t)), mul(n, r));
+  s.p[0] = tv(entry);
+  s.p[1] = tv(exit);
+  s.p[2] = tv(c);
+  return s;
+}
+
+}  // namespace
+
+struct tdo_smooth {
+  tdo_smooth_config cfg;
+  tdo_path_segment* seg;  // max_segments, the output path
+  Corner* corner;         // max_waypoints
+};
+
+namespace {
+
+/**
+ * Clearance of a corner curve; counts the queries. `margin` (m) is added to the clearance: it
+ * covers the at most kMergeRel * max(1, L) shift of an end point that step 4 may snap onto its
+ * neighbour's (along the line, so the curve moves by no more than that).
+ */
+int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev, double margin,
+                 uint32_t* checks) {
+  if (in.grid == nullptr) return 1;
+  const double clearance = in.clearance + margin;
+  const V entry = sub(c.w, mul(prev.u, c.t));
+  const V exit = add(c.w, mul(c.u, c.t));
+  if (in.mode == TDO_SMOOTHING_G2) {
+    tdo_path_segment b[2];
+    g2_corner(c.w, prev.u, c.u, c.t, entry, exit, b);
+    for (int i = 0; i < 2; ++i) {
+      ++*checks;
+      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) return 0;
+    }
+    return 1;
+  }
+  // Arc: chords of the arc, each checked at clearance + sagitta. Every arc point lies within the
+  // sagitta of its chord, so a clear chord proves its arc piece clear.
+  tdo_path_segment a = arc_corner(c.w, prev.u, c.u, c.r, c.t, entry, exit);
+  a.length = tdo_segment_length(&a);
+  const double sweep = a.length / c.r;
+  uint32_t m = 1u;
+  if (kClearTolerance < c.r) {
+    const double step = 2.0 * acos(1.0 - kClearTolerance / c.r);
+    const double need = ceil(sweep / step);
+    m = need >= static_cast<double>(kMaxChords) ? kMaxChords
+                                                : (need < 1.0 ? 1u : static_cast<uint32_t>(need));
+  }
+  const double sag = c.r * (1.0 - cos(0.5 * sweep / m));
+  tdo_vec3 p0 = a.p[0];
+  for (uint32_t i = 1; i <= m; ++i) {
+    const tdo_vec3 p1 = i == m ? a.p[1] : tdo_segment_point(&a, a.length * i / m);
+    ++*checks;
+    if (!tdo_collision_segment_clear(in.grid, p0, p1, clearance + sag)) return 0;
+    p0 = p1;
+  }
+  return 1;
+}
+
+bool valid_input(const tdo_smooth_input& in) {
+  if (in.waypoints == nullptr || in.n_waypoints < 2u) return false;
+  if (in.mode != TDO_SMOOTHING_G2 && in.mode != TDO_SMOOTHING_ARC && in.mode != TDO_SMOOTHING_NONE)
+    return false;
+  if (!isfinite(in.clearance) || in.clearance < 0.0) return false;
+  if (!positive(in.k) || !positive(in.v_cruise) || !positive(in.v_max) || !positive(in.a_lat_max) ||
+      !positive(in.j_max) || !positive(in.stop_angle))
+    return false;
+  if (!isfinite(in.min_radius) || in.min_radius < 0.0) return false;
+  // R_min and the jerk radius must stay finite.
+  const double r_min = in.v_cruise * in.v_cruise / in.a_lat_max;
+  if (!positive(r_min) || !positive(r_min * in.k)) return false;
+  return true;
+}
+
+}  // namespace
+
+extern "C" size_t tdo_smooth_footprint(const tdo_smooth_config* cfg) {
+  if (cfg == nullptr || cfg->max_waypoints < 2u || cfg->max_segments == 0u) return 0;
+  return tdo_arena_round(sizeof(tdo_smooth)) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_segments) * sizeof(tdo_path_segment)) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_waypoints) * sizeof(Corner));
+}
+
+extern "C" tdo_status tdo_smooth_init(tdo_smooth** out, tdo_arena* arena,
+                                      const tdo_smooth_config* cfg) {
+  if (out == nullptr || arena == nullptr || cfg == nullptr || cfg->max_waypoints < 2u ||
+      cfg->max_segments == 0u)
+    return TDO_ERR_INVALID_ARGUMENT;
+  *out = nullptr;
+  if (arena->used > arena->size || arena->size - arena->used < tdo_smooth_footprint(cfg))
+    return TDO_ERR_ARENA_TOO_SMALL;
+  tdo_smooth* ctx = static_cast<tdo_smooth*>(tdo_arena_alloc(arena, sizeof(tdo_smooth)));
+  if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(ctx, 0, sizeof(*ctx));
+  ctx->cfg = *cfg;
+  ctx->seg = static_cast<tdo_path_segment*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_segments) * sizeof(tdo_path_segment)));
+  ctx->corner = static_cast<Corner*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_waypoints) * sizeof(Corner)));
+  if (ctx->seg == nullptr || ctx->corner == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  *out = ctx;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in_ptr,
+                                     tdo_smooth_output* out) {
+  if (ctx == nullptr || in_ptr == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  const tdo_smooth_input& in = *in_ptr;
+  if (!valid_input(in)) return TDO_ERR_INVALID_ARGUMENT;
+  if (in.n_waypoints > ctx->cfg.max_waypoints) return TDO_ERR_PATH_CAPACITY;
+  Corner* const c = ctx->corner;
+
+  // 1. Waypoints, consecutive duplicates merged (the exact goal is kept).
+  uint32_t n = 0;
+  for (uint32_t i = 0; i < in.n_waypoints; ++i) {
+    const tdo_vec3& p = in.waypoints[i];
+    if (!finite3(p)) return TDO_ERR_INVALID_ARGUMENT;
+    if (n > 0u && norm(sub(mk(p), c[n - 1u].w)) <= kDuplicate) {
+      if (i + 1u == in.n_waypoints && n >= 2u) c[n - 1u].w = mk(p);
+      continue;
+    }
+    memset(&c[n], 0, sizeof(Corner));
+    c[n].w = mk(p);
+    ++n;
+  }
+  if (n < 2u) return TDO_ERR_INVALID_ARGUMENT;  // start == goal
+  for (uint32_t i = 0; i + 1u < n; ++i) {
+    const V d = sub(c[i + 1u].w, c[i].w);
+    c[i].len = norm(d);
+    c[i].u = mul(d, 1.0 / c[i].len);
+  }
+
+  // 2. Wanted radius and tangent length per corner.
+  const double r_min = in.v_cruise * in.v_cruise / in.a_lat_max;  // m, R_min
+  const double r_floor =
+      dmax(in.min_radius > 0.0 ? in.min_radius : kDefaultMinRadius * r_min, kAbsMinRadius);
+  const double v_c = dmin(in.v_cruise, in.v_max);
+  for (uint32_t i = 1; i + 1u < n; ++i) {
+    Corner& k = c[i];
+    const V& u_in = c[i - 1u].u;
+    const double theta = atan2(norm(cross(u_in, k.u)), dot(u_in, k.u));
+    if (theta < kStraightAngle) {
+      k.kind = kCornerStraight;
+      continue;
+    }
+    if (in.mode == TDO_SMOOTHING_NONE || theta > in.stop_angle || theta > kPi - kNearPi) {
+      k.kind = kCornerStop;
+      continue;
+    }
+    k.kind = kCornerCurve;
+    const double r8 = in.k * theta / (2.0 * sin(0.5 * theta)) * r_min;  // paper eq. 8
+    if (in.mode == TDO_SMOOTHING_G2) {
+      k.tau = g2_tau(0.5 * theta);
+      k.rate = g2_rate(0.5 * theta);
+      const double r_jerk = sqrt(v_c * v_c * v_c * k.rate / in.j_max);
+      k.r_des = dmax(r8, r_jerk);
+    } else {
+      k.tau = tan(0.5 * theta);
+      k.rate = 0.0;
+      k.r_des = r8;
+    }
+    k.t_des = k.tau * k.r_des;
+  }
+
+  // 3. Fit into the room, keep clearance, else stop.
+  uint32_t checks = 0;
+  for (uint32_t i = 1; i + 1u < n; ++i) {
+    Corner& k = c[i];
+    if (k.kind != kCornerCurve) continue;
+    const double l_in = c[i - 1u].len, l_out = k.len;
+    const double room_in = dmax(0.5 * l_in, l_in - c[i - 1u].t_des);
+    const double room_out = dmax(0.5 * l_out, l_out - c[i + 1u].t_des);
+    const double room = dmin(room_in, room_out);
+    const double margin = kMergeRel * dmax(1.0, dmax(l_in, l_out));
+    double r = k.r_des;
+    if (k.tau * r > room) {
+      r = room / k.tau;
+      k.shrunk = 1u;
+    }
+    int ok = 0;
+    for (uint32_t attempt = 0; attempt <= ctx->cfg.max_shrinks; ++attempt) {
+      if (!(r >= r_floor)) break;
+      k.r = r;
+      k.t = dmin(k.tau * r, room);
+      if (corner_clear(in, k, c[i - 1u], margin, &checks)) {
+        ok = 1;
+        break;
+      }
+      r *= kShrink;
+      k.shrunk = 1u;
+    }
+    if (!ok) {
+      k.kind = kCornerStop;
+      k.r = 0.0;
+      k.t = 0.0;
+      k.shrunk = 0u;
+      continue;
+    }
+    double v = dmin(in.v_max, sqrt(in.a_lat_max * k.r));
+    if (k.rate > 0.0) v = dmin(v, cbrt(in.j_max * k.r * k.r / k.rate));
+    k.v = v;
+  }
+
+  // 4. Cut points. A line left shorter than kMergeRel collapses to one point, preferring an exact
+  //    waypoint (start, goal, stop) so those stay bit-exact.
+  for (uint32_t i = 0; i < n; ++i) {
+    c[i].entry = c[i].w;
+    c[i].exit = c[i].w;
+    if (c[i].kind == kCornerCurve) {
+      c[i].entry = sub(c[i].w, mul(c[i - 1u].u, c[i].t));
+      c[i].exit = add(c[i].w, mul(c[i].u, c[i].t));
+    }
+  }
+  for (uint32_t j = 0; j + 1u < n; ++j) {
+    Corner& a = c[j];
+    Corner& b = c[j + 1u];
+    const double gap = a.len - a.t - b.t;
+    if (gap > kMergeRel * dmax(1.0, a.len)) continue;
+    if (a.kind != kCornerCurve)
+      b.entry = a.exit;
+    else
+      a.exit = b.entry;  // b.entry is b.w unless b is a curve; then either will do
+  }
+
+  // 5. Emit in flight order.
+  tdo_path_segment* const seg = ctx->seg;
+  const uint32_t cap = ctx->cfg.max_segments;
+  uint32_t ns = 0;
+  double total = 0.0;
+  uint32_t n_corners = 0, n_shrunk = 0, n_stops = 0;
+  for (uint32_t j = 0; j + 1u < n; ++j) {
+    const Corner& a = c[j];
+    const Corner& b = c[j + 1u];
+    const bool stop_b = b.kind == kCornerStop;
+    const double gap = a.len - a.t - b.t;
+    if (gap > kMergeRel * dmax(1.0, a.len)) {
+      if (ns >= cap) return TDO_ERR_PATH_CAPACITY;
+      tdo_path_segment s = blank_segment(TDO_SEGMENT_LINE);
+      s.p[0] = tv(a.exit);
+      s.p[1] = tv(b.entry);
+      s.v_limit = in.v_max;
+      s.stop_at_end = stop_b ? 1 : 0;
+      s.length = tdo_segment_length(&s);
+      seg[ns++] = s;
+      total += s.length;
+    } else if (stop_b && ns > 0u) {
+      seg[ns - 1u].stop_at_end = 1;  // the previous corner curve runs right into the stop point
+    }
+    if (stop_b) ++n_stops;
+    if (b.kind != kCornerCurve) continue;
+    ++n_corners;
+    if (b.shrunk) ++n_shrunk;
+    tdo_path_segment cs[2];
+    uint32_t m = 1u;
+    if (in.mode == TDO_SMOOTHING_G2) {
+      g2_corner(b.w, a.u, b.u, b.t, b.entry, b.exit, cs);
+      m = 2u;
+    } else {
+      cs[0] = arc_corner(b.w, a.u, b.u, b.r, b.t, b.entry, b.exit);
+    }
+    for (uint32_t q = 0; q < m; ++q) {
+      if (ns >= cap) return TDO_ERR_PATH_CAPACITY;
+      cs[q].v_limit = b.v;
+      cs[q].length = tdo_segment_length(&cs[q]);
+      seg[ns++] = cs[q];
+      total += cs[q].length;
+    }
+  }
+  out->path.seg = seg;
+  out->path.n = ns;
+  out->path.length = total;
+  out->n_corners = n_corners;
+  out->n_shrunk = n_shrunk;
+  out->n_stops = n_stops;
+  out->n_clear_checks = checks;
+  return TDO_OK;
+}

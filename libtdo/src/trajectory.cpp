@@ -1,0 +1,770 @@
+// Stage 5: time parameterisation, dynamic feasibility verification and refinement
+// (pipeline.md s.5, paper eq. 15-19).
+//
+// Speed profile. Every segment of positive length is a "plateau" with a constant speed ceiling
+// (the minimum over the segment of v_max, its v_limit, sqrt(a_lat / kappa) and the lateral-jerk
+// bound) and its own tangential acceleration and jerk limits, chosen so that the total
+// acceleration and jerk (tangential plus every curvature term) stay inside a_max and j_max. The
+// boundaries between plateaus are the critical points: the vehicle passes them with zero
+// tangential acceleration at a boundary speed no higher than either neighbour's ceiling (0 at the
+// ends, at stop points and at tangent kinks; lower where the curvature jumps, because the finite
+// differences at dt turn a curvature jump into a jerk of about v^2 dkappa / dt). Forward and
+// backward passes make the boundary speeds mutually reachable with jerk-limited S-curves
+// (closed-form distance, bisection on the reachable speed); inside each plateau the profile is
+// accelerate (S-curve) / cruise / decelerate (S-curve) with the peak found by bisection. The
+// result is a list of constant-jerk pieces in time, so s(t) is an exact piecewise cubic.
+//
+// Why this passes the finite-difference checks: the second and third differences of the sampled
+// positions are kernel averages (hat and quadratic B-spline kernels) of the continuous
+// acceleration and jerk, so they never exceed the continuous maxima that the budgets bound;
+// curvature jumps and kinks (deltas in the jerk) get their own share of the budget.
+//
+// Verification recomputes everything from the sampled positions only (eq. 15-17) and refinement
+// lowers the plateaus around each violation (x0.8) a bounded number of times.
+#include "tdo/trajectory.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+
+namespace tdo_internal {
+namespace {
+
+// Verification.
+constexpr double kTolerance = 0.01;         // 1 % discretisation tolerance on v, a, j and r
+constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
+constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
+constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
+// Budgets (fractions of a_max / j_max).
+constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
+constexpr double kCurveAccT = 0.6;      // tangential acceleration on curved plateaus
+constexpr double kCurveAccLat = 0.78;   // lateral acceleration (0.6^2 + 0.78^2 < 0.99^2)
+constexpr double kCurveJerk = 0.9;      // total jerk on curved plateaus
+constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
+constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
+constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
+constexpr double kKinkStop = 1e-3;      // rad: tangent kinks above this are stop points
+constexpr double kGapTolerance = 1e-6;  // m: segment end points further apart are invalid input
+// Geometry summary of a curved segment.
+constexpr uint32_t kStations = 16;     // curvature stations per curved segment
+constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
+constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
+// Profile.
+constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
+constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
+constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 mk(const tdo_vec3& a) { return V3{a.x, a.y, a.z}; }
+inline tdo_vec3 tv(const V3& a) { return tdo_vec3{a.x, a.y, a.z}; }
+inline V3 sub(const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 add(const V3& a, const V3& b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 mul(const V3& a, double k) { return V3{a.x * k, a.y * k, a.z * k}; }
+inline double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double norm(const V3& a) { return sqrt(dot(a, a)); }
+inline V3 cross(const V3& a, const V3& b) {
+  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+inline double dmin(double a, double b) { return a < b ? a : b; }
+inline double dmax(double a, double b) { return a > b ? a : b; }
+inline bool positive(double v) { return isfinite(v) && v > 0.0; }
+
+/** A segment of positive length with its speed ceiling and tangential limits. */
+struct Plateau {
+  uint32_t seg;   // index of the path segment
+  double s0;      // m, path arclength at its start
+  double len;     // m
+  double kappa;   // 1/m, curvature bound (0 on lines)
+  double dkappa;  // 1/m^2, curvature-rate bound
+  double cap;     // m/s, min(v_max, v_limit)
+  int near_jump;  // 1 when a boundary of it has a curvature jump (smaller jerk budget)
+  double scale;   // refinement factor, 1 at first
+  // Filled per profile build:
+  double level;  // m/s, speed ceiling
+  double acc;    // m/s^2, tangential acceleration limit
+  double jerk;   // m/s^3, tangential jerk limit
+  double peak;   // m/s, peak speed of its accelerate/cruise/decelerate profile
+};
+
+/** The boundary before plateau k (k = n_plateaus is the end of the path). */
+struct Boundary {
+  double cap;  // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
+  double v;    // m/s, speed of the profile (filled per build)
+};
+
+/** One constant-jerk piece of the profile. */
+struct Phase {
+  double t0;   // s, start time
+  double dur;  // s, duration
+  double s0;   // m, path arclength at t0
+  double v0;   // m/s, path speed at t0
+  double a0;   // m/s^2, path acceleration at t0
+  double j;    // m/s^3, path jerk
+};
+
+}  // namespace
+}  // namespace tdo_internal
+
+struct tdo_traj {
+  tdo_traj_config cfg;
+  tdo_sample* samples;              // max_samples
+  uint32_t* owner;                  // max_samples: plateau of each sample
+  tdo_violation* violations;        // max_violations
+  tdo_internal::Plateau* plateaus;  // max_segments
+  tdo_internal::Boundary* bounds;   // max_segments + 1
+  uint8_t* hit;                     // max_segments: plateau flagged by a violation
+  tdo_internal::Phase* phases;      // max_profile
+  uint32_t n_plateaus;
+  uint32_t n_phases;
+  double total;  // m, path length
+};
+
+namespace tdo_internal {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Jerk-limited speed changes with zero acceleration at both ends.
+
+/** Durations of a rest-to-rest acceleration change of the speed by dv >= 0. */
+struct SCurve {
+  double tj;  // s, each jerk ramp
+  double ta;  // s, constant acceleration between the ramps
+};
+
+SCurve scurve(double dv, double acc, double jerk) {
+  SCurve c{0.0, 0.0};
+  if (!(dv > 0.0)) return c;
+  if (dv * jerk >= acc * acc) {
+    c.tj = acc / jerk;
+    c.ta = dv / acc - c.tj;
+    if (c.ta < 0.0) c.ta = 0.0;
+  } else {
+    c.tj = sqrt(dv / jerk);
+  }
+  return c;
+}
+
+/** m, distance of the S-curve between speeds a and b (symmetric: the mean speed times the time). */
+double scurve_dist(double a, double b, double acc, double jerk) {
+  const double lo = dmin(a, b), hi = dmax(a, b);
+  const SCurve c = scurve(hi - lo, acc, jerk);
+  return 0.5 * (lo + hi) * (2.0 * c.tj + c.ta);
+}
+
+/** m/s, highest speed in [v0, cap] reachable from v0 within distance d. */
+double reach(double v0, double d, double cap, double acc, double jerk) {
+  if (!(cap > v0)) return cap;
+  if (scurve_dist(v0, cap, acc, jerk) <= d) return cap;
+  double lo = v0, hi = cap;  // lo always reachable
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (scurve_dist(v0, mid, acc, jerk) <= d)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Path analysis (once per run).
+
+struct Limits {
+  double v_max, a_max, j_max, a_lat, dt;
+};
+
+/** Curvature and curvature-rate bounds of a curved segment from kStations + 1 stations. */
+tdo_status summarise_curve(const tdo_path_segment& seg, double* kappa, double* dkappa) {
+  double km = 0.0, dkm = 0.0, prev = 0.0;
+  const double h = seg.length / kStations;
+  for (uint32_t i = 0; i <= kStations; ++i) {
+    tdo_segment_state st;
+    const double s = i == kStations ? seg.length : h * i;
+    if (!tdo_segment_eval(&seg, s, &st)) return TDO_ERR_INVALID_ARGUMENT;
+    if (!isfinite(st.kappa) || !isfinite(st.dkappa_ds)) return TDO_ERR_INVALID_ARGUMENT;
+    km = dmax(km, st.kappa);
+    dkm = dmax(dkm, fabs(st.dkappa_ds));
+    if (i > 0 && h > 0.0) dkm = dmax(dkm, fabs(st.kappa - prev) / h);
+    prev = st.kappa;
+  }
+  *kappa = km * kKappaMargin;
+  *dkappa = dkm * kDKappaMargin;
+  return TDO_OK;
+}
+
+tdo_status validate(const tdo_traj* ctx, const tdo_traj_input* in) {
+  if (!positive(in->v_max) || !positive(in->a_max) || !positive(in->j_max) ||
+      !positive(in->a_lat_max) || !positive(in->dt))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (in->grid != nullptr && !(isfinite(in->clearance) && in->clearance >= 0.0))
+    return TDO_ERR_INVALID_ARGUMENT;
+  const tdo_path& path = in->path;
+  if (path.seg == nullptr || path.n == 0) return TDO_ERR_INVALID_ARGUMENT;
+  if (path.n > ctx->cfg.max_segments) return TDO_ERR_PATH_CAPACITY;
+  double total = 0.0;
+  for (uint32_t i = 0; i < path.n; ++i) {
+    const tdo_path_segment& s = path.seg[i];
+    if (s.kind != TDO_SEGMENT_LINE && s.kind != TDO_SEGMENT_BEZIER && s.kind != TDO_SEGMENT_ARC)
+      return TDO_ERR_INVALID_ARGUMENT;
+    const int np = s.kind == TDO_SEGMENT_BEZIER ? 4 : (s.kind == TDO_SEGMENT_ARC ? 3 : 2);
+    for (int k = 0; k < np; ++k)
+      if (!finite3(s.p[k])) return TDO_ERR_INVALID_ARGUMENT;
+    if (!(isfinite(s.length) && s.length >= 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    if (isnan(s.v_limit) || !(s.v_limit > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    total += s.length;
+  }
+  if (!(total > 0.0) || !isfinite(total)) return TDO_ERR_INVALID_ARGUMENT;
+  if (in->grid != nullptr && tdo_grid_clearance(in->grid) < 0.0) return TDO_ERR_MAP_NOT_READY;
+  return TDO_OK;
+}
+
+/** Plateaus, boundary caps and the curvature-jump flags. */
+tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
+  const tdo_path& path = in->path;
+  uint32_t n = 0;
+  double s0 = 0.0;
+  int stop_pending = 0;  // a zero-length segment with stop_at_end before the next plateau
+  for (uint32_t i = 0; i < path.n; ++i) {
+    const tdo_path_segment& seg = path.seg[i];
+    if (!(seg.length > 0.0)) {
+      stop_pending |= seg.stop_at_end;
+      continue;
+    }
+    Plateau& p = ctx->plateaus[n];
+    memset(&p, 0, sizeof(p));
+    p.seg = i;
+    p.s0 = s0;
+    p.len = seg.length;
+    p.cap = dmin(lim.v_max, seg.v_limit);
+    p.scale = 1.0;
+    if (seg.kind != TDO_SEGMENT_LINE) {
+      const tdo_status st = summarise_curve(seg, &p.kappa, &p.dkappa);
+      if (st != TDO_OK) return st;
+    }
+    Boundary& b = ctx->bounds[n];
+    b.cap = HUGE_VAL;
+    if (n == 0) {
+      b.cap = 0.0;  // start at rest
+    } else {
+      const Plateau& q = ctx->plateaus[n - 1];
+      const tdo_path_segment& prev = path.seg[q.seg];
+      tdo_segment_state e, f;
+      tdo_segment_eval(&prev, prev.length, &e);
+      tdo_segment_eval(&seg, 0.0, &f);
+      if (norm(sub(mk(e.p), mk(f.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
+      if (prev.stop_at_end || stop_pending) b.cap = 0.0;
+      // Tangent kink: a velocity jump v*theta, FD acceleration v*theta/dt, FD jerk v*theta/dt^2.
+      const double theta = atan2(norm(cross(mk(e.t), mk(f.t))), dot(mk(e.t), mk(f.t)));
+      if (theta > kKinkStop) {
+        b.cap = 0.0;
+      } else if (theta > 0.0) {
+        b.cap =
+            dmin(b.cap, kKinkShare * dmin(lim.j_max * lim.dt * lim.dt, lim.a_max * lim.dt) / theta);
+      }
+      // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
+      // with a kernel whose peak is 0.75 / dt.
+      const double jump = norm(sub(mk(e.kn), mk(f.kn)));
+      if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
+        b.cap = dmin(b.cap, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
+        ctx->plateaus[n - 1].near_jump = 1;
+        p.near_jump = 1;
+      }
+    }
+    stop_pending = 0;
+    s0 += seg.length;
+    ++n;
+  }
+  ctx->bounds[n].cap = 0.0;  // end at rest
+  ctx->n_plateaus = n;
+  ctx->total = s0;
+  return TDO_OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Profile (per refinement round).
+
+/** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale. */
+void plateau_limits(Plateau* p, const Limits& lim) {
+  const double jb =
+      (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
+  double level = p->cap;
+  if (!(p->kappa > 0.0)) {
+    p->level = level * p->scale;
+    p->acc = kLineShare * lim.a_max * p->scale;
+    p->jerk = jb * p->scale;
+    return;
+  }
+  const double k = p->kappa, dk = p->dkappa;
+  // Lateral acceleration kappa v^2 <= min(a_lat, 0.78 a_max).
+  level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
+  // Geometric jerk (kappa^2 + |dkappa/ds|) v^3 <= half the jerk budget.
+  level = dmin(level, cbrt(0.5 * jb / (k * k + dk)));
+  level *= p->scale;
+  // The rest is shared by the tangential jerk and the 3 kappa v a_t term.
+  const double rest = jb - (k * k + dk) * level * level * level;
+  p->level = level;
+  p->jerk = 0.5 * rest * p->scale;
+  p->acc = dmin(kCurveAccT * lim.a_max, 0.5 * rest / (3.0 * k * level)) * p->scale;
+}
+
+/** Appends a phase; false when the profile capacity is exhausted. */
+bool push_phase(tdo_traj* ctx, double t0, double dur, double s0, double v0, double a0, double j) {
+  if (ctx->n_phases >= ctx->cfg.max_profile) return false;
+  ctx->phases[ctx->n_phases++] = Phase{t0, dur, s0, v0, a0, j};
+  return true;
+}
+
+/** Running state of the profile under construction. */
+struct Cursor {
+  double t, s, v, a;
+};
+
+bool advance(tdo_traj* ctx, Cursor* c, double dur, double j) {
+  if (!(dur > 0.0)) return true;
+  if (!push_phase(ctx, c->t, dur, c->s, c->v, c->a, j)) return false;
+  c->s += dur * (c->v + dur * (0.5 * c->a + dur * j / 6.0));
+  c->v += dur * (c->a + 0.5 * dur * j);
+  c->a += dur * j;
+  c->t += dur;
+  return true;
+}
+
+/** S-curve from c->v to v1 (acceleration 0 at both ends). */
+bool speed_change(tdo_traj* ctx, Cursor* c, double v1, double acc, double jerk) {
+  const double sign = v1 >= c->v ? 1.0 : -1.0;
+  const SCurve sc = scurve(fabs(v1 - c->v), acc, jerk);
+  if (!advance(ctx, c, sc.tj, sign * jerk)) return false;
+  if (!advance(ctx, c, sc.ta, 0.0)) return false;
+  if (!advance(ctx, c, sc.tj, -sign * jerk)) return false;
+  c->v = v1;  // remove rounding: the S-curve ends exactly at v1 with zero acceleration
+  c->a = 0.0;
+  return true;
+}
+
+/** Zero-speed dwell so that a stop falls exactly on a sample time. */
+bool align_stop(tdo_traj* ctx, Cursor* c, double dt) {
+  const double k = ceil(c->t / dt - kAlignSlack);
+  const double dwell = k * dt - c->t;
+  c->v = 0.0;
+  c->a = 0.0;
+  if (!(dwell > 0.0)) return true;
+  return advance(ctx, c, dwell, 0.0);
+}
+
+/** Builds the constant-jerk pieces. TDO_ERR_SAMPLE_CAPACITY when they do not fit. */
+tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  Boundary* bd = ctx->bounds;
+  for (uint32_t k = 0; k < n; ++k) plateau_limits(&pl[k], lim);
+  // Boundary speeds: caps, scaled with the neighbours, no higher than either ceiling.
+  for (uint32_t k = 0; k <= n; ++k) {
+    double scale = 1.0, v = HUGE_VAL;
+    if (k > 0) {
+      scale = dmin(scale, pl[k - 1].scale);
+      v = dmin(v, pl[k - 1].level);
+    }
+    if (k < n) {
+      scale = dmin(scale, pl[k].scale);
+      v = dmin(v, pl[k].level);
+    }
+    bd[k].v = dmin(v, bd[k].cap * scale);
+  }
+  // Forward then backward pass: every pair of neighbouring boundary speeds is joined by one
+  // S-curve inside the plateau between them (the backward pass only lowers speeds that exceed
+  // what the next one allows, which keeps the forward condition).
+  for (uint32_t k = 0; k < n; ++k)
+    bd[k + 1].v = dmin(bd[k + 1].v, reach(bd[k].v, pl[k].len, pl[k].level, pl[k].acc, pl[k].jerk));
+  for (uint32_t k = n; k > 0; --k)
+    bd[k - 1].v = dmin(
+        bd[k - 1].v, reach(bd[k].v, pl[k - 1].len, pl[k - 1].level, pl[k - 1].acc, pl[k - 1].jerk));
+  ctx->n_phases = 0;
+  Cursor c{0.0, 0.0, 0.0, 0.0};
+  for (uint32_t k = 0; k < n; ++k) {
+    Plateau& p = pl[k];
+    const double v0 = bd[k].v, v1 = bd[k + 1].v;
+    const auto need = [&](double vp) {
+      return scurve_dist(v0, vp, p.acc, p.jerk) + scurve_dist(vp, v1, p.acc, p.jerk);
+    };
+    double lo = dmax(v0, v1), hi = p.level;
+    if (need(hi) <= p.len) {
+      lo = hi;
+    } else {
+      for (int i = 0; i < kBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (!(mid > lo && mid < hi)) break;
+        if (need(mid) <= p.len)
+          lo = mid;
+        else
+          hi = mid;
+      }
+    }
+    p.peak = lo;
+    c.s = p.s0;  // anchor every plateau at its exact start
+    c.v = v0;
+    c.a = 0.0;
+    if (!speed_change(ctx, &c, p.peak, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    const double cruise = p.len - need(p.peak);
+    if (cruise > 0.0 && p.peak > 0.0 && !advance(ctx, &c, cruise / p.peak, 0.0))
+      return TDO_ERR_SAMPLE_CAPACITY;
+    if (!speed_change(ctx, &c, v1, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
+  }
+  if (ctx->n_phases == 0) return TDO_ERR_INFEASIBLE;  // cannot happen for a positive length
+  return TDO_OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sampling.
+//
+// Samples walk every segment forward in small steps, so a cubic Bezier is followed by a cursor
+// (parameter u and its arclength) that Newton-steps from the previous sample with 8-point
+// Gauss-Legendre over the short stretch, instead of inverting the arclength from u = 0 for every
+// sample as tdo_segment_eval must. Same curve and same arclength (to ~1e-13 relative); lines and
+// arcs use tdo_segment_eval directly.
+
+constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
+                            0.7966664774136267395915539, 0.9602898564975362316835609};
+constexpr double kGlW[4] = {0.3626837833783619829651504, 0.3137066458778872873379622,
+                            0.2223810344533744705443560, 0.1012285362903762591525314};
+constexpr int kCursorSteps = 24;             // Newton steps per sample, at most
+constexpr double kCursorPanel = 1.0 / 64.0;  // widest Gauss-Legendre panel in u
+constexpr uint32_t kCursorPanels = 64;  // panels per step, at most (covers the whole of [0, 1])
+constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local arclength model
+
+struct BezierCursor {
+  V3 p[4];       // control points
+  V3 d[3];       // P[i+1] - P[i]
+  double u;      // parameter of the last sample
+  double s;      // m, arclength at u
+  double len;    // m, segment length (tdo_segment_length)
+  uint32_t seg;  // segment index, UINT32_MAX when unset
+};
+
+inline V3 bez_d1(const BezierCursor& b, double u) {
+  const double w = 1.0 - u;
+  return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
+}
+inline V3 bez_d2(const BezierCursor& b, double u) {
+  return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
+}
+inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
+
+/** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
+double bez_arclen(const BezierCursor& b, double a, double e) {
+  const double span = e - a;
+  double n = ceil(fabs(span) / kCursorPanel);
+  if (n < 1.0) n = 1.0;
+  if (n > kCursorPanels) n = kCursorPanels;
+  const uint32_t panels = static_cast<uint32_t>(n);
+  const double h = span / panels;
+  double total = 0.0;
+  for (uint32_t k = 0; k < panels; ++k) {
+    const double m = a + h * (k + 0.5);
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double dx = 0.5 * h * kGlX[i];
+      sum += kGlW[i] * (norm(bez_d1(b, m - dx)) + norm(bez_d1(b, m + dx)));
+    }
+    total += 0.5 * h * sum;
+  }
+  return total;
+}
+
+void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) {
+  for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
+  for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
+  c->u = 0.0;
+  c->s = 0.0;
+  c->len = seg.length;
+  c->seg = index;
+}
+
+/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
+void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+  double u = c->u, at = c->s;
+  if (s <= 0.0) {
+    u = 0.0;
+    at = 0.0;
+  } else if (s >= c->len) {
+    u = 1.0;
+    at = c->len;
+  } else {
+    const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
+    double lo = 0.0, hi = 1.0;  // bracket of the solution in u
+    for (int it = 0; it < kCursorSteps; ++it) {
+      const double r = s - at;
+      if (fabs(r) <= tol) break;
+      if (r > 0.0)
+        lo = u;
+      else
+        hi = u;
+      const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
+      const double sp = norm(d1);
+      // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
+      const double curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
+      double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
+      if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
+      double un = u + du;
+      if (!(un > lo && un < hi)) un = 0.5 * (lo + hi);
+      if (!(un > lo && un < hi)) break;  // bracket down to adjacent doubles
+      du = un - u;
+      // Tiny corrections: the local second-order model is exact to ~du^3 (< 1e-15 m); larger
+      // steps integrate the speed exactly (Gauss-Legendre).
+      if (fabs(du) < kCursorTaylor && sp > 0.0)
+        at += du * (sp + 0.5 * curv * du);
+      else
+        at += bez_arclen(*c, u, un);
+      u = un;
+    }
+  }
+  c->u = u;
+  c->s = at;
+  const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
+           a2 = lerp(c->p[2], c->p[3], u);
+  st->p = u <= 0.0 ? tv(c->p[0])
+                   : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
+  const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
+  const double sp = norm(d1);
+  if (!(sp > 0.0)) {
+    st->t = tdo_vec3{0.0, 0.0, 0.0};
+    st->kn = st->t;
+    return;
+  }
+  const V3 t = mul(d1, 1.0 / sp);
+  st->t = tv(t);
+  st->kn = tv(mul(sub(d2, mul(t, dot(d2, t))), 1.0 / (sp * sp)));  // dT/ds
+}
+
+tdo_status sample(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t* n_out) {
+  const Phase& last = ctx->phases[ctx->n_phases - 1];
+  const double t_end = last.t0 + last.dur;
+  const double steps = ceil(t_end / lim.dt - kAlignSlack);
+  if (!(steps + 1.0 <= static_cast<double>(ctx->cfg.max_samples))) return TDO_ERR_SAMPLE_CAPACITY;
+  const uint32_t n = static_cast<uint32_t>(steps) + 1u;
+  const tdo_path_segment* segs = in->path.seg;
+  uint32_t ph = 0, q = 0;
+  BezierCursor cursor;
+  memset(&cursor, 0, sizeof(cursor));
+  cursor.seg = 0xFFFFFFFFu;
+  for (uint32_t i = 0; i < n; ++i) {
+    const double t = lim.dt * i;
+    while (ph + 1u < ctx->n_phases && ctx->phases[ph + 1u].t0 <= t) ++ph;
+    const Phase& f = ctx->phases[ph];
+    double tau = t - f.t0;
+    if (tau < 0.0) tau = 0.0;
+    if (tau > f.dur) tau = f.dur;
+    double s = f.s0 + tau * (f.v0 + tau * (0.5 * f.a0 + tau * f.j / 6.0));
+    double sd = f.v0 + tau * (f.a0 + 0.5 * tau * f.j);
+    double sdd = f.a0 + tau * f.j;
+    if (i + 1u == n) {  // exactly at the goal, at rest
+      s = ctx->total;
+      sd = 0.0;
+      sdd = 0.0;
+    }
+    if (sd < 0.0) sd = 0.0;  // rounding at the end of a deceleration
+    while (q + 1u < ctx->n_plateaus && s >= ctx->plateaus[q + 1u].s0) ++q;
+    const Plateau& p = ctx->plateaus[q];
+    double local = s - p.s0;
+    if (local < 0.0) local = 0.0;
+    if (local > p.len || i + 1u == n) local = p.len;
+    tdo_segment_state st;
+    if (segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
+      if (cursor.seg != p.seg) cursor_reset(&cursor, segs[p.seg], p.seg);
+      cursor_eval(&cursor, local, &st);
+    } else {
+      tdo_segment_eval(&segs[p.seg], local, &st);
+    }
+    tdo_sample& out = ctx->samples[i];
+    out.t = t;
+    out.p = st.p;
+    out.v = tv(mul(mk(st.t), sd));
+    out.a = tv(add(mul(mk(st.t), sdd), mul(mk(st.kn), sd * sd)));
+    ctx->owner[i] = q;
+  }
+  *n_out = n;
+  return TDO_OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Verification (eq. 15-19) on the sampled positions only.
+
+struct Report {
+  tdo_feasibility* rep;
+  uint32_t cap;
+  tdo_violation* list;
+  uint32_t dynamic;  // dynamic violations (refinement can act on them)
+};
+
+void add_violation(Report* r, double t, tdo_quantity what, double value, double limit) {
+  if (r->rep->n_violations < r->cap) {
+    r->list[r->rep->n_violations++] = tdo_violation{t, what, value, limit};
+  }
+  ++r->rep->n_violations_total;
+  if (what != TDO_QUANTITY_CLEARANCE) ++r->dynamic;
+}
+
+void mark(tdo_traj* ctx, uint32_t n, uint32_t first, uint32_t last) {
+  const uint32_t a = first > 0u ? first - 1u : 0u;
+  const uint32_t b = last + 1u < n ? last + 1u : n - 1u;
+  for (uint32_t i = a; i <= b; ++i) ctx->hit[ctx->owner[i]] = 1u;
+}
+
+uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
+                tdo_feasibility* rep) {
+  memset(rep, 0, sizeof(*rep));
+  rep->violations = ctx->violations;
+  rep->min_turn_radius = HUGE_VAL;
+  rep->min_clearance = HUGE_VAL;
+  Report r{rep, ctx->cfg.max_violations, ctx->violations, 0u};
+  memset(ctx->hit, 0, ctx->n_plateaus);
+  const tdo_sample* sm = ctx->samples;
+  const double dt = lim.dt;
+  const double v_lim = lim.v_max * (1.0 + kTolerance);
+  const double a_lim = lim.a_max * (1.0 + kTolerance);
+  const double j_lim = lim.j_max * (1.0 + kTolerance);
+  // Rolling finite differences: v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt,
+  // j_i = (a_{i+1} - a_i)/dt.
+  V3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
+  for (uint32_t i = 0; i + 1u < n; ++i) {
+    const V3 v = mul(sub(mk(sm[i + 1u].p), mk(sm[i].p)), 1.0 / dt);
+    const double speed = norm(v);
+    rep->max_speed = dmax(rep->max_speed, speed);
+    if (speed > v_lim) {
+      add_violation(&r, sm[i].t + 0.5 * dt, TDO_QUANTITY_SPEED, speed, lim.v_max);
+      mark(ctx, n, i, i + 1u);
+    }
+    if (i >= 1u) {  // a_{i-1} from v_{i-1} and v_i: centred at sample i
+      const V3 a = mul(sub(v, v_prev), 1.0 / dt);
+      const double acc = norm(a);
+      rep->max_acc = dmax(rep->max_acc, acc);
+      if (acc > a_lim) {
+        add_violation(&r, sm[i].t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
+        mark(ctx, n, i - 1u, i + 1u);
+      }
+      // Turn radius at sample i with the centred velocity (eq. 19).
+      const V3 vc = mul(add(v, v_prev), 0.5);
+      const double vn = norm(vc);
+      if (vn > 0.0) {
+        const V3 u = mul(vc, 1.0 / vn);
+        const double ap = norm(sub(a, mul(u, dot(a, u))));
+        // Below the rounding noise of a second difference of these positions the path is
+        // straight (near rest that noise alone would give any radius).
+        const double noise = kRadiusNoise * (norm(mk(sm[i].p)) + 1.0) / (dt * dt);
+        if (ap > noise) {
+          const double radius = vn * vn / ap;
+          rep->min_turn_radius = dmin(rep->min_turn_radius, radius);
+          const double need = vn * vn / lim.a_max;
+          if (radius * (1.0 + kTolerance) < need) {
+            add_violation(&r, sm[i].t, TDO_QUANTITY_TURN_RADIUS, radius, need);
+            mark(ctx, n, i - 1u, i + 1u);
+          }
+        }
+      }
+      if (i >= 2u) {  // j_{i-2} from a_{i-2} and a_{i-1}: centred between samples i-1 and i
+        const double jerk = norm(mul(sub(a, a_prev), 1.0 / dt));
+        rep->max_jerk = dmax(rep->max_jerk, jerk);
+        if (jerk > j_lim) {
+          add_violation(&r, sm[i].t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
+          mark(ctx, n, i - 2u, i + 1u);
+        }
+      }
+      a_prev = a;
+    }
+    v_prev = v;
+  }
+  if (in->grid != nullptr) {
+    const double cap = in->clearance + kClearanceCapExtra;
+    for (uint32_t i = 0; i < n; ++i) {
+      const double d = tdo_collision_point_distance(in->grid, sm[i].p, cap);
+      rep->min_clearance = dmin(rep->min_clearance, d);
+      if (d < in->clearance - kClearanceSlack)
+        add_violation(&r, sm[i].t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
+    }
+  }
+  rep->ok = rep->n_violations_total == 0u ? 1 : 0;
+  return r.dynamic;
+}
+
+}  // namespace
+}  // namespace tdo_internal
+
+using namespace tdo_internal;
+
+extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
+  if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
+    return 0;
+  const size_t ns = cfg->max_samples, nseg = cfg->max_segments;
+  return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+         tdo_arena_round(ns * sizeof(uint32_t)) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
+         tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
+         tdo_arena_round(nseg) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_profile) * sizeof(Phase));
+}
+
+extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_traj_config* cfg) {
+  if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_traj_footprint(cfg) == 0)
+    return TDO_ERR_INVALID_ARGUMENT;
+  *out = nullptr;
+  if (cfg->max_segments >= 0xFFFFFFFFu || cfg->max_samples > 0x7FFFFFFFu)
+    return TDO_ERR_INVALID_ARGUMENT;
+  tdo_traj* ctx = static_cast<tdo_traj*>(tdo_arena_alloc(arena, sizeof(tdo_traj)));
+  if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(ctx, 0, sizeof(*ctx));
+  ctx->cfg = *cfg;
+  const size_t ns = cfg->max_samples, nseg = cfg->max_segments;
+  ctx->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
+  ctx->owner = static_cast<uint32_t*>(tdo_arena_alloc(arena, ns * sizeof(uint32_t)));
+  ctx->violations = static_cast<tdo_violation*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)));
+  ctx->plateaus = static_cast<Plateau*>(tdo_arena_alloc(arena, nseg * sizeof(Plateau)));
+  ctx->bounds = static_cast<Boundary*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(Boundary)));
+  ctx->hit = static_cast<uint8_t*>(tdo_arena_alloc(arena, nseg));
+  ctx->phases = static_cast<Phase*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_profile) * sizeof(Phase)));
+  if (ctx->samples == nullptr || ctx->owner == nullptr || ctx->violations == nullptr ||
+      ctx->plateaus == nullptr || ctx->bounds == nullptr || ctx->hit == nullptr ||
+      ctx->phases == nullptr)
+    return TDO_ERR_ARENA_TOO_SMALL;
+  *out = ctx;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_traj_output* out) {
+  if (ctx == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  out->report.min_turn_radius = HUGE_VAL;
+  out->report.min_clearance = HUGE_VAL;
+  out->report.violations = ctx->violations;
+  tdo_status st = validate(ctx, in);
+  if (st != TDO_OK) return st;
+  const Limits lim{in->v_max, in->a_max, in->j_max, in->a_lat_max, in->dt};
+  st = analyse(ctx, in, lim);
+  if (st != TDO_OK) return st;
+  const uint32_t rounds = ctx->cfg.max_refinements;
+  for (uint32_t round = 0; round <= rounds; ++round) {
+    st = build_profile(ctx, lim);
+    if (st != TDO_OK) return st;
+    uint32_t n = 0;
+    st = sample(ctx, in, lim, &n);
+    if (st != TDO_OK) return st;
+    const uint32_t dynamic = verify(ctx, in, lim, n, &out->report);
+    out->samples = ctx->samples;
+    out->n_samples = n;
+    out->duration = ctx->samples[n - 1u].t;
+    out->refinements = round;
+    if (out->report.ok) return TDO_OK;
+    // Clearance violations are geometry: a slower flight does not move the path.
+    if (dynamic == 0u || round == rounds) break;
+    // Lower the plateaus around every violation (speed, acceleration and jerk limits).
+    for (uint32_t k = 0; k < ctx->n_plateaus; ++k)
+      if (ctx->hit[k]) ctx->plateaus[k].scale *= kRefineFactor;
+  }
+  return TDO_ERR_INFEASIBLE;
+}

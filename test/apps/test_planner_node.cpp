@@ -1,0 +1,324 @@
+// tdo-planner's node in-process over memq:// (no network): map + request -> trajectory + report,
+// and every kind of bad input counted in the heartbeat while the next valid request is served.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "planner_node.h"
+#include "tdo/tdo.h"
+#include "tdo_lcm/adapters.h"
+#include "tdo_lcm/bus.h"
+#include "tdo_lcm/wire.h"
+
+namespace {
+
+constexpr int32_t kVehicle = 3;
+
+/** Collects what the node publishes. */
+struct Inbox {
+  std::vector<tdo::trajectory_t> traj;
+  std::vector<tdo::feasibility_t> feas;
+  std::vector<tdo::status_t> status;
+
+  template <class Msg>
+  static tdo_lcm::Bus::Handler into(std::vector<Msg>* out) {
+    return [out](const void* data, std::size_t size, const std::string&) {
+      Msg m{};
+      const tdo_lcm::Check c = tdo_lcm::decode(data, size, &m);
+      EXPECT_TRUE(c.ok()) << tdo_lcm::reason_str(c.reason) << ": " << c.detail;
+      if (c.ok()) out->push_back(m);
+    };
+  }
+};
+
+/** 10 x 10 x 5 m at 0.5 m with a wall at x = 4.5..5.5 m, open above y = 7 m. */
+tdo::map_t wall_map(int64_t map_id) {
+  const tdo_grid_desc d{20, 20, 10, 0.5, {0.0, 0.0, 0.0}};
+  const std::vector<tdo_box> boxes = {tdo_box{{4.5, 0.0, 0.0}, {5.5, 7.0, 5.0}}};
+  std::vector<uint8_t> occ(20u * 20u * 10u, 0u);
+  occ[19] = 1;  // one run-length voxel in a corner, away from the path
+  tdo::map_t m{};
+  EXPECT_TRUE(tdo_lcm::map_from_occupancy(d, occ, boxes, 0.25, &m).ok());
+  m.map_id = map_id;
+  m.vehicle_id = -1;
+  return m;
+}
+
+tdo::plan_request_t request(int64_t id) {
+  tdo_plan_request r{};
+  tdo_plan_params_default(&r.params);
+  r.start = tdo_vec3{1.25, 1.25, 1.25};
+  r.goal = tdo_vec3{8.75, 1.25, 1.25};
+  tdo::plan_request_t m{};
+  tdo_lcm::plan_request_to_msg(r, -1.0, &m);
+  m.request_id = id;
+  m.vehicle_id = kVehicle;
+  m.map_id = -1;
+  return m;
+}
+
+template <class Msg>
+std::vector<uint8_t> bytes_of(const Msg& m) {
+  std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  return buf;
+}
+
+class PlannerNodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(bus_.good());
+    cfg_.vehicle_id = kVehicle;
+    cfg_.max_nx = 24;
+    cfg_.max_ny = 24;
+    cfg_.max_nz = 12;
+    cfg_.max_nodes = 400000;
+    cfg_.max_boxes = 8;
+    cfg_.max_clearance_ratio = 2.0;
+    cfg_.heartbeat_period_s = 1.0;
+    node_ = std::make_unique<tdo_lcm::PlannerNode>(&bus_, cfg_);
+    std::string error;
+    ASSERT_TRUE(node_->start(&error)) << error;
+    ASSERT_TRUE(bus_.subscribe(cfg_.trajectory_channel, Inbox::into(&inbox_.traj)));
+    ASSERT_TRUE(bus_.subscribe(cfg_.feasibility_channel, Inbox::into(&inbox_.feas)));
+    ASSERT_TRUE(bus_.subscribe(cfg_.status_channel, Inbox::into(&inbox_.status)));
+  }
+
+  /** Deliver everything queued, including what the handlers publish meanwhile. */
+  void pump() {
+    for (int i = 0; i < 1000 && bus_.handle_timeout(0) > 0; ++i) {
+    }
+  }
+  template <class Msg>
+  void send(const std::string& channel, const Msg& m) {
+    ASSERT_TRUE(bus_.publish(channel, m));
+    pump();
+  }
+  void send_raw(const std::string& channel, const std::vector<uint8_t>& b) {
+    ASSERT_TRUE(bus_.publish_raw(channel, b.data(), b.size()));
+    pump();
+  }
+  int64_t reason(const std::string& key) const {
+    const auto& r = node_->counters().reasons;
+    const auto it = r.find(key);
+    return it == r.end() ? 0 : it->second;
+  }
+  /** The last answer must be a feasible trajectory for request `id`. */
+  void expect_planned(int64_t id) {
+    ASSERT_FALSE(inbox_.traj.empty());
+    ASSERT_FALSE(inbox_.feas.empty());
+    const tdo::trajectory_t& t = inbox_.traj.back();
+    EXPECT_EQ(t.request_id, id);
+    EXPECT_EQ(t.status, "ok") << t.detail;
+    EXPECT_EQ(t.status_code, 0);
+    EXPECT_GT(t.n_samples, 2);
+    EXPECT_GE(t.n_waypoints, 2);
+    EXPECT_EQ(inbox_.feas.back().request_id, id);
+    EXPECT_TRUE(inbox_.feas.back().checked);
+    EXPECT_TRUE(inbox_.feas.back().ok);
+  }
+
+  tdo_lcm::Bus bus_{"memq://"};  // first: outlives the node and the inbox
+  tdo_lcm::PlannerConfig cfg_;
+  std::unique_ptr<tdo_lcm::PlannerNode> node_;
+  Inbox inbox_;
+};
+
+TEST_F(PlannerNodeTest, MapThenRequestGivesTrajectoryAndFeasibility) {
+  send(cfg_.map_channel, wall_map(5));
+  EXPECT_EQ(node_->map_id(), 5);
+  send(cfg_.request_channel, request(1));
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  ASSERT_EQ(inbox_.feas.size(), 1u);
+  expect_planned(1);
+  const tdo::trajectory_t& t = inbox_.traj[0];
+  EXPECT_EQ(t.vehicle_id, kVehicle);
+  EXPECT_EQ(t.map_id, 5);
+  EXPECT_EQ(t.reached, tdo::plan_request_t::DEPTH_TRAJECTORY);
+  EXPECT_EQ(t.samples.front()[1], 1.25);  // starts at the start, at rest
+  EXPECT_EQ(t.samples.front()[4], 0.0);
+  EXPECT_NEAR(t.samples.back()[1], 8.75, 1e-9);  // ends at the goal
+  EXPECT_GT(t.length_m, 7.5);                    // around the wall
+  EXPECT_GT(t.flight_time_s, 0.0);
+  EXPECT_EQ(inbox_.feas[0].clearance, 0.25);  // the map's hint
+  // The samples go around the wall: over y = 7 m while crossing x = 5 m.
+  bool crossed_above = false;
+  for (const auto& s : t.samples)
+    if (std::fabs(s[1] - 5.0) < 0.1) crossed_above = crossed_above || s[2] > 7.0;
+  EXPECT_TRUE(crossed_above);
+  const auto& c = node_->counters();
+  EXPECT_EQ(c.received, 2);
+  EXPECT_EQ(c.maps_loaded, 1);
+  EXPECT_EQ(c.answered, 1);
+  EXPECT_EQ(c.succeeded, 1);
+  EXPECT_EQ(c.rejected, 0);
+}
+
+TEST_F(PlannerNodeTest, RequestBeforeAnyMapIsAnsweredNoMap) {
+  send(cfg_.request_channel, request(9));
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  EXPECT_EQ(inbox_.traj[0].request_id, 9);
+  EXPECT_EQ(inbox_.traj[0].status, "no_map");
+  EXPECT_EQ(inbox_.traj[0].status_code, tdo::trajectory_t::STATUS_REJECTED);
+  EXPECT_EQ(inbox_.traj[0].map_id, -1);
+  EXPECT_EQ(inbox_.feas[0].status, "no_map");
+  EXPECT_EQ(reason("request.no_map"), 1);
+  // Then a map arrives and the same request is served.
+  send(cfg_.map_channel, wall_map(1));
+  send(cfg_.request_channel, request(10));
+  expect_planned(10);
+}
+
+TEST_F(PlannerNodeTest, RequestForAnotherVehicleIsIgnored) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::plan_request_t r = request(2);
+  r.vehicle_id = kVehicle + 1;
+  send(cfg_.request_channel, r);
+  EXPECT_TRUE(inbox_.traj.empty());
+  EXPECT_EQ(node_->counters().ignored, 1);
+  EXPECT_EQ(reason("request.other_vehicle"), 1);
+  // A map for another vehicle is ignored too, and the current map stays.
+  tdo::map_t m = wall_map(2);
+  m.vehicle_id = kVehicle + 1;
+  send(cfg_.map_channel, m);
+  EXPECT_EQ(node_->map_id(), 1);
+  EXPECT_EQ(reason("map.other_vehicle"), 1);
+  send(cfg_.request_channel, request(3));
+  expect_planned(3);
+}
+
+TEST_F(PlannerNodeTest, MalformedBytesAreCountedAndServingGoesOn) {
+  send(cfg_.map_channel, wall_map(1));
+  // Wrong fingerprint: a status message on the request channel.
+  tdo::status_t s{};
+  s.program = "x";
+  send_raw(cfg_.request_channel, bytes_of(s));
+  // Truncated request; request with bytes after its end.
+  std::vector<uint8_t> b = bytes_of(request(4));
+  send_raw(cfg_.request_channel, std::vector<uint8_t>(b.begin(), b.end() - 5));
+  b.push_back(0);
+  send_raw(cfg_.request_channel, b);
+  // A map whose run count is negative on the wire (offset of n_runs: 8 fingerprint + 8 utime +
+  // 8 map_id + 4 vehicle_id + 8 resolution + 24 origin + 12 size + 8 clearance + 1 encoding).
+  std::vector<uint8_t> mb = bytes_of(wall_map(2));
+  for (std::size_t i = 81; i < 85; ++i) mb[i] = 0xFF;
+  send_raw(cfg_.map_channel, mb);
+  EXPECT_TRUE(inbox_.traj.empty());  // nothing to answer to
+  EXPECT_EQ(reason("request.bad_fingerprint"), 1);
+  EXPECT_EQ(reason("request.truncated"), 1);
+  EXPECT_EQ(reason("request.trailing_bytes"), 1);
+  EXPECT_EQ(reason("map.negative_count"), 1);
+  EXPECT_EQ(node_->counters().rejected, 4);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(5));
+  expect_planned(5);
+}
+
+TEST_F(PlannerNodeTest, BadRequestsAreAnsweredWithTheirReason) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::plan_request_t r = request(6);
+  r.start[1] = std::numeric_limits<double>::quiet_NaN();
+  send(cfg_.request_channel, r);
+  r = request(7);
+  r.smoothing = 7;
+  send(cfg_.request_channel, r);
+  r = request(8);
+  r.map_id = 99;
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.traj.size(), 3u);
+  EXPECT_EQ(inbox_.traj[0].request_id, 6);
+  EXPECT_EQ(inbox_.traj[0].status, "non_finite");
+  EXPECT_NE(inbox_.traj[0].detail.find("start[1]"), std::string::npos);
+  EXPECT_EQ(inbox_.traj[1].status, "bad_enum");
+  EXPECT_EQ(inbox_.traj[2].status, "unknown_map");
+  for (const auto& t : inbox_.traj) EXPECT_EQ(t.status_code, tdo::trajectory_t::STATUS_REJECTED);
+  EXPECT_EQ(node_->counters().rejected, 3);
+  EXPECT_EQ(node_->counters().answered, 3);
+  send(cfg_.request_channel, request(9));
+  expect_planned(9);
+}
+
+TEST_F(PlannerNodeTest, LibraryFailuresAreAnsweredWithTheLibraryStatus) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::plan_request_t r = request(11);
+  r.goal[0] = 5.0;  // inside the wall
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  EXPECT_EQ(inbox_.traj[0].status, "goal_blocked");
+  EXPECT_EQ(inbox_.traj[0].status_code, TDO_ERR_GOAL_BLOCKED);
+  EXPECT_EQ(inbox_.traj[0].n_samples, 0);
+  EXPECT_FALSE(inbox_.feas[0].ok);
+  EXPECT_EQ(node_->counters().failed, 1);
+  EXPECT_EQ(node_->counters().rejected, 0);
+}
+
+TEST_F(PlannerNodeTest, MapLargerThanTheCapacityKeepsThePreviousMap) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::map_t big{};
+  ASSERT_TRUE(
+      tdo_lcm::map_from_occupancy(tdo_grid_desc{100, 100, 100, 0.1, {0, 0, 0}}, {}, {}, 0.0, &big)
+          .ok());
+  big.map_id = 2;
+  send(cfg_.map_channel, big);
+  EXPECT_EQ(reason("map.map_capacity"), 1);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(12));
+  expect_planned(12);
+  EXPECT_EQ(inbox_.traj.back().map_id, 1);
+}
+
+TEST_F(PlannerNodeTest, RequestedClearance) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::plan_request_t r = request(13);
+  r.clearance = 0.5;
+  send(cfg_.request_channel, r);
+  expect_planned(13);
+  EXPECT_EQ(inbox_.feas.back().clearance, 0.5);
+  EXPECT_GE(inbox_.feas.back().min_clearance, 0.5 - 1e-9);
+  // More than the stencil capacity (2 voxels): refused, the map stays usable.
+  r = request(14);
+  r.clearance = 3.0;
+  send(cfg_.request_channel, r);
+  EXPECT_EQ(inbox_.traj.back().status, "map_capacity");
+  send(cfg_.request_channel, request(15));
+  expect_planned(15);
+  EXPECT_EQ(inbox_.feas.back().clearance, 0.25);
+}
+
+TEST_F(PlannerNodeTest, HeartbeatsCarryTheCounters) {
+  const auto t0 = std::chrono::steady_clock::now();
+  node_->poll(t0);
+  node_->poll(t0 + std::chrono::milliseconds(500));  // not due yet
+  pump();
+  ASSERT_EQ(inbox_.status.size(), 1u);
+  send(cfg_.request_channel, request(1));  // no map: rejected
+  tdo::plan_request_t other = request(2);
+  other.vehicle_id = 99;
+  send(cfg_.request_channel, other);  // ignored
+  node_->poll(t0 + std::chrono::milliseconds(1100));
+  pump();
+  ASSERT_EQ(inbox_.status.size(), 2u);
+  const tdo::status_t& s = inbox_.status.back();
+  EXPECT_EQ(s.program, "tdo-planner");
+  EXPECT_EQ(s.vehicle_id, kVehicle);
+  EXPECT_EQ(s.seq, 1);
+  EXPECT_EQ(s.map_id, -1);
+  EXPECT_EQ(s.received, 2);
+  EXPECT_EQ(s.answered, 1);
+  EXPECT_EQ(s.rejected, 1);
+  EXPECT_EQ(s.ignored, 1);
+  int64_t sum = 0;
+  for (int64_t n : s.reason_count) sum += n;
+  EXPECT_EQ(sum, s.rejected + s.ignored);
+  ASSERT_EQ(s.n_reasons, 2);
+  EXPECT_EQ(s.reason[0], "request.no_map");
+  EXPECT_EQ(s.reason[1], "request.other_vehicle");
+}
+
+}  // namespace

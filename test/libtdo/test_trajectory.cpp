@@ -1,0 +1,756 @@
+// Stage 5 (trajectory.h, pipeline.md s.5): time parameterisation, feasibility verification by
+// finite differences (paper eq. 15-19) and refinement. Every check of the samples is recomputed
+// here from the sampled positions, independently of the library's own report.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "rng.h"
+#include "tdo/path.h"
+#include "tdo/trajectory.h"
+#include "test_util.h"
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfty = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------------------------------------
+// Geometry built by the test itself.
+
+double dist(const tdo_vec3& a, const tdo_vec3& b) {
+  return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) +
+                   (a.z - b.z) * (a.z - b.z));
+}
+double len3(const tdo_vec3& a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
+tdo_vec3 operator-(const tdo_vec3& a, const tdo_vec3& b) {
+  return tdo_vec3{a.x - b.x, a.y - b.y, a.z - b.z};
+}
+tdo_vec3 operator+(const tdo_vec3& a, const tdo_vec3& b) {
+  return tdo_vec3{a.x + b.x, a.y + b.y, a.z + b.z};
+}
+tdo_vec3 operator*(const tdo_vec3& a, double k) { return tdo_vec3{a.x * k, a.y * k, a.z * k}; }
+double dot3(const tdo_vec3& a, const tdo_vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+/** Bit-for-bit equality is intended here (exact end points, exact rest). */
+bool exactly(double a, double b) { return !(a < b) && !(a > b); }
+
+tdo_path_segment line(tdo_vec3 a, tdo_vec3 b, double v_limit = kInfty, int stop = 0) {
+  tdo_path_segment s{};
+  s.kind = TDO_SEGMENT_LINE;
+  s.p[0] = a;
+  s.p[1] = b;
+  s.length = dist(a, b);
+  s.v_limit = v_limit;
+  s.stop_at_end = stop;
+  return s;
+}
+
+/** Arc from a to b about centre c (|a - c| = |b - c|), length = radius * sweep. */
+tdo_path_segment arc(tdo_vec3 a, tdo_vec3 b, tdo_vec3 c, double v_limit = kInfty) {
+  tdo_path_segment s{};
+  s.kind = TDO_SEGMENT_ARC;
+  s.p[0] = a;
+  s.p[1] = b;
+  s.p[2] = c;
+  const tdo_vec3 u = a - c, w = b - c;
+  const double r = len3(u);
+  const double cosang = dot3(u, w) / (r * len3(w));
+  s.length = r * std::acos(std::fmax(-1.0, std::fmin(1.0, cosang)));
+  s.v_limit = v_limit;
+  return s;
+}
+
+/**
+ * Cubic Bezier corner at w between the directions of a -> w and w -> b with control points
+ * (a, w, w, b): zero curvature at both ends, tangent to both lines (a G2 junction with them).
+ */
+tdo_path_segment bezier_corner(tdo_vec3 a, tdo_vec3 w, tdo_vec3 b, double v_limit = kInfty) {
+  tdo_path_segment s{};
+  s.kind = TDO_SEGMENT_BEZIER;
+  s.p[0] = a;
+  s.p[1] = w;
+  s.p[2] = w;
+  s.p[3] = b;
+  s.length = tdo_segment_length(&s);
+  s.v_limit = v_limit;
+  return s;
+}
+
+tdo_path make_path(const std::vector<tdo_path_segment>& segs) {
+  tdo_path p{};
+  p.seg = segs.data();
+  p.n = static_cast<uint32_t>(segs.size());
+  for (const auto& s : segs) p.length += s.length;
+  return p;
+}
+
+/** L-shaped path: x axis to (10, 0), quarter arc of radius r, then up the y direction to y = 10. */
+std::vector<tdo_path_segment> l_path_arc(double r) {
+  return {line({0, 0, 0}, {10 - r, 0, 0}), arc({10 - r, 0, 0}, {10, r, 0}, {10 - r, r, 0}),
+          line({10, r, 0}, {10, 10, 0})};
+}
+
+/** The same L with a G2 Bezier corner of size d instead of the arc. */
+std::vector<tdo_path_segment> l_path_bezier(double d) {
+  return {line({0, 0, 0}, {10 - d, 0, 0}), bezier_corner({10 - d, 0, 0}, {10, 0, 0}, {10, d, 0}),
+          line({10, d, 0}, {10, 10, 0})};
+}
+
+// ---------------------------------------------------------------------------------------------
+// The context on an exactly footprint-sized heap block.
+
+tdo_traj_config default_config() {
+  tdo_traj_config c{};
+  c.max_samples = 20000;
+  c.max_segments = 64;
+  c.max_profile = 64 * TDO_TRAJ_PIECES_PER_SEGMENT + 1;
+  c.max_violations = 32;
+  c.max_refinements = 8;
+  return c;
+}
+
+class Traj {
+ public:
+  explicit Traj(const tdo_traj_config& cfg = default_config()) {
+    const size_t bytes = tdo_traj_footprint(&cfg);
+    mem_.assign(bytes + 64, 0u);
+    tdo_arena_init(&arena_, mem_.data(), mem_.size());
+    status_ = tdo_traj_init(&ctx_, &arena_, &cfg);
+  }
+  tdo_status status() const { return status_; }
+  tdo_traj* ctx() { return ctx_; }
+
+ private:
+  std::vector<unsigned char> mem_;
+  tdo_arena arena_{};
+  tdo_traj* ctx_ = nullptr;
+  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
+};
+
+tdo_traj_input make_input(const tdo_path& path, double v_max = 3.0, double a_max = 3.0,
+                          double j_max = 10.0, double a_lat = 3.0, double dt = 0.01) {
+  tdo_traj_input in{};
+  in.path = path;
+  in.grid = nullptr;
+  in.clearance = 0.0;
+  in.v_max = v_max;
+  in.a_max = a_max;
+  in.j_max = j_max;
+  in.a_lat_max = a_lat;
+  in.dt = dt;
+  return in;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Independent finite differences (eq. 15-17) of the sampled positions.
+
+struct Fd {
+  double max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  double min_radius_ratio = kInfty;  // min over samples of r / (v^2 / a_max)
+  bool uniform_time = true;          // t_i = i * dt
+};
+
+Fd finite_differences(const tdo_traj_output& out, double dt, double a_max) {
+  Fd f;
+  const uint32_t n = out.n_samples;
+  std::vector<tdo_vec3> v(n > 0 ? n - 1 : 0), a(n > 1 ? n - 2 : 0);
+  for (uint32_t i = 0; i < n; ++i)
+    if (std::fabs(out.samples[i].t - i * dt) > 1e-9) f.uniform_time = false;
+  for (uint32_t i = 0; i + 1 < n; ++i) {
+    v[i] = (out.samples[i + 1].p - out.samples[i].p) * (1.0 / dt);
+    f.max_v = std::fmax(f.max_v, len3(v[i]));
+  }
+  for (uint32_t i = 0; i + 2 < n; ++i) {
+    a[i] = (v[i + 1] - v[i]) * (1.0 / dt);
+    f.max_a = std::fmax(f.max_a, len3(a[i]));
+    const tdo_vec3 vc = (v[i] + v[i + 1]) * 0.5;
+    const double s = len3(vc);
+    if (s > 1e-9) {
+      const tdo_vec3 u = vc * (1.0 / s);
+      const double ap = len3(a[i] - u * dot3(a[i], u));
+      if (ap > 1e-12)
+        f.min_radius_ratio = std::fmin(f.min_radius_ratio, (s * s / ap) / (s * s / a_max));
+    }
+  }
+  for (uint32_t i = 0; i + 3 < n; ++i) f.max_j = std::fmax(f.max_j, len3(a[i + 1] - a[i]) / dt);
+  return f;
+}
+
+/** Every paper check at 1 % tolerance, recomputed here. */
+::testing::AssertionResult within_limits(const tdo_traj_output& out, const tdo_traj_input& in) {
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  if (!f.uniform_time) return ::testing::AssertionFailure() << "samples are not every dt";
+  if (f.max_v > 1.01 * in.v_max) return ::testing::AssertionFailure() << "speed " << f.max_v;
+  if (f.max_a > 1.01 * in.a_max) return ::testing::AssertionFailure() << "acceleration " << f.max_a;
+  if (f.max_j > 1.01 * in.j_max) return ::testing::AssertionFailure() << "jerk " << f.max_j;
+  if (f.min_radius_ratio < 1.0 / 1.01)
+    return ::testing::AssertionFailure() << "turn radius ratio " << f.min_radius_ratio;
+  return ::testing::AssertionSuccess();
+}
+
+::testing::AssertionResult rest_to_rest(const tdo_traj_output& out, const tdo_path& path) {
+  if (out.n_samples < 2) return ::testing::AssertionFailure() << "too few samples";
+  const tdo_sample& first = out.samples[0];
+  const tdo_sample& last = out.samples[out.n_samples - 1];
+  const tdo_path_segment& s0 = path.seg[0];
+  const tdo_path_segment& sn = path.seg[path.n - 1];
+  const tdo_vec3 goal = sn.kind == TDO_SEGMENT_BEZIER ? sn.p[3] : sn.p[1];
+  if (!exactly(first.t, 0.0) || !exactly(dist(first.p, s0.p[0]), 0.0))
+    return ::testing::AssertionFailure() << "first sample not at the start at t = 0";
+  if (!exactly(dist(last.p, goal), 0.0))
+    return ::testing::AssertionFailure() << "last sample " << dist(last.p, goal) << " m from goal";
+  if (!exactly(len3(first.v), 0.0) || !exactly(len3(last.v), 0.0) || !exactly(len3(last.a), 0.0))
+    return ::testing::AssertionFailure() << "not at rest at the ends";
+  return ::testing::AssertionSuccess();
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(Trajectory, GivenLongStraightLineWhenParameterisedThenRestToRestAtFullSpeedWithinLimits) {
+  // GIVEN a 20 m line and the default limits
+  Traj t;
+  ASSERT_EQ(t.status(), TDO_OK);
+  const std::vector<tdo_path_segment> segs{line({1, 2, 3}, {13, 18, 3})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  // WHEN it is time-parameterised
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  // THEN it starts and ends at rest exactly at the ends, every dt, within every limit
+  EXPECT_TRUE(rest_to_rest(out, path));
+  EXPECT_TRUE(within_limits(out, in));
+  EXPECT_EQ(out.report.ok, 1);
+  EXPECT_EQ(out.report.n_violations_total, 0u);
+  EXPECT_EQ(out.refinements, 0u);
+  // AND the length allows reaching v_max, so it does (finite-difference speed)
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  EXPECT_GT(f.max_v, 0.999 * in.v_max);
+  // AND the duration is at least L / v_max and not much more (two S-curves of ~1.4 s)
+  EXPECT_GE(out.duration, 20.0 / in.v_max);
+  EXPECT_LE(out.duration, 20.0 / in.v_max + 2.0);
+  EXPECT_DOUBLE_EQ(out.duration, (out.n_samples - 1) * in.dt);
+  // AND every sample lies on the line and moves forward
+  for (uint32_t i = 1; i < out.n_samples; ++i) {
+    const tdo_vec3 d = out.samples[i].p - out.samples[i - 1].p;
+    EXPECT_GE(dot3(d, segs[0].p[1] - segs[0].p[0]), 0.0);
+  }
+  // AND the report's maxima match the independent finite differences
+  EXPECT_NEAR(out.report.max_speed, f.max_v, 1e-9);
+  EXPECT_NEAR(out.report.max_acc, f.max_a, 1e-6);
+  EXPECT_NEAR(out.report.max_jerk, f.max_j, 1e-3);
+  EXPECT_EQ(out.report.min_clearance, HUGE_VAL);  // no grid: not checked
+}
+
+TEST(Trajectory, GivenShortLineWhenParameterisedThenTopSpeedStaysBelowWhatJerkAllows) {
+  // GIVEN a 0.5 m line: rest to rest with |j| <= 10 no motion can exceed
+  // v = (d sqrt(j) / 2)^(2/3) = 0.856 m/s, whatever the profile
+  Traj t;
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, {0, 0, 0.5})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  // THEN v_max is not reached, the physical bound holds, and it is not needlessly slow
+  EXPECT_LT(f.max_v, std::pow(0.5 * std::sqrt(10.0) / 2.0, 2.0 / 3.0));
+  EXPECT_GT(f.max_v, 0.6);
+  EXPECT_TRUE(rest_to_rest(out, path));
+  EXPECT_TRUE(within_limits(out, in));
+}
+
+TEST(Trajectory, GivenSampledTrajectoryThenSampleVelocityAndAccelerationMatchThePositions) {
+  // GIVEN an L path with a G2 Bezier corner
+  Traj t;
+  const auto segs = l_path_bezier(3.0);
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  // THEN v and a of every sample agree with central differences of the positions
+  const double dt = in.dt;
+  for (uint32_t i = 1; i + 1 < out.n_samples; ++i) {
+    const tdo_sample& s = out.samples[i];
+    const tdo_vec3 vc = (out.samples[i + 1].p - out.samples[i - 1].p) * (0.5 / dt);
+    const tdo_vec3 ac =
+        (out.samples[i + 1].p - s.p * 2.0 + out.samples[i - 1].p) * (1.0 / (dt * dt));
+    ASSERT_LT(dist(vc, s.v), 1e-3) << "t=" << s.t;
+    ASSERT_LT(dist(ac, s.a), 0.05) << "t=" << s.t;
+  }
+}
+
+TEST(Trajectory, GivenLPathWithArcCornerThenCornerSpeedIsCurvatureLimitedAndAllLimitsHold) {
+  // GIVEN an L path whose corner is an arc of radius 2 m (curvature jumps at both ends)
+  const double r = 2.0, a_lat = 1.5;
+  Traj t;
+  const auto segs = l_path_arc(r);
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path, 3.0, 3.0, 10.0, a_lat);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(rest_to_rest(out, path));
+  EXPECT_TRUE(within_limits(out, in));
+  // THEN on the arc the speed respects sqrt(a_lat * r) and the lateral acceleration a_lat
+  const tdo_vec3 centre{10 - r, r, 0};
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  uint32_t on_arc = 0;
+  for (uint32_t i = 1; i + 1 < out.n_samples; ++i) {
+    const tdo_vec3 p = out.samples[i].p;
+    if (!(p.x > 10 - r && p.y < r)) continue;
+    ++on_arc;
+    EXPECT_NEAR(dist(p, centre), r, 1e-9);
+    const double dt = in.dt;
+    const tdo_vec3 vc = (out.samples[i + 1].p - out.samples[i - 1].p) * (0.5 / dt);
+    EXPECT_LE(len3(vc), 1.01 * std::sqrt(a_lat * r));
+    EXPECT_LE(dot3(vc, vc) / r, 1.01 * a_lat);
+  }
+  EXPECT_GT(on_arc, 10u);
+  // AND the straight parts still reach v_max
+  EXPECT_GT(f.max_v, 0.99 * in.v_max);
+}
+
+TEST(Trajectory, GivenLPathWithG2CornerThenItFliesTheCornerFasterThanWithTheArc) {
+  // GIVEN the same L with a curvature-continuous corner and with an arc of similar size
+  Traj t;
+  const auto g2 = l_path_bezier(3.0);
+  const auto pure = l_path_arc(2.0);
+  const tdo_path pg = make_path(g2), pa = make_path(pure);
+  const tdo_traj_input ig = make_input(pg), ia = make_input(pa);
+  tdo_traj_output og{}, oa{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &ig, &og), TDO_OK);
+  EXPECT_TRUE(rest_to_rest(og, pg));
+  EXPECT_TRUE(within_limits(og, ig));
+  const double tg = og.duration;
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &ia, &oa), TDO_OK);
+  EXPECT_TRUE(within_limits(oa, ia));
+  // THEN the arc's curvature jumps force a slower corner (lateral jerk v^2 dkappa / dt)
+  EXPECT_LT(tg, oa.duration);
+}
+
+TEST(Trajectory, GivenStopPointThenASampleIsExactlyThereAtRest) {
+  // GIVEN a straight path split in two with a stop at the junction
+  Traj t;
+  const tdo_vec3 stop{5, 0, 1};
+  const std::vector<tdo_path_segment> segs{line({0, 0, 1}, stop, kInfty, 1),
+                                           line(stop, {10, 0, 1})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(within_limits(out, in));
+  // THEN one sample sits exactly on the stop point with zero velocity and acceleration, and the
+  // finite-difference speeds around it are tiny
+  uint32_t at = 0;
+  for (uint32_t i = 0; i < out.n_samples; ++i)
+    if (exactly(dist(out.samples[i].p, stop), 0.0) && exactly(len3(out.samples[i].v), 0.0)) at = i;
+  ASSERT_GT(at, 0u);
+  EXPECT_TRUE(exactly(len3(out.samples[at].a), 0.0));
+  EXPECT_LT(dist(out.samples[at + 1].p, stop) / in.dt, 0.01);
+  EXPECT_LT(dist(out.samples[at - 1].p, stop) / in.dt, 0.01);
+}
+
+TEST(Trajectory, GivenSharpPolylineCornerWithoutStopFlagThenItStillStopsThere) {
+  // GIVEN a 90 degree polyline corner (tangent kink) not marked as a stop
+  Traj t;
+  const tdo_vec3 corner{4, 0, 0};
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, corner), line(corner, {4, 4, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  // THEN the trajectory is feasible because it comes to rest at the kink
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(within_limits(out, in));
+  bool rest_at_corner = false;
+  for (uint32_t i = 0; i < out.n_samples; ++i)
+    rest_at_corner |=
+        exactly(dist(out.samples[i].p, corner), 0.0) && exactly(len3(out.samples[i].v), 0.0);
+  EXPECT_TRUE(rest_at_corner);
+}
+
+TEST(Trajectory, GivenSegmentSpeedCapThenItIsRespected) {
+  // GIVEN a long line whose middle third is capped at 1 m/s
+  Traj t;
+  const std::vector<tdo_path_segment> segs{
+      line({0, 0, 0}, {10, 0, 0}), line({10, 0, 0}, {20, 0, 0}, 1.0), line({20, 0, 0}, {30, 0, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(within_limits(out, in));
+  // (finite-difference speeds whose both samples lie on the capped segment)
+  for (uint32_t i = 0; i + 1 < out.n_samples; ++i) {
+    const double x0 = out.samples[i].p.x, x1 = out.samples[i + 1].p.x;
+    const double v = dist(out.samples[i + 1].p, out.samples[i].p) / in.dt;
+    if (x0 >= 10.0 && x1 <= 20.0) {
+      ASSERT_LE(v, 1.0 + 1e-9) << "x=" << x0;
+    }
+  }
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  EXPECT_GT(f.max_v, 2.9);  // fast outside
+}
+
+TEST(Trajectory, GivenSameInputTwiceThenSamplesAreBitIdentical) {
+  Traj t1, t2;
+  const auto segs = l_path_bezier(2.5);
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output a{}, b{}, c{};
+  ASSERT_EQ(tdo_traj_run(t1.ctx(), &in, &a), TDO_OK);
+  std::vector<tdo_sample> first(a.samples, a.samples + a.n_samples);
+  ASSERT_EQ(tdo_traj_run(t1.ctx(), &in, &b), TDO_OK);  // same context again
+  ASSERT_EQ(tdo_traj_run(t2.ctx(), &in, &c), TDO_OK);  // fresh context
+  ASSERT_EQ(first.size(), b.n_samples);
+  ASSERT_EQ(first.size(), c.n_samples);
+  EXPECT_EQ(std::memcmp(first.data(), b.samples, first.size() * sizeof(tdo_sample)), 0);
+  EXPECT_EQ(std::memcmp(first.data(), c.samples, first.size() * sizeof(tdo_sample)), 0);
+}
+
+// A cubic corner whose curvature peaks between the profile's curvature stations: the first profile
+// underestimates the peak and only the finite differences of the samples see the violation.
+std::vector<tdo_path_segment> peaked_path() {
+  tdo_path_segment s{};
+  s.kind = TDO_SEGMENT_BEZIER;
+  s.p[0] = tdo_vec3{0, 0, 0};
+  s.p[1] = tdo_vec3{4, 0, 0};
+  s.p[2] = tdo_vec3{4, 0.5, 0};
+  s.p[3] = tdo_vec3{0, 2, 0};
+  s.length = tdo_segment_length(&s);
+  s.v_limit = kInfty;
+  return {s};
+}
+
+TEST(Trajectory, GivenNoRefinementAllowedWhenFirstProfileViolatesThenInfeasibleWithTheViolations) {
+  // GIVEN the peaked corner and max_refinements = 0
+  const auto segs = peaked_path();
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_config cfg = default_config();
+  cfg.max_refinements = 0;
+  cfg.max_violations = 3;
+  Traj t(cfg);
+  tdo_traj_output out{};
+  // WHEN it is parameterised
+  // THEN it is INFEASIBLE, never OK, and the report lists what the independent check also sees
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
+  EXPECT_EQ(out.report.ok, 0);
+  EXPECT_EQ(out.refinements, 0u);
+  ASSERT_EQ(out.report.n_violations, 3u);        // capped list
+  EXPECT_GT(out.report.n_violations_total, 3u);  // all of them counted
+  EXPECT_FALSE(within_limits(out, in));
+  const Fd f = finite_differences(out, in.dt, in.a_max);
+  for (uint32_t i = 0; i < out.report.n_violations; ++i) {
+    const tdo_violation& v = out.report.violations[i];
+    EXPECT_EQ(v.what, TDO_QUANTITY_JERK);
+    EXPECT_DOUBLE_EQ(v.limit, in.j_max);
+    EXPECT_GT(v.value, 1.01 * in.j_max);
+    EXPECT_LE(v.value, f.max_j + 1e-6);
+    EXPECT_GE(v.t, 0.0);
+    EXPECT_LE(v.t, out.duration);
+  }
+  EXPECT_NEAR(out.report.max_jerk, f.max_j, 1e-6);
+}
+
+TEST(Trajectory, GivenRefinementAllowedWhenFirstProfileViolatesThenItIsRefinedUntilFeasible) {
+  const auto segs = peaked_path();
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  Traj t;  // 8 rounds allowed
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_GE(out.refinements, 1u);
+  EXPECT_EQ(out.report.ok, 1);
+  EXPECT_TRUE(within_limits(out, in));
+  EXPECT_TRUE(rest_to_rest(out, path));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Seeded random G1 paths of lines, arcs and Bezier corners in 3D: every result either passes the
+// independent finite-difference check or is not OK.
+
+std::vector<tdo_path_segment> random_path(tdo_test::Rng& rng) {
+  std::vector<tdo_path_segment> segs;
+  tdo_vec3 p{rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(0, 5)};
+  tdo_vec3 dir{1, 0, 0};
+  const int corners = static_cast<int>(rng.range(0, 5));
+  for (int c = 0; c <= corners; ++c) {
+    const double l = rng.uniform(0.5, 12.0);
+    const tdo_vec3 q = p + dir * l;
+    segs.push_back(line(p, q, rng.uniform() < 0.2 ? rng.uniform(0.5, 3.0) : kInfty,
+                        rng.uniform() < 0.1 ? 1 : 0));
+    p = q;
+    if (c == corners) break;
+    // New direction: random unit vector at 10..150 degrees from dir.
+    tdo_vec3 nd;
+    double ang;
+    do {
+      nd = tdo_vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-0.5, 0.5)};
+      nd = nd * (1.0 / len3(nd));
+      ang = std::acos(std::fmax(-1.0, std::fmin(1.0, dot3(nd, dir))));
+    } while (ang < 10.0 * kPi / 180.0 || ang > 150.0 * kPi / 180.0);
+    const double kind = rng.uniform();
+    if (kind < 0.5) {
+      // Bezier corner of size d around the virtual corner w = p + dir d.
+      const double d = rng.uniform(0.3, 4.0);
+      const tdo_vec3 w = p + dir * d;
+      const tdo_vec3 b = w + nd * d;
+      segs.push_back(bezier_corner(p, w, b));
+      p = b;
+    } else {
+      // Arc of radius r tangent to dir at p, turning towards nd.
+      const double r = rng.uniform(0.3, 5.0);
+      tdo_vec3 nrm = nd - dir * dot3(nd, dir);
+      nrm = nrm * (1.0 / len3(nrm));
+      const tdo_vec3 centre = p + nrm * r;
+      const tdo_vec3 b = centre + (dir * std::sin(ang) - nrm * std::cos(ang)) * r;
+      segs.push_back(arc(p, b, centre));
+      p = b;
+    }
+    dir = nd;
+  }
+  return segs;
+}
+
+TEST(Trajectory, GivenRandomPathsAndLimitsThenEveryOkTrajectoryPassesTheIndependentCheck) {
+  Traj t;
+  uint32_t ok = 0, runs = 0;
+  for (uint64_t seed = 1; seed <= 200; ++seed) {
+    tdo_test::Rng rng(seed);
+    const auto segs = random_path(rng);
+    const tdo_path path = make_path(segs);
+    const tdo_traj_input in =
+        make_input(path, rng.uniform(0.5, 5.0), rng.uniform(0.5, 6.0), rng.uniform(1.0, 30.0),
+                   rng.uniform(0.3, 6.0), rng.uniform() < 0.5 ? 0.01 : rng.uniform(0.005, 0.05));
+    tdo_traj_output out{};
+    const tdo_status st = tdo_traj_run(t.ctx(), &in, &out);
+    ++runs;
+    ASSERT_TRUE(st == TDO_OK || st == TDO_ERR_INFEASIBLE || st == TDO_ERR_SAMPLE_CAPACITY)
+        << "seed " << seed << " " << tdo_status_str(st);
+    if (st != TDO_OK) continue;
+    ++ok;
+    ASSERT_TRUE(within_limits(out, in)) << "seed " << seed;
+    ASSERT_TRUE(rest_to_rest(out, path)) << "seed " << seed;
+    ASSERT_EQ(out.report.ok, 1);
+    // stop points are at rest on a sample
+    double s0 = 0.0;
+    for (const auto& seg : segs) {
+      s0 += seg.length;
+      if (!seg.stop_at_end) continue;
+      bool found = false;
+      for (uint32_t i = 0; i < out.n_samples && !found; ++i)
+        found =
+            exactly(dist(out.samples[i].p, seg.p[1]), 0.0) && exactly(len3(out.samples[i].v), 0.0);
+      ASSERT_TRUE(found) << "seed " << seed << " stop at s=" << s0;
+    }
+  }
+  // The profile is built to pass: failures would be a regression, not bad luck.
+  EXPECT_EQ(ok, runs);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Capacities and bad input.
+
+TEST(Trajectory, GivenTooFewSamplesOrProfilePiecesThenSampleCapacity) {
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, {30, 0, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_config small = default_config();
+  small.max_samples = 500;  // 5 s at 0.01 s, the flight needs > 10 s
+  Traj a(small);
+  tdo_traj_output out{};
+  EXPECT_EQ(tdo_traj_run(a.ctx(), &in, &out), TDO_ERR_SAMPLE_CAPACITY);
+  tdo_traj_config few = default_config();
+  few.max_profile = 3;  // a rest-to-rest line needs 7 pieces
+  Traj b(few);
+  EXPECT_EQ(tdo_traj_run(b.ctx(), &in, &out), TDO_ERR_SAMPLE_CAPACITY);
+  tdo_traj_config exact = default_config();
+  exact.max_profile = TDO_TRAJ_PIECES_PER_SEGMENT + 1;  // the documented bound suffices
+  Traj c(exact);
+  EXPECT_EQ(tdo_traj_run(c.ctx(), &in, &out), TDO_OK);
+}
+
+TEST(Trajectory, GivenMoreSegmentsThanConfiguredThenPathCapacity) {
+  tdo_traj_config cfg = default_config();
+  cfg.max_segments = 2;
+  Traj t(cfg);
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, {1, 0, 0}), line({1, 0, 0}, {2, 0, 0}),
+                                           line({2, 0, 0}, {3, 0, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_PATH_CAPACITY);
+}
+
+TEST(Trajectory, GivenBadConfigurationThenInitFails) {
+  tdo_traj_config cfg = default_config();
+  cfg.max_samples = 1;
+  EXPECT_EQ(tdo_traj_footprint(&cfg), 0u);
+  EXPECT_EQ(Traj(cfg).status(), TDO_ERR_INVALID_ARGUMENT);
+  cfg = default_config();
+  cfg.max_segments = 0;
+  EXPECT_EQ(Traj(cfg).status(), TDO_ERR_INVALID_ARGUMENT);
+  cfg = default_config();
+  cfg.max_profile = 0;
+  EXPECT_EQ(Traj(cfg).status(), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_traj_footprint(nullptr), 0u);
+  // arena one carve short
+  cfg = default_config();
+  std::vector<unsigned char> mem(tdo_traj_footprint(&cfg) - 16);
+  tdo_arena arena;
+  tdo_arena_init(&arena, mem.data(), mem.size());
+  tdo_traj* ctx = nullptr;
+  EXPECT_EQ(tdo_traj_init(&ctx, &arena, &cfg), TDO_ERR_ARENA_TOO_SMALL);
+  EXPECT_EQ(tdo_traj_init(nullptr, &arena, &cfg), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_traj_init(&ctx, nullptr, &cfg), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_traj_init(&ctx, &arena, nullptr), TDO_ERR_INVALID_ARGUMENT);
+}
+
+TEST(Trajectory, GivenInvalidLimitsOrPathThenInvalidArgument) {
+  Traj t;
+  std::vector<tdo_path_segment> segs{line({0, 0, 0}, {5, 0, 0}), line({5, 0, 0}, {5, 5, 0})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_output out{};
+  const tdo_traj_input good = make_input(path);
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &good, &out), TDO_OK);
+  EXPECT_EQ(tdo_traj_run(nullptr, &good, &out), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_traj_run(t.ctx(), nullptr, &out), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &good, nullptr), TDO_ERR_INVALID_ARGUMENT);
+  for (double bad : {0.0, -1.0, kNan, kInfty, -kInfty}) {
+    for (int field = 0; field < 5; ++field) {
+      tdo_traj_input in = good;
+      double* f[5] = {&in.v_max, &in.a_max, &in.j_max, &in.a_lat_max, &in.dt};
+      *f[field] = bad;
+      EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT)
+          << "field " << field << " = " << bad;
+      EXPECT_EQ(out.n_samples, 0u);
+    }
+  }
+  // empty path, null segments, zero length
+  tdo_traj_input in = good;
+  in.path.n = 0;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  in = good;
+  in.path.seg = nullptr;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  const auto with = [&](auto change) {
+    std::vector<tdo_path_segment> s = segs;
+    change(s);
+    tdo_traj_input i = good;
+    i.path = make_path(s);
+    return tdo_traj_run(t.ctx(), &i, &out);
+  };
+  EXPECT_EQ(with([](auto& s) { s[0].length = 0.0, s[1].length = 0.0; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[0].length = -1.0; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[0].length = kNan; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[1].v_limit = 0.0; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[1].v_limit = kNan; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[1].p[1].y = kNan; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](auto& s) { s[1].kind = static_cast<tdo_segment_kind>(3); }),
+            TDO_ERR_INVALID_ARGUMENT);
+  // a gap between consecutive segments
+  EXPECT_EQ(with([](auto& s) { s[1].p[0].x += 0.01; }), TDO_ERR_INVALID_ARGUMENT);
+  // a negative or non-finite clearance with a grid; an unfinished grid
+  tdo_test::TestPlanner pl(tdo_test::make_cap(4096, 4096, 256));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const tdo_test::VoxelMap m(16, 16, 4, 1.0, tdo_vec3{-2, -2, -2});
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m, 0.5), TDO_OK);
+  in = good;
+  in.grid = pl.grid();
+  in.clearance = -1.0;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  in.clearance = kNan;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  const tdo_grid_desc d = m.desc();
+  ASSERT_EQ(tdo_grid_reset(pl.grid(), &d), TDO_OK);  // not finished
+  in.clearance = 0.5;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_MAP_NOT_READY);
+  // and the context still works afterwards
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &good, &out), TDO_OK);
+}
+
+TEST(Trajectory, GivenZeroLengthSegmentWithStopThenTheStopIsKept) {
+  Traj t;
+  tdo_path_segment stop = line({5, 0, 0}, {5, 0, 0}, kInfty, 1);
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, {5, 0, 0}), stop,
+                                           line({5, 0, 0}, {9, 0, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  bool rest = false;
+  for (uint32_t i = 1; i + 1 < out.n_samples; ++i)
+    rest |= exactly(out.samples[i].p.x, 5.0) && exactly(len3(out.samples[i].v), 0.0);
+  EXPECT_TRUE(rest);
+  EXPECT_TRUE(within_limits(out, in));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Clearance (needs the grid's exact distance queries).
+
+class TrajectoryClearance : public ::testing::Test {
+ protected:
+  TrajectoryClearance() : pl_(tdo_test::make_cap(4096, 4096, 256)) {}
+  void SetUp() override { ASSERT_EQ(pl_.status(), TDO_OK); }
+  /** Map [0, 16] x [-4, 4] x [0, 4] with one box whose lower face is at y = y0 (above the x axis).
+   */
+  void load_box(double y0, double clearance) {
+    map_ = tdo_test::VoxelMap(32, 16, 8, 0.5, tdo_vec3{0, -4, 0});
+    obs_.boxes = {tdo_box{tdo_vec3{6, y0, 0}, tdo_vec3{9, y0 + 1.5, 4}}};
+    ASSERT_EQ(tdo_test::load_obstacles(pl_.grid(), map_, obs_, clearance), TDO_OK);
+  }
+  tdo_test::TestPlanner pl_;
+  tdo_test::VoxelMap map_;
+  tdo_test::Obstacles obs_;
+};
+
+TEST_F(TrajectoryClearance, GivenPathClearOfObstaclesThenOkAndMinClearanceIsExact) {
+  // GIVEN a straight path at z = 2 along y = 0, and a box 1.2 m away
+  load_box(1.2, 0.5);
+  Traj t;
+  const std::vector<tdo_path_segment> segs{line({1, 0, 2}, {15, 0, 2})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.grid = pl_.grid();
+  in.clearance = 0.5;
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  // THEN the report's minimum clearance is the exact minimum over the samples
+  double best = kInfty;
+  for (uint32_t i = 0; i < out.n_samples; ++i)
+    best = std::fmin(best, tdo_test::distance_to_box(out.samples[i].p, obs_.boxes[0]));
+  EXPECT_NEAR(out.report.min_clearance, best, 1e-9);
+  EXPECT_NEAR(out.report.min_clearance, 1.2, 1e-9);
+}
+
+TEST_F(TrajectoryClearance, GivenPathTooCloseToAnObstacleThenInfeasibleWithoutRefinement) {
+  // GIVEN the box 0.3 m from the path and a clearance of 0.5 m: no speed can fix that
+  load_box(0.3, 0.0);
+  Traj t;
+  const std::vector<tdo_path_segment> segs{line({1, 0, 2}, {15, 0, 2})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.grid = pl_.grid();
+  in.clearance = 0.5;
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
+  // THEN the violations are all clearance ones, at the samples beside the box, and no round of
+  // speed refinement was wasted on them
+  EXPECT_EQ(out.refinements, 0u);
+  ASSERT_GT(out.report.n_violations, 0u);
+  for (uint32_t i = 0; i < out.report.n_violations; ++i) {
+    const tdo_violation& v = out.report.violations[i];
+    EXPECT_EQ(v.what, TDO_QUANTITY_CLEARANCE);
+    EXPECT_DOUBLE_EQ(v.limit, 0.5);
+    EXPECT_LT(v.value, 0.5);
+    const uint32_t k = static_cast<uint32_t>(std::lround(v.t / in.dt));
+    EXPECT_NEAR(tdo_test::distance_to_box(out.samples[k].p, obs_.boxes[0]), v.value, 1e-9);
+  }
+  EXPECT_NEAR(out.report.min_clearance, 0.3, 1e-9);
+  // AND the dynamics of the returned attempt are fine: only the geometry fails
+  EXPECT_TRUE(within_limits(out, in));
+}
+
+}  // namespace
