@@ -1,0 +1,170 @@
+// tdo-bench-pipeline: the whole TDO-MSF static pipeline on the paper's maps, timed beside the raw
+// A* grid path in the same process. Figures for docs/performance.md, not a timed test.
+//
+//   tdo-bench-pipeline [--maps-dir DIR] [--map NAME]... [--repeat R]
+//
+// For each map (default map1..map5): median and mean wall time of tdo_planner_plan with the default
+// parameters (stages 1-3, 5 and the metrics), expansions, the arena footprint, and the quality
+// columns of tdo (turns and length of the final path) against raw A* (turns and length of its grid
+// path). Exit status 2 on bad arguments or unreadable maps, 1 when a plan fails.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tdo/tdo.h"
+#include "tdo_io/map_io.h"
+
+namespace {
+
+struct Stats {
+  double median_ms = 0.0;
+  double mean_ms = 0.0;
+};
+
+Stats stats(std::vector<double> v) {
+  Stats s;
+  if (v.empty()) return s;
+  std::sort(v.begin(), v.end());
+  s.median_ms = v[v.size() / 2];
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  s.mean_ms = sum / static_cast<double>(v.size());
+  return s;
+}
+
+struct Row {
+  std::string map;
+  Stats tdo;
+  Stats astar;
+  uint32_t tdo_expansions = 0;
+  uint32_t astar_expansions = 0;
+  uint32_t tdo_turns = 0;
+  uint32_t astar_turns = 0;
+  double tdo_length = 0.0;
+  double astar_length = 0.0;
+  size_t arena = 0;
+  int feasible = 0;
+};
+
+int usage(const char* msg) {
+  std::fprintf(stderr, "tdo-bench-pipeline: error: %s\n", msg);
+  std::fprintf(stderr, "usage: tdo-bench-pipeline [--maps-dir DIR] [--map NAME]... [--repeat R]\n");
+  return 2;
+}
+
+// Plan `req` R times; the result of the last run stays in `res`.
+std::vector<double> timed(tdo_planner* pl, const tdo_plan_request& req, int repeat,
+                          tdo_plan_result* res, tdo_status* st) {
+  std::vector<double> ms;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    *st = tdo_planner_plan(pl, &req, res);
+    const auto t1 = std::chrono::steady_clock::now();
+    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+  }
+  return ms;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string dir = TDO_BENCH_PIPELINE_MAPS_DIR;
+  std::vector<std::string> names;
+  int repeat = 21;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
+    const std::string v = argv[++i];
+    if (a == "--maps-dir") {
+      dir = v;
+    } else if (a == "--map") {
+      names.push_back(v);
+    } else if (a == "--repeat") {
+      char* end = nullptr;
+      const long r = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || r < 1 || r > 100000)
+        return usage("--repeat needs an integer in [1, 100000]");
+      repeat = static_cast<int>(r);
+    } else {
+      return usage(("unknown option " + a).c_str());
+    }
+  }
+  if (names.empty()) names = {"map1", "map2", "map3", "map4", "map5"};
+
+  std::vector<Row> rows;
+  for (const std::string& name : names) {
+    tdo_io::Map map;
+    std::string err;
+    if (!tdo_io::load_map(dir + "/" + name + ".tdomap", &map, &err)) return usage(err.c_str());
+    if (!map.has_start || !map.has_goal) return usage((name + ": no start/goal").c_str());
+    const double clearance = 0.5;
+    tdo_planner_config cfg{};
+    cfg.cap = tdo_io::capacity_for(map, clearance, 27u, 0u);
+    const size_t bytes = tdo_planner_footprint(&cfg);
+    std::unique_ptr<unsigned char[]> arena(new unsigned char[bytes]);
+    std::fill(arena.get(), arena.get() + bytes, 0);  // touch every page before timing
+    tdo_planner* pl = nullptr;
+    if (tdo_planner_init(&pl, arena.get(), bytes, &cfg) != TDO_OK ||
+        tdo_io::load_into(map, tdo_planner_grid(pl), clearance) != TDO_OK)
+      return usage((name + ": planner set-up failed").c_str());
+
+    Row row;
+    row.map = name;
+    row.arena = bytes;
+    tdo_plan_request req{};
+    req.start = map.start;
+    req.goal = map.goal;
+    tdo_plan_params_default(&req.params);
+    tdo_plan_result res{};
+    tdo_status st = TDO_OK;
+    const std::vector<double> t_tdo = timed(pl, req, repeat, &res, &st);
+    if (st != TDO_OK) {
+      std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo: %s\n", name.c_str(), tdo_status_str(st));
+      return 1;
+    }
+    row.tdo = stats(t_tdo);
+    row.tdo_expansions = res.search.expansions;
+    row.tdo_turns = res.metrics.turns;
+    row.tdo_length = res.metrics.length_m;
+    row.feasible = res.feasibility.ok;
+
+    tdo_plan_params_default(&req.params);
+    req.params.depth = TDO_PLAN_SEARCH;
+    req.params.search = TDO_SEARCH_ASTAR;
+    req.params.lambda = 0.0;
+    req.params.mu = 0.0;
+    req.params.theta_max = 0.0;
+    const std::vector<double> t_astar = timed(pl, req, repeat, &res, &st);
+    if (st != TDO_OK) {
+      std::fprintf(stderr, "tdo-bench-pipeline: %s: astar: %s\n", name.c_str(),
+                   tdo_status_str(st));
+      return 1;
+    }
+    row.astar = stats(t_astar);
+    row.astar_expansions = res.search.expansions;
+    row.astar_turns = res.metrics.turns;
+    row.astar_length = res.metrics.length_m;
+    rows.push_back(row);
+  }
+
+  std::printf("repeat %d per planner and map; clearance 0.5 m; tdo = default parameters\n\n", repeat);
+  std::printf("| map | tdo median ms | tdo mean ms | tdo expansions | astar median ms | "
+              "astar expansions | arena bytes | feasible |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
+  for (const Row& r : rows)
+    std::printf("| %s | %.3f | %.3f | %u | %.3f | %u | %zu | %s |\n", r.map.c_str(),
+                r.tdo.median_ms, r.tdo.mean_ms, r.tdo_expansions, r.astar.median_ms,
+                r.astar_expansions, r.arena, r.feasible ? "yes" : "no");
+  std::printf("\n| map | tdo turns | astar turns | turns ratio | tdo length m | astar length m | "
+              "length ratio |\n|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows)
+    std::printf("| %s | %u | %u | %.3f | %.3f | %.3f | %.3f |\n", r.map.c_str(), r.tdo_turns,
+                r.astar_turns,
+                r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0,
+                r.tdo_length, r.astar_length, r.tdo_length / r.astar_length);
+  std::printf("\nmaps: %zu\n", rows.size());
+  return 0;
+}
