@@ -140,8 +140,7 @@ int main(int argc, char** argv) {
     req.params.theta_max = 0.0;
     const std::vector<double> t_astar = timed(pl, req, repeat, &res, &st);
     if (st != TDO_OK) {
-      std::fprintf(stderr, "tdo-bench-pipeline: %s: astar: %s\n", name.c_str(),
-                   tdo_status_str(st));
+      std::fprintf(stderr, "tdo-bench-pipeline: %s: astar: %s\n", name.c_str(), tdo_status_str(st));
       return 1;
     }
     row.astar = stats(t_astar);
@@ -151,15 +150,18 @@ int main(int argc, char** argv) {
     rows.push_back(row);
   }
 
-  std::printf("repeat %d per planner and map; clearance 0.5 m; tdo = default parameters\n\n", repeat);
-  std::printf("| map | tdo median ms | tdo mean ms | tdo expansions | astar median ms | "
-              "astar expansions | arena bytes | feasible |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
+  std::printf("repeat %d per planner and map; clearance 0.5 m; tdo = default parameters\n\n",
+              repeat);
+  std::printf(
+      "| map | tdo median ms | tdo mean ms | tdo expansions | astar median ms | "
+      "astar expansions | arena bytes | feasible |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
   for (const Row& r : rows)
     std::printf("| %s | %.3f | %.3f | %u | %.3f | %u | %zu | %s |\n", r.map.c_str(),
                 r.tdo.median_ms, r.tdo.mean_ms, r.tdo_expansions, r.astar.median_ms,
                 r.astar_expansions, r.arena, r.feasible ? "yes" : "no");
-  std::printf("\n| map | tdo turns | astar turns | turns ratio | tdo length m | astar length m | "
-              "length ratio |\n|---|---:|---:|---:|---:|---:|---:|\n");
+  std::printf(
+      "\n| map | tdo turns | astar turns | turns ratio | tdo length m | astar length m | "
+      "length ratio |\n|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows)
     std::printf("| %s | %u | %u | %.3f | %.3f | %.3f | %.3f |\n", r.map.c_str(), r.tdo_turns,
                 r.astar_turns,
