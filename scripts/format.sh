@@ -4,7 +4,7 @@
 #   bash scripts/format.sh           rewrite files in place
 #   bash scripts/format.sh --check   change nothing; list unformatted files and fail if any
 #
-# Files: every tracked or new (not ignored) *.c *.cpp *.h *.hpp under libtdo/ tools/ test/ apps/.
+# Files: every tracked or new (not ignored) *.c *.cpp *.h *.hpp under libtdo/ tools/ test/ apps/ embedded/.
 # CLANG_FORMAT overrides the binary (default: clang-format, Debian's package).
 set -euo pipefail
 
@@ -28,7 +28,7 @@ if ! command -v "$CLANG_FORMAT" >/dev/null 2>&1; then
 fi
 
 listed=()
-mapfile -d '' -t listed < <(git ls-files -z -co --exclude-standard -- libtdo tools test apps)
+mapfile -d '' -t listed < <(git ls-files -z -co --exclude-standard -- libtdo tools test apps embedded)
 wait "$!" || {
   printf '[format] error: git ls-files failed (run inside the git work tree)\n' >&2
   exit 1

@@ -28,6 +28,11 @@ PACKAGES=(
   python3-matplotlib
   python3-numpy
   libglib2.0-dev # LCM: the wheel's liblcm links the system GLib (apps, lcm-gen)
+  # Embedded demo (scripts/embedded.sh): Cortex-M7 cross toolchain, C/C++ libraries, QEMU
+  gcc-arm-none-eabi
+  libnewlib-arm-none-eabi
+  libstdc++-arm-none-eabi-newlib
+  qemu-system-arm
 )
 
 log() { printf '[setup] %s\n' "$*"; }

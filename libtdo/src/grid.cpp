@@ -456,7 +456,7 @@ extern "C" tdo_status tdo_grid_reset(tdo_grid* g, const tdo_grid_desc* desc) {
   g->nvox = static_cast<uint32_t>(n);
   g->stride_y = desc->nx;
   g->stride_z = static_cast<int64_t>(desc->nx) * desc->ny;
-  memset(g->flags, 0, n);
+  memset(g->flags, 0, g->nvox);  // n <= max_voxels: fits size_t on 32-bit targets
   g->n_boxes = 0;
   g->n_cubes = 0;
   g->n_blocked = 0;

@@ -1,0 +1,18 @@
+/* Capacities of the Map4-sized firmware configuration (50 x 50 x 20 voxels; docs/embedded.md). */
+#ifndef TDO_DEMO_CONFIG_H
+#define TDO_DEMO_CONFIG_H
+
+/* m, obstacle clearance (tdo-plan's default for .tdomap files) */
+#define TDO_DEMO_CLEARANCE 0.5
+/* search states per direction: Map4's query needs about 347000 with the default parameters */
+#define TDO_DEMO_MAX_NODES 352256u
+/* voxels in one grid path (Map4's path has 114) */
+#define TDO_DEMO_MAX_PATH 160u
+/* trajectory samples at dt = 0.01 s (Map4's flight: 7586) */
+#define TDO_DEMO_MAX_SAMPLES 8192u
+/* speed-profile pieces (8 per path segment + 1; Map4's path has 52 segments) */
+#define TDO_DEMO_MAX_PROFILE 1025u
+/* bytes of the static arena; the demo checks tdo_planner_footprint against it */
+#define TDO_DEMO_ARENA_BYTES (35584u * 1024u)
+
+#endif /* TDO_DEMO_CONFIG_H */
