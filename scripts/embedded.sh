@@ -9,6 +9,7 @@
 #   bash scripts/embedded.sh symbols-selftest ELF  # ELF must FAIL the check, naming malloc + object
 #   bash scripts/embedded.sh run FW.elf HOST_EXE   # QEMU run, diff against the host twin
 #   bash scripts/embedded.sh sizes [DIR]           # flash / RAM / arena / stack figures
+#   bash scripts/embedded.sh libm [DIR] [HOST_DIR]  # newlib's libm rounding against the host's
 #
 # Environment: JOBS (parallel build jobs), QEMU_TIMEOUT (seconds, default 120).
 set -euo pipefail
@@ -144,6 +145,25 @@ cmd_sizes() {
   done
 }
 
+# Run the libm probe on both platforms and say, per function, whether the result bits agree.
+cmd_libm() {
+  local dir="${1:-$ROOT/build-arm}" host="${2:-${BUILD_DIR:-$ROOT/build}}"
+  need qemu-system-arm qemu-system-arm
+  cmake --build "$host" --target tdo-libm-probe >/dev/null
+  tmp="$(mktemp -d)"
+  trap 'rm -rf "$tmp"' EXIT
+  timeout "${QEMU_TIMEOUT:-120}" qemu-system-arm -M mps2-an500 -nographic -monitor none -serial none \
+    -chardev file,id=semihost,path="$tmp/fw.txt" \
+    -semihosting-config enable=on,target=native,chardev=semihost \
+    -kernel "$dir/embedded/tdo-fw-libm-probe.elf" >/dev/null 2>&1 </dev/null
+  "$host/embedded/tdo-libm-probe" | grep -v -e '^@' -e '^end' >"$tmp/host.txt"
+  grep -v -e '^@' -e '^end' "$tmp/fw.txt" >"$tmp/fw.cmp"
+  printf '%-18s %-18s %-18s %s\n' function host cortex-m7 bits
+  paste -d' ' "$tmp/host.txt" "$tmp/fw.cmp" | awk '{
+    n = NF / 2; name = $1; for (i = 2; i < n; ++i) name = name " " $i
+    printf "%-18s %-18s %-18s %s\n", name, $n, $NF, ($n == $NF ? "same" : "DIFFERENT") }'
+}
+
 cmd_all() {
   local arm="$ROOT/build-arm" host="${BUILD_DIR:-$ROOT/build}" cfg
   cmd_build "$arm"
@@ -164,5 +184,6 @@ case "${1:-all}" in
   symbols-selftest) cmd_symbols_selftest "${@:2}" ;;
   run) cmd_run "${@:2}" ;;
   sizes) cmd_sizes "${@:2}" ;;
-  *) die "unknown command '$1' (all, build, symbols, symbols-selftest, run, sizes)" ;;
+  libm) cmd_libm "${@:2}" ;;
+  *) die "unknown command '$1' (all, build, symbols, symbols-selftest, run, sizes, libm)" ;;
 esac
