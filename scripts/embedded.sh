@@ -6,7 +6,7 @@
 #   bash scripts/embedded.sh                       # everything below, in build-arm/ and build/
 #   bash scripts/embedded.sh build [DIR]           # configure + build the firmware (default build-arm)
 #   bash scripts/embedded.sh symbols ELF...        # the heap/exception/RTTI symbol check
-#   bash scripts/embedded.sh symbols-selftest ELF  # ELF must FAIL the check, naming malloc + object
+#   bash scripts/embedded.sh symbols-selftest ELF  # ELF must FAIL the check, naming symbols + objects
 #   bash scripts/embedded.sh run FW.elf HOST_EXE   # QEMU run, diff against the host twin
 #   bash scripts/embedded.sh sizes [DIR]           # flash / RAM / arena / stack figures
 #   bash scripts/embedded.sh libm [DIR] [HOST_DIR]  # newlib's libm rounding against the host's
@@ -50,14 +50,20 @@ cmd_build() {
 FORBIDDEN='^(malloc|free|calloc|realloc|reallocf|memalign|aligned_alloc|posix_memalign|valloc|pvalloc|_malloc_r|_free_r|_calloc_r|_realloc_r|_memalign_r|_sbrk|sbrk|_sbrk_r|_Znw.*|_Zna.*|_Zdl.*|_Zda.*|__cxa_.*|__gxx_personality.*|_Unwind_.*|__aeabi_unwind_cpp_pr.*|_ZTI.*|_ZTS.*)$'
 
 # Print who references `sym`, from the linker map's cross-reference table (-Wl,--cref): the first
-# file listed defines the symbol, the following ones reference it.
+# file listed defines the symbol, the following ones reference it. A long symbol name stands alone
+# on its line and its files follow on indented lines.
 who_pulled() {
   local map="$1" sym="$2"
   awk -v sym="$sym" '
     /^Cross Reference Table/ { in_table = 1; next }
     !in_table { next }
-    /^[^ \t]/ { cur = $1; n = 0; if (cur == sym) { print "    defined in " $2 } ; next }
-    cur == sym && NF >= 1 { print "    referenced by " $1 }
+    /^[^ \t]/ { cur = $1; files = 0; if (NF < 2) next; file = $2 }
+    /^[ \t]/ { file = $1 }
+    cur == sym && file != "" {
+      print (files == 0 ? "    defined in " : "    referenced by ") file
+      ++files
+    }
+    { file = "" }
   ' "$map"
 }
 
@@ -76,6 +82,9 @@ cmd_symbols() {
     failed=1
     while read -r sym; do
       printf '[embedded] symbols: %s: forbidden symbol %s\n' "$(basename "$elf")" "$sym" >&2
+      if [[ "$sym" == _Z* ]] && command -v arm-none-eabi-c++filt >/dev/null 2>&1; then
+        printf '    (%s)\n' "$(arm-none-eabi-c++filt "$sym")" >&2
+      fi
       if [[ -f "$map" ]]; then
         who_pulled "$map" "$sym" >&2
       else
@@ -90,11 +99,20 @@ cmd_symbols_selftest() {
   local elf="${1:?symbols-selftest: give the ELF}" out rc=0
   out="$(cmd_symbols "$elf" 2>&1)" || rc=$?
   printf '%s\n' "$out"
-  ((rc != 0)) || die "symbols-selftest: the check accepted $elf, which calls malloc"
-  grep -q 'forbidden symbol malloc$' <<<"$out" || die "symbols-selftest: malloc not named"
-  grep -qE 'referenced by .*symcheck_bad\.c\.o(bj)?$' <<<"$out" ||
-    die "symbols-selftest: the object that pulled malloc in (symcheck_bad.c.o) is not named"
-  log "symbols-selftest: the check rejects $(basename "$elf") and names malloc and symcheck_bad.c.o"
+  ((rc != 0)) || die "symbols-selftest: the check accepted $elf, which calls malloc and new"
+  local want
+  for want in malloc _Znwj _ZdlPv __cxa_throw _ZTISt9bad_alloc; do
+    grep -q "forbidden symbol $want\$" <<<"$out" || die "symbols-selftest: $want not named"
+  done
+  # The objects that pulled them in: malloc from the C file, operator new from the C++ file.
+  awk '/forbidden symbol malloc$/ { s = 1; next } /forbidden symbol/ { s = 0 } s' <<<"$out" |
+    grep -qE 'referenced by .*symcheck_bad\.c\.o(bj)?$' ||
+    die "symbols-selftest: the object that pulled malloc in (symcheck_bad.c) is not named"
+  awk '/forbidden symbol _Znwj$/ { s = 1; next } /forbidden symbol/ { s = 0 } s' <<<"$out" |
+    grep -qE 'referenced by .*symcheck_bad_cxx\.cpp\.o(bj)?$' ||
+    die "symbols-selftest: the object that pulled operator new in (symcheck_bad_cxx.cpp) is not named"
+  log "symbols-selftest: the check rejects $(basename "$elf"), names malloc, operator new/delete," \
+    "__cxa_throw and typeinfo, and the objects symcheck_bad.c and symcheck_bad_cxx.cpp"
 }
 
 cmd_run() {
