@@ -4,7 +4,7 @@
 
 /* m, obstacle clearance (tdo-plan's default for .tdomap files) */
 #define TDO_DEMO_CLEARANCE 0.5
-/* search states per direction: Map1's query needs 11328 with the default parameters */
+/* search states per direction: Map1's query needs 11300 with the default parameters */
 #define TDO_DEMO_MAX_NODES 12288u
 /* voxels in one grid path (Map1's path has 26) */
 #define TDO_DEMO_MAX_PATH 64u
