@@ -3,7 +3,7 @@
 # check that the images use no heap, exceptions or RTTI, run them under QEMU (mps2-an500) and
 # compare their output with the host twins, digit for digit.
 #
-#   bash scripts/embedded.sh                       # everything below, in build-arm/ and build/
+#   bash scripts/embedded.sh                       # build, symbols, run Map1, sizes (build-arm/, build/)
 #   bash scripts/embedded.sh build [DIR]           # configure + build the firmware (default build-arm)
 #   bash scripts/embedded.sh symbols ELF...        # the heap/exception/RTTI symbol check
 #   bash scripts/embedded.sh symbols-selftest ELF  # ELF must FAIL the check, naming symbols + objects
@@ -183,15 +183,14 @@ cmd_libm() {
 }
 
 cmd_all() {
-  local arm="$ROOT/build-arm" host="${BUILD_DIR:-$ROOT/build}" cfg
+  local arm="$ROOT/build-arm" host="${BUILD_DIR:-$ROOT/build}"
   cmd_build "$arm"
   cmd_symbols "$arm"/embedded/tdo-fw-{map1,map4}.elf
   cmd_symbols_selftest "$arm/embedded/tdo-fw-symcheck-bad.elf"
   [[ -f "$host/CMakeCache.txt" ]] || die "no host build in $host: run bash scripts/build.sh first"
-  cmake --build "$host" --target tdo-demo-map1 tdo-demo-map4
-  for cfg in "${CONFIGS[@]}"; do
-    cmd_run "$arm/embedded/tdo-fw-$cfg.elf" "$host/embedded/tdo-demo-$cfg"
-  done
+  cmake --build "$host" --target tdo-demo-map1
+  # Map1 only: Map4's 36 MB arena does not fit the board's 4 MB of data RAM (docs/embedded.md).
+  cmd_run "$arm/embedded/tdo-fw-map1.elf" "$host/embedded/tdo-demo-map1"
   cmd_sizes "$arm"
 }
 

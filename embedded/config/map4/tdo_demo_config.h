@@ -4,7 +4,7 @@
 
 /* m, obstacle clearance (tdo-plan's default for .tdomap files) */
 #define TDO_DEMO_CLEARANCE 0.5
-/* search states per direction: Map4's query needs about 347000 with the default parameters */
+/* search states per direction: Map4's query needs 346010 with the default parameters */
 #define TDO_DEMO_MAX_NODES 352256u
 /* voxels in one grid path (Map4's path has 114) */
 #define TDO_DEMO_MAX_PATH 160u
