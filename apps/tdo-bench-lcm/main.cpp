@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   double clearance = 0.5;
   double drain = 5.0;
   int32_t vehicle_id = 0;
+  double dt = 0.0;
   CLI::App app{"tdo-bench-lcm: load benchmark of a running tdo-planner"};
   app.add_option("map", map_path, "map file with a default query (start, goal), e.g. map5.tdomap")
       ->required();
@@ -65,6 +66,8 @@ int main(int argc, char** argv) {
   app.add_option("--clearance", clearance, "m, clearance hint of the map")->capture_default_str();
   app.add_option("--drain", drain, "s to wait for the last answers")->capture_default_str();
   app.add_option("--vehicle-id", vehicle_id, "vehicle of the requests")->capture_default_str();
+  app.add_option("--dt", dt, "s, trajectory sample period of the requests (0 = the default)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -135,6 +138,7 @@ int main(int argc, char** argv) {
 
   tdo_plan_request base{};
   tdo_plan_params_default(&base.params);
+  if (dt > 0.0) base.params.dt = dt;
   auto send = [&](int64_t id) {
     tdo_plan_request r = base;
     r.start = (id % 2 == 0) ? info.goal : info.start;
@@ -201,10 +205,10 @@ int main(int argc, char** argv) {
   const std::string mode = rate > 0.0 ? rate_buf : "closed loop (as fast as answered)";
   std::printf(
       "tdo-bench-lcm: %s, %s, %.1f s on %s: sent %lld, answered %lld (%lld not ok), lost %lld, "
-      "%.1f answers/s\n",
+      "%.1f answers/s, dt %g s\n",
       map_path.c_str(), mode.c_str(), sending_s, url.c_str(), static_cast<long long>(sent),
       static_cast<long long>(answered), static_cast<long long>(failed),
-      static_cast<long long>(lost), static_cast<double>(answered) / sending_s);
+      static_cast<long long>(lost), static_cast<double>(answered) / sending_s, base.params.dt);
   std::printf(
       "  latency ms (request sent -> trajectory + report received): p50 %.2f  p90 %.2f  "
       "p99 %.2f  max %.2f\n",
