@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   double clearance = 0.5;
   double period = 0.0;
   int count = 1;
+  bool octomap = false;
+  double resolution = 0.0;
   CLI::App app{"tdo-publish-map: publish a map file on TDO_MAP (run-length map_t)"};
   app.add_option("map", path, "map file: .tdomap, .3dmap, .bt, .ot")->required();
   app.add_option("--lcm-url", url, "LCM URL")->capture_default_str();
@@ -43,11 +45,19 @@ int main(int argc, char** argv) {
   app.add_option("--period", period, "s between messages (0 = once)")->capture_default_str();
   app.add_option("--count", count, "messages to send with --period (0 = until a signal)")
       ->capture_default_str();
+  app.add_flag("--octomap", octomap,
+               "send a .bt file's bytes as they are (ENCODING_OCTOMAP_BT) instead of run lengths");
+  app.add_option("--resolution", resolution, "m, grid voxel edge for OcTrees (0 = the tree's)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  }
+  if (!octomap && resolution > 0.0) {
+    std::fprintf(stderr, "tdo-publish-map: error: --resolution applies with --octomap\n");
+    return 2;
   }
   if (map_id < 0 || !(clearance >= 0.0) || !(period >= 0.0) || count < 0) {
     std::fprintf(stderr,
@@ -59,7 +69,9 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, on_signal);
   tdo::map_t m{};
   std::string error;
-  if (!tdo_lcm::map_msg_from_file(path, clearance, &m, nullptr, &error)) {
+  const bool ok = octomap ? tdo_lcm::octomap_msg_from_file(path, resolution, clearance, &m, &error)
+                          : tdo_lcm::map_msg_from_file(path, clearance, &m, nullptr, &error);
+  if (!ok) {
     std::fprintf(stderr, "tdo-publish-map: error: %s\n", error.c_str());
     return 2;
   }
@@ -87,8 +99,8 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr,
                "tdo-publish-map: %s -> %s: %d message(s), %d x %d x %d voxels at %g m, %d runs, "
-               "%d boxes, %d bytes each\n",
+               "%d boxes, %d OctoMap bytes, %d bytes each\n",
                path.c_str(), channel.c_str(), sent, m.size[0], m.size[1], m.size[2], m.resolution,
-               m.n_runs, m.n_boxes, m.getEncodedSize());
+               m.n_runs, m.n_boxes, m.n_bytes, m.getEncodedSize());
   return 0;
 }

@@ -15,6 +15,11 @@
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/wire.h"
+#if TDO_LCM_HAVE_OCTOMAP
+#include "tdo_io/map_io.h"
+#include "tdo_lcm/map_file.h"
+#include "tdo_lcm/rle.h"
+#endif
 
 namespace {
 
@@ -466,3 +471,76 @@ TEST_F(PlannerNodeTest, RequestBeforeAnyMapAndForAnotherVehicleInTheHeartbeat) {
 }
 
 }  // namespace
+
+#if TDO_LCM_HAVE_OCTOMAP
+namespace {
+
+// An OctoMap-encoded map (the .bt bytes unchanged, 209 kB instead of 440 kB of run lengths at the
+// tree's resolution): rasterised by the node exactly as tools/io rasterises the file, and planned
+// on with the optimal length the maps/octomap README gives for query G2 (res 0.2 m, clearance 0.4).
+TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
+  const std::string bt = TDO_MAPS_DIR "/octomap/geb079.bt";
+  tdo::map_t m{};
+  std::string error;
+  ASSERT_TRUE(tdo_lcm::octomap_msg_from_file(bt, 0.2, 0.4, &m, &error)) << error;
+  EXPECT_EQ(m.encoding, tdo::map_t::ENCODING_OCTOMAP_BT);
+  EXPECT_EQ(m.n_runs, 0);
+  m.map_id = 79;
+
+  // Same occupancy as tools/io's reader of the file at the same resolution.
+  tdo::map_t rle{};
+  ASSERT_TRUE(tdo_lcm::octomap_to_rle(m, 1u << 22, &rle).ok());
+  tdo_io::LoadOptions opt;
+  opt.resolution = 0.2;
+  tdo_io::Map file;
+  ASSERT_TRUE(tdo_io::load_map(bt, opt, &file, &error)) << error;
+  ASSERT_EQ(file.desc.nx, m.size[0]);
+  std::vector<uint8_t> occ(static_cast<std::size_t>(m.size[0]) * m.size[1] * m.size[2], 0u);
+  for (const tdo_voxel& v : file.voxels)
+    occ[(static_cast<std::size_t>(v.k) * m.size[1] + v.j) * m.size[0] + v.i] = 1u;
+  EXPECT_EQ(rle.runs, tdo_lcm::rle_encode(occ));
+  EXPECT_EQ(tdo_lcm::octomap_to_rle(m, 1000, &rle).reason, tdo_lcm::Reason::map_capacity);
+
+  tdo_lcm::Bus bus("memq://");
+  tdo_lcm::PlannerConfig cfg;
+  cfg.max_nx = m.size[0];
+  cfg.max_ny = m.size[1];
+  cfg.max_nz = m.size[2];
+  cfg.max_nodes = 300000;
+  cfg.max_clearance_ratio = 2.0;
+  tdo_lcm::PlannerNode node(&bus, cfg);
+  ASSERT_TRUE(node.start(&error)) << error;
+  std::vector<tdo::trajectory_t> traj;
+  bus.subscribe(cfg.trajectory_channel, Inbox::into(&traj));
+  auto pump = [&]() {
+    for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  };
+  tdo::map_t broken = m;  // bytes that are no OcTree: refused, counted
+  broken.data.assign(100, uint8_t{7});
+  broken.n_bytes = 100;
+  ASSERT_TRUE(bus.publish(cfg.map_channel, broken));
+  ASSERT_TRUE(bus.publish(cfg.map_channel, m));
+  pump();
+  EXPECT_EQ(node.counters().reasons.at("map.bad_encoding"), 1);
+  ASSERT_EQ(node.map_id(), 79);
+
+  tdo::plan_request_t r = request(1);
+  r.vehicle_id = 0;
+  r.start[0] = -5.0, r.start[1] = 0.0, r.start[2] = 1.2;
+  r.goal[0] = 10.0, r.goal[1] = 0.0, r.goal[2] = 1.2;
+  r.depth = tdo::plan_request_t::DEPTH_SEARCH;
+  r.lambda_turn = 0.0;
+  r.mu = 0.0;
+  r.theta_max = 0.0;
+  r.first_meet = false;
+  ASSERT_TRUE(bus.publish(cfg.request_channel, r));
+  pump();
+  ASSERT_EQ(traj.size(), 1u);
+  EXPECT_EQ(traj[0].status, "ok") << traj[0].detail;
+  EXPECT_EQ(traj[0].map_id, 79);
+  EXPECT_NEAR(traj[0].search_cost, 15.2, 1e-3);
+}
+
+}  // namespace
+#endif

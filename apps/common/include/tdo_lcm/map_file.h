@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tdo/types.h"
+#include "tdo_lcm/check.h"
 #include "tdo_lcm/types.h"
 
 namespace tdo_lcm {
@@ -31,6 +32,25 @@ struct MapFileInfo {
  */
 bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* out,
                        MapFileInfo* info, std::string* error);
+
+/**
+ * @brief An OctoMap binary file (.bt) -> an ENCODING_OCTOMAP_BT message carrying the file's bytes
+ *        unchanged, on the grid tools/io gives the tree (its bounds padded by one voxel).
+ * @param resolution m, grid voxel edge; 0 = the tree's
+ * @return true on success; false with "FILE: message" (not a binary OcTree, unreadable, ...).
+ */
+bool octomap_msg_from_file(const std::string& path, double resolution, double clearance,
+                           tdo::map_t* out, std::string* error);
+
+/**
+ * @brief Rasterise an ENCODING_OCTOMAP_BT message onto its own grid (resolution, origin, size):
+ *        every occupied leaf marks every voxel its cube intersects (as tools/io does for files).
+ * @param max_voxels the receiver's capacity, checked before anything is allocated
+ * @param[out] out the same map as ENCODING_RLE (ids, grid, clearance and boxes kept, no bytes)
+ * @return ok; map_capacity; out_of_range (bad grid); bad_encoding (the bytes are not a binary
+ *         OcTree, detail: why).
+ */
+Check octomap_to_rle(const tdo::map_t& m, uint64_t max_voxels, tdo::map_t* out);
 
 }  // namespace tdo_lcm
 
