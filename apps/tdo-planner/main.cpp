@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "planner_node.h"
+#include "planner_options.h"
 
 namespace {
 
@@ -29,7 +30,7 @@ void install_signal_handlers() {
 int main(int argc, char** argv) {
   tdo_lcm::PlannerConfig cfg;
   std::string url = tdo_lcm::kDefaultUrl;
-  std::vector<int> max_size = {cfg.max_nx, cfg.max_ny, cfg.max_nz};
+  std::vector<int> max_size;
   double duration = 0.0;
   bool quiet = false;
 
@@ -38,27 +39,9 @@ int main(int argc, char** argv) {
       "TDO_MAP, with TDO_STATUS heartbeats. Stops on SIGINT/SIGTERM."};
   app.add_option("--lcm-url", url, "LCM URL (memq://, udpm://..., file://LOG?speed=0)")
       ->capture_default_str();
-  app.add_option("--vehicle-id", cfg.vehicle_id, "vehicle served; other requests are ignored")
-      ->capture_default_str();
-  app.add_option("--map-channel", cfg.map_channel, "maps in")->capture_default_str();
-  app.add_option("--request-channel", cfg.request_channel, "plan requests in")
-      ->capture_default_str();
-  app.add_option("--trajectory-channel", cfg.trajectory_channel, "trajectories out")
-      ->capture_default_str();
-  app.add_option("--feasibility-channel", cfg.feasibility_channel, "feasibility reports out")
-      ->capture_default_str();
+  tdo_lcm::add_planner_options(app, cfg, max_size);
   app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();
   app.add_option("--heartbeat", cfg.heartbeat_period_s, "s between heartbeats (0 = none)")
-      ->capture_default_str();
-  app.add_option("--max-size", max_size, "capacity: voxels NX NY NZ of the largest map")
-      ->expected(3)
-      ->capture_default_str();
-  app.add_option("--max-nodes", cfg.max_nodes, "capacity: search states per direction")
-      ->capture_default_str();
-  app.add_option("--max-boxes", cfg.max_boxes, "capacity: obstacle boxes per map")
-      ->capture_default_str();
-  app.add_option("--max-clearance-ratio", cfg.max_clearance_ratio,
-                 "capacity: largest clearance / resolution")
       ->capture_default_str();
   app.add_option("--duration", duration, "s to run, then exit as on SIGTERM (0 = until a signal)")
       ->capture_default_str();
@@ -69,9 +52,7 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
   }
-  cfg.max_nx = max_size[0];
-  cfg.max_ny = max_size[1];
-  cfg.max_nz = max_size[2];
+  tdo_lcm::apply_max_size(max_size, &cfg);
 
   install_signal_handlers();
   tdo_lcm::Bus bus(url);

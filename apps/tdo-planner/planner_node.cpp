@@ -7,6 +7,9 @@
 
 #include "tdo/pipeline.h"
 #include "tdo_lcm/wire.h"
+#if TDO_LCM_HAVE_OCTOMAP
+#include "tdo_lcm/map_file.h"
+#endif
 
 namespace tdo_lcm {
 
@@ -82,6 +85,14 @@ void PlannerNode::on_map(const void* data, std::size_t size) {
   Check c = decode(data, size, &m);
   if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+#if TDO_LCM_HAVE_OCTOMAP
+  // An OctoMap binary stream is rasterised onto the message's grid first (capacity checked before).
+  if (c.ok() && m.encoding == tdo::map_t::ENCODING_OCTOMAP_BT) {
+    tdo::map_t rle{};
+    c = octomap_to_rle(m, cfg_tdo_.cap.max_voxels, &rle);
+    if (c.ok()) m = std::move(rle);
+  }
+#endif
   // Everything is checked before the grid is touched, so a bad map leaves the current one in place.
   if (c.ok()) c = map_check(m, cfg_tdo_.cap, -1.0);
   if (!c.ok()) {

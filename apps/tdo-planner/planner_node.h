@@ -6,7 +6,8 @@
  * Thin: decode (wire.h) -> adapter (adapters.h) -> tdo_planner_plan -> encode. It never dies on a
  * bad message. What happens to each kind of input:
  *  - undecodable (wrong fingerprint, truncated, bad counts): counted, not answered (no request id);
- *  - a map that fails its checks: counted, the previous map stays;
+ *  - a map that fails its checks: counted, the previous map stays; an ENCODING_OCTOMAP_BT map is
+ *    rasterised onto its grid first (map_file.h; builds with OctoMap, else unsupported_encoding);
  *  - a map the library refuses after the grid was reset (rare: checks mirror the library): counted,
  *    the planner has no map until the next good one;
  *  - a request for another vehicle (or a map for another vehicle): counted as ignored, no answer;

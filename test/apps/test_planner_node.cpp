@@ -15,6 +15,11 @@
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/wire.h"
+#if TDO_LCM_HAVE_OCTOMAP
+#include "tdo_io/map_io.h"
+#include "tdo_lcm/map_file.h"
+#include "tdo_lcm/rle.h"
+#endif
 
 namespace {
 
@@ -108,6 +113,14 @@ class PlannerNodeTest : public ::testing::Test {
     const auto& r = node_->counters().reasons;
     const auto it = r.find(key);
     return it == r.end() ? 0 : it->second;
+  }
+  /** @return the count of `key` in the heartbeat the node would send now (0 when absent). */
+  int64_t heartbeat_reason(const std::string& key) const {
+    const tdo::status_t s = node_->status_message();
+    for (int32_t i = 0; i < s.n_reasons; ++i)
+      if (s.reason[static_cast<std::size_t>(i)] == key)
+        return s.reason_count[static_cast<std::size_t>(i)];
+    return 0;
   }
   /** The last answer must be a feasible trajectory for request `id`. */
   void expect_planned(int64_t id) {
@@ -321,4 +334,213 @@ TEST_F(PlannerNodeTest, HeartbeatsCarryTheCounters) {
   EXPECT_EQ(s.reason[1], "request.other_vehicle");
 }
 
+// ---- Malformed input, one test per kind (issue 5). Each: refused with a named reason, counted in
+// the heartbeat, and the next valid request is still served on the map in place.
+
+// Offsets in the encoded wall_map (big-endian): 8 fingerprint, 8 utime, 8 map_id, 4 vehicle_id,
+// 8 resolution, 24 origin, 12 size, 8 clearance, 1 encoding, then n_runs at 81, its 3 runs, n_bytes
+// at 97 (0), n_boxes at 101 (1), the box (48 bytes) at 105.
+constexpr std::size_t kMapNBoxesOffset = 101;
+
+void put_be32(std::vector<uint8_t>* b, std::size_t at, int32_t v) {
+  const auto u = static_cast<uint32_t>(v);
+  for (int i = 0; i < 4; ++i)
+    (*b)[at + static_cast<std::size_t>(i)] = static_cast<uint8_t>(u >> (24 - 8 * i));
+}
+
+TEST_F(PlannerNodeTest, WrongFingerprintIsCountedAndNotAnswered) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::status_t s{};
+  s.program = "x";
+  send_raw(cfg_.request_channel, bytes_of(s));       // a status_t on the request channel
+  send_raw(cfg_.map_channel, bytes_of(request(1)));  // a request on the map channel
+  EXPECT_TRUE(inbox_.traj.empty());                  // no request id to answer to
+  EXPECT_EQ(heartbeat_reason("request.bad_fingerprint"), 1);
+  EXPECT_EQ(heartbeat_reason("map.bad_fingerprint"), 1);
+  EXPECT_EQ(node_->status_message().rejected, 2);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(2));
+  expect_planned(2);
+}
+
+TEST_F(PlannerNodeTest, TruncatedMessagesAreCountedAndNotAnswered) {
+  send(cfg_.map_channel, wall_map(1));
+  const std::vector<uint8_t> r = bytes_of(request(1));
+  for (std::size_t keep : {std::size_t{0}, std::size_t{7}, std::size_t{20}, r.size() - 1})
+    send_raw(cfg_.request_channel, std::vector<uint8_t>(r.begin(), r.begin() + keep));
+  const std::vector<uint8_t> m = bytes_of(wall_map(2));
+  send_raw(cfg_.map_channel, std::vector<uint8_t>(m.begin(), m.end() - 1));
+  EXPECT_TRUE(inbox_.traj.empty());
+  EXPECT_EQ(heartbeat_reason("request.truncated"), 4);
+  EXPECT_EQ(heartbeat_reason("map.truncated"), 1);
+  EXPECT_EQ(node_->map_id(), 1);  // the truncated map 2 did not replace map 1
+  send(cfg_.request_channel, request(2));
+  expect_planned(2);
+  EXPECT_EQ(inbox_.traj.back().map_id, 1);
+}
+
+TEST_F(PlannerNodeTest, NonFiniteNumbersAreRefused) {
+  send(cfg_.map_channel, wall_map(1));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  tdo::plan_request_t r = request(1);
+  r.goal[2] = inf;
+  send(cfg_.request_channel, r);
+  r = request(2);
+  r.v_max = nan;
+  send(cfg_.request_channel, r);
+  tdo::map_t m = wall_map(2);
+  m.resolution = nan;
+  send(cfg_.map_channel, m);
+  m = wall_map(3);
+  m.boxes[0][4] = inf;
+  send(cfg_.map_channel, m);
+  ASSERT_EQ(inbox_.traj.size(), 2u);  // requests are answered, with the field named
+  EXPECT_EQ(inbox_.traj[0].status, "non_finite");
+  EXPECT_NE(inbox_.traj[0].detail.find("goal[2]"), std::string::npos) << inbox_.traj[0].detail;
+  EXPECT_EQ(inbox_.traj[1].status, "non_finite");
+  EXPECT_NE(inbox_.traj[1].detail.find("v_max"), std::string::npos) << inbox_.traj[1].detail;
+  EXPECT_EQ(inbox_.feas[1].status, "non_finite");
+  EXPECT_EQ(heartbeat_reason("request.non_finite"), 2);
+  EXPECT_EQ(heartbeat_reason("map.non_finite"), 2);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(3));
+  expect_planned(3);
+}
+
+TEST_F(PlannerNodeTest, ArrayCountsThatDoNotMatchAreRefused) {
+  send(cfg_.map_channel, wall_map(1));
+  const std::vector<uint8_t> good = bytes_of(wall_map(2));
+  ASSERT_EQ(good.size(), kMapNBoxesOffset + 4 + 48);
+  std::vector<uint8_t> b = good;
+  put_be32(&b, kMapNBoxesOffset, 2);  // two boxes announced, one sent
+  send_raw(cfg_.map_channel, b);
+  b = good;
+  put_be32(&b, kMapNBoxesOffset, 0);  // no box announced, one sent
+  send_raw(cfg_.map_channel, b);
+  // Counts consistent on the wire but the runs do not cover the 4000 voxels of the size.
+  tdo::map_t m = wall_map(3);
+  m.runs.back() -= 1;
+  send(cfg_.map_channel, m);
+  m = wall_map(4);
+  m.size[2] = 11;  // one more layer than the runs describe
+  send(cfg_.map_channel, m);
+  EXPECT_EQ(heartbeat_reason("map.truncated"), 1);
+  EXPECT_EQ(heartbeat_reason("map.trailing_bytes"), 1);
+  EXPECT_EQ(heartbeat_reason("map.rle_mismatch"), 2);
+  EXPECT_EQ(node_->status_message().rejected, 4);
+  EXPECT_EQ(node_->status_message().maps_loaded, 1);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(5));
+  expect_planned(5);
+}
+
+TEST_F(PlannerNodeTest, MapLargerThanTheCapacityIsCountedInTheHeartbeat) {
+  send(cfg_.map_channel, wall_map(1));
+  tdo::map_t m = wall_map(2);
+  m.boxes.assign(9, m.boxes[0]);  // capacity: 8 boxes
+  m.n_boxes = 9;
+  send(cfg_.map_channel, m);
+  tdo::map_t big{};
+  ASSERT_TRUE(
+      tdo_lcm::map_from_occupancy(tdo_grid_desc{25, 24, 12, 0.5, {0, 0, 0}}, {}, {}, 0.0, &big)
+          .ok());  // one voxel row more than 24 x 24 x 12
+  big.map_id = 3;
+  send(cfg_.map_channel, big);
+  EXPECT_EQ(heartbeat_reason("map.map_capacity"), 2);
+  EXPECT_EQ(node_->map_id(), 1);
+  send(cfg_.request_channel, request(6));
+  expect_planned(6);
+}
+
+TEST_F(PlannerNodeTest, RequestBeforeAnyMapAndForAnotherVehicleInTheHeartbeat) {
+  send(cfg_.request_channel, request(1));
+  tdo::plan_request_t other = request(2);
+  other.vehicle_id = kVehicle + 1;
+  send(cfg_.request_channel, other);
+  ASSERT_EQ(inbox_.traj.size(), 1u);  // no_map answered, the other vehicle's request not
+  EXPECT_EQ(inbox_.traj[0].request_id, 1);
+  const tdo::status_t s = node_->status_message();
+  EXPECT_EQ(s.rejected, 1);
+  EXPECT_EQ(s.ignored, 1);
+  EXPECT_EQ(heartbeat_reason("request.no_map"), 1);
+  EXPECT_EQ(heartbeat_reason("request.other_vehicle"), 1);
+  send(cfg_.map_channel, wall_map(1));
+  send(cfg_.request_channel, request(3));
+  expect_planned(3);
+}
+
 }  // namespace
+
+#if TDO_LCM_HAVE_OCTOMAP
+namespace {
+
+// An OctoMap-encoded map (the .bt bytes unchanged, 209 kB instead of 440 kB of run lengths at the
+// tree's resolution): rasterised by the node exactly as tools/io rasterises the file, and planned
+// on with the optimal length the maps/octomap README gives for query G2 (res 0.2 m, clearance 0.4).
+TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
+  const std::string bt = TDO_MAPS_DIR "/octomap/geb079.bt";
+  tdo::map_t m{};
+  std::string error;
+  ASSERT_TRUE(tdo_lcm::octomap_msg_from_file(bt, 0.2, 0.4, &m, &error)) << error;
+  EXPECT_EQ(m.encoding, tdo::map_t::ENCODING_OCTOMAP_BT);
+  EXPECT_EQ(m.n_runs, 0);
+  m.map_id = 79;
+
+  // Same occupancy as tools/io's reader of the file at the same resolution.
+  tdo::map_t rle{};
+  ASSERT_TRUE(tdo_lcm::octomap_to_rle(m, 1u << 22, &rle).ok());
+  tdo_io::LoadOptions opt;
+  opt.resolution = 0.2;
+  tdo_io::Map file;
+  ASSERT_TRUE(tdo_io::load_map(bt, opt, &file, &error)) << error;
+  ASSERT_EQ(file.desc.nx, m.size[0]);
+  std::vector<uint8_t> occ(static_cast<std::size_t>(m.size[0]) * m.size[1] * m.size[2], 0u);
+  for (const tdo_voxel& v : file.voxels)
+    occ[(static_cast<std::size_t>(v.k) * m.size[1] + v.j) * m.size[0] + v.i] = 1u;
+  EXPECT_EQ(rle.runs, tdo_lcm::rle_encode(occ));
+  EXPECT_EQ(tdo_lcm::octomap_to_rle(m, 1000, &rle).reason, tdo_lcm::Reason::map_capacity);
+
+  tdo_lcm::Bus bus("memq://");
+  tdo_lcm::PlannerConfig cfg;
+  cfg.max_nx = m.size[0];
+  cfg.max_ny = m.size[1];
+  cfg.max_nz = m.size[2];
+  cfg.max_nodes = 300000;
+  cfg.max_clearance_ratio = 2.0;
+  tdo_lcm::PlannerNode node(&bus, cfg);
+  ASSERT_TRUE(node.start(&error)) << error;
+  std::vector<tdo::trajectory_t> traj;
+  bus.subscribe(cfg.trajectory_channel, Inbox::into(&traj));
+  auto pump = [&]() {
+    for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  };
+  tdo::map_t broken = m;  // bytes that are no OcTree: refused, counted
+  broken.data.assign(100, uint8_t{7});
+  broken.n_bytes = 100;
+  ASSERT_TRUE(bus.publish(cfg.map_channel, broken));
+  ASSERT_TRUE(bus.publish(cfg.map_channel, m));
+  pump();
+  EXPECT_EQ(node.counters().reasons.at("map.bad_encoding"), 1);
+  ASSERT_EQ(node.map_id(), 79);
+
+  tdo::plan_request_t r = request(1);
+  r.vehicle_id = 0;
+  r.start[0] = -5.0, r.start[1] = 0.0, r.start[2] = 1.2;
+  r.goal[0] = 10.0, r.goal[1] = 0.0, r.goal[2] = 1.2;
+  r.depth = tdo::plan_request_t::DEPTH_SEARCH;
+  r.lambda_turn = 0.0;
+  r.mu = 0.0;
+  r.theta_max = 0.0;
+  r.first_meet = false;
+  ASSERT_TRUE(bus.publish(cfg.request_channel, r));
+  pump();
+  ASSERT_EQ(traj.size(), 1u);
+  EXPECT_EQ(traj[0].status, "ok") << traj[0].detail;
+  EXPECT_EQ(traj[0].map_id, 79);
+  EXPECT_NEAR(traj[0].search_cost, 15.2, 1e-3);
+}
+
+}  // namespace
+#endif

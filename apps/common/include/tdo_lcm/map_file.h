@@ -1,0 +1,57 @@
+/**
+ * @file map_file.h
+ * @brief A map file (.tdomap, MovingAI .3dmap, OctoMap .bt/.ot, read by tools/io) -> a map_t
+ *        message: the boxes of a .tdomap as boxes, the occupied voxels of the others run-length
+ *        encoded. Host code for the apps that publish maps (tdo-publish-map, the log generator).
+ */
+#ifndef TDO_LCM_MAP_FILE_H
+#define TDO_LCM_MAP_FILE_H
+
+#include <string>
+
+#include "tdo/types.h"
+#include "tdo_lcm/check.h"
+#include "tdo_lcm/types.h"
+
+namespace tdo_lcm {
+
+/** What map_msg_from_file read besides the message: the file's default query, if any. */
+struct MapFileInfo {
+  bool has_query = false; /**< the file gave both a start and a goal */
+  tdo_vec3 start{};       /**< m, world frame */
+  tdo_vec3 goal{};        /**< m, world frame */
+  std::size_t movers = 0; /**< moving spheres in the file (not in the message) */
+};
+
+/**
+ * @brief Read `path` and build a run-length map message (map_id, vehicle_id and utime left for the
+ *        caller: 0, -1, 0).
+ * @param clearance m, the clearance hint sent with the map (>= 0)
+ * @param[out] error "FILE: message" on failure (may be null)
+ * @return true on success.
+ */
+bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* out,
+                       MapFileInfo* info, std::string* error);
+
+/**
+ * @brief An OctoMap binary file (.bt) -> an ENCODING_OCTOMAP_BT message carrying the file's bytes
+ *        unchanged, on the grid tools/io gives the tree (its bounds padded by one voxel).
+ * @param resolution m, grid voxel edge; 0 = the tree's
+ * @return true on success; false with "FILE: message" (not a binary OcTree, unreadable, ...).
+ */
+bool octomap_msg_from_file(const std::string& path, double resolution, double clearance,
+                           tdo::map_t* out, std::string* error);
+
+/**
+ * @brief Rasterise an ENCODING_OCTOMAP_BT message onto its own grid (resolution, origin, size):
+ *        every occupied leaf marks every voxel its cube intersects (as tools/io does for files).
+ * @param max_voxels the receiver's capacity, checked before anything is allocated
+ * @param[out] out the same map as ENCODING_RLE (ids, grid, clearance and boxes kept, no bytes)
+ * @return ok; map_capacity; out_of_range (bad grid); bad_encoding (the bytes are not a binary
+ *         OcTree, detail: why).
+ */
+Check octomap_to_rle(const tdo::map_t& m, uint64_t max_voxels, tdo::map_t* out);
+
+}  // namespace tdo_lcm
+
+#endif  // TDO_LCM_MAP_FILE_H
