@@ -107,12 +107,11 @@ struct Query {
   tdo_voxel v[2];
   int bidir;
   double mu;
-  double h_weight;        // >= 1
-  int first_meet;         // stop at the first meeting
-  double d_th;            // deviation threshold, 0 = off
-  double pivot_cost;      // m, surcharge of a pivot
-  double pivot_turn_min;  // m, least turn cost of a pivot (0 when D_th moves in-cone steps there)
-  int constrained;        // theta_max active
+  double h_weight;    // >= 1
+  int first_meet;     // stop at the first meeting
+  double d_th;        // deviation threshold, 0 = off
+  double pivot_cost;  // m, surcharge of a pivot
+  int constrained;    // theta_max active
   uint32_t budget;
   // results
   double best;
@@ -407,6 +406,33 @@ inline void classify(const tdo_search* ctx, const Query& q, int back, const Node
   }
 }
 
+// Queue the pivots of expanded state u (search-sense steps `sharp`) behind one open-list item
+// whose f is the smallest of theirs, computed exactly as relax() and priority() will compute them
+// for the pivot states (same voxel, heading d, travel e): the item comes up when its first pivot
+// would, and most items never do.
+tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t ui, const Node& u,
+                           uint32_t sharp) {
+  Side& s = ctx->side[back];
+  if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+  const double h = octile(s, u.x, u.y, u.z, q.grid->desc.res);
+  OpenItem it;
+  it.f = HUGE_VAL;
+  for (uint32_t m = sharp; m != 0; m &= m - 1u) {
+    const int e = __builtin_ctz(m);
+    const int d = back ? dir_opposite(e) : e;
+    const double pg =
+        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
+    const double dev = deviation(ctx, s, e, u.x, u.y, u.z);
+    const double f = pg + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
+    if (f < it.f) it.f = f;
+  }
+  it.h = static_cast<float>(h);
+  it.node = ui | kPivotItem;
+  s.open[s.n_open] = it;
+  sift_up(s, s.n_open++);
+  return TDO_OK;
+}
+
 template <bool kHeaded>
 tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
@@ -440,17 +466,8 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
   // allowed at the turn cost plus the pivot surcharge; the new state then steps straight on. They
-  // are deferred behind one open-list item whose f bounds theirs from below.
-  if (kHeaded && sharp != 0) {
-    if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-    OpenItem it;
-    const double h = octile(s, u.x, u.y, u.z, g->desc.res);
-    it.f = u.g + q.pivot_cost + q.pivot_turn_min + h;
-    it.h = static_cast<float>(h);
-    it.node = ui | kPivotItem;
-    s.open[s.n_open] = it;
-    sift_up(s, s.n_open++);
-  }
+  // are deferred behind one open-list item (push_pivot_item).
+  if (kHeaded && sharp != 0) return push_pivot_item(ctx, q, back, ui, u, sharp);
   return TDO_OK;
 }
 
@@ -757,7 +774,6 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
   q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);
-  q.pivot_turn_min = q.d_th > 0.0 ? 0.0 : q.pivot_cost;
   q.budget = in->max_expansions != 0 ? in->max_expansions : ctx->cfg.max_expansions;
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
