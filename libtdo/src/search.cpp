@@ -231,6 +231,17 @@ inline double acos_fast(double c) {
   return c < 0.0 ? kPi - r : r;
 }
 
+// Deviation in [0,1] of travel direction `travel` from the target direction (vx, vy, vz) of norm
+// n > 0 (voxel units).
+inline double deviation_to(const tdo_search* ctx, int travel, double vx, double vy, double vz,
+                           double n) {
+  double c =
+      (ctx->unit[travel][0] * vx + ctx->unit[travel][1] * vy + ctx->unit[travel][2] * vz) / n;
+  if (c > 1.0) c = 1.0;
+  if (c < -1.0) c = -1.0;
+  return acos_fast(c) * (1.0 / kPi);
+}
+
 // Deviation in [0,1]: angle between the search's travel direction and the direction to its target.
 double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
                  int32_t z) {
@@ -238,11 +249,7 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
   const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
   const double n = sqrt(vx * vx + vy * vy + vz * vz);
   if (!(n > 0.0)) return 0.0;
-  double c =
-      (ctx->unit[travel][0] * vx + ctx->unit[travel][1] * vy + ctx->unit[travel][2] * vz) / n;
-  if (c > 1.0) c = 1.0;
-  if (c < -1.0) c = -1.0;
-  return acos_fast(c) * (1.0 / kPi);
+  return deviation_to(ctx, travel, vx, vy, vz, n);
 }
 
 // Least turn penalty (m) still to pay from a state whose heading deviates by dev*pi from the
@@ -417,12 +424,18 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   const double h = octile(s, u.x, u.y, u.z, q.grid->desc.res);
   OpenItem it;
   it.f = HUGE_VAL;
+  // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
+  const double vx = s.tx - u.x, vy = s.ty - u.y, vz = s.tz - u.z;
+  const double n = sqrt(vx * vx + vy * vy + vz * vz);
   for (uint32_t m = sharp; m != 0; m &= m - 1u) {
     const int e = __builtin_ctz(m);
     const int d = back ? dir_opposite(e) : e;
     const double pg =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const double dev = deviation(ctx, s, e, u.x, u.y, u.z);
+    // The deviation terms are >= 0 and h >= 0: a pivot whose g + w h already reaches the best f
+    // cannot lower it.
+    if (!(pg + q.h_weight * h < it.f)) continue;
+    const double dev = n > 0.0 ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
     const double f = pg + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
   }
