@@ -95,7 +95,9 @@ struct tdo_search {
   // combo[a][b]: direction of step a followed by step b when that is one step (kCombo* otherwise)
   uint8_t combo[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
-  double cand_theta;                          // theta_max the cand table was built for
+  // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
+  uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
+  double cand_theta;  // theta_max the cand table was built for
 };
 
 namespace tdo_internal {
@@ -427,14 +429,18 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
   const double vx = s.tx - u.x, vy = s.ty - u.y, vz = s.tz - u.z;
   const double n = sqrt(vx * vx + vy * vy + vz * vz);
-  for (uint32_t m = sharp; m != 0; m &= m - 1u) {
-    const int e = __builtin_ctz(m);
-    const int d = back ? dir_opposite(e) : e;
+  // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
+  // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
+  // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
+  for (int k = 0; k < kNumDirs; ++k) {
+    const int d = ctx->by_angle[u.heading][k];
+    const int e = back ? dir_opposite(d) : d;
+    if (((sharp >> e) & 1u) == 0) continue;
     const double pg =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    // The deviation terms are >= 0 and h >= 0: a pivot whose g + w h already reaches the best f
-    // cannot lower it.
-    if (!(pg + q.h_weight * h < it.f)) continue;
+    const double lb = pg + q.h_weight * h;
+    if (lb > it.f + 1e-9) break;
+    if (!(lb < it.f)) continue;
     const double dev = n > 0.0 ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
     const double f = pg + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
@@ -725,6 +731,25 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
         ctx->combo[a][b] = kComboFar;
       else
         ctx->combo[a][b] = static_cast<uint8_t>(dir_of_cell(cell_of(x, y, z)));
+    }
+  }
+  for (int a = 0; a < kNumDirs; ++a) {
+    double c[kNumDirs];
+    for (int b = 0; b < kNumDirs; ++b) {
+      const double na = sqrt(static_cast<double>(dir_dx(a) * dir_dx(a) + dir_dy(a) * dir_dy(a) +
+                                                 dir_dz(a) * dir_dz(a)));
+      const double nb = sqrt(static_cast<double>(dir_dx(b) * dir_dx(b) + dir_dy(b) * dir_dy(b) +
+                                                 dir_dz(b) * dir_dz(b)));
+      c[b] = (dir_dx(a) * dir_dx(b) + dir_dy(a) * dir_dy(b) + dir_dz(a) * dir_dz(b)) / (na * nb);
+      ctx->by_angle[a][b] = static_cast<uint8_t>(b);
+    }
+    // Insertion sort by decreasing cosine, stable (ties keep the smaller index first).
+    for (int i = 1; i < kNumDirs; ++i) {
+      const uint8_t v = ctx->by_angle[a][i];
+      int j = i;
+      for (; j > 0 && c[ctx->by_angle[a][j - 1]] < c[v]; --j)
+        ctx->by_angle[a][j] = ctx->by_angle[a][j - 1];
+      ctx->by_angle[a][j] = v;
     }
   }
   for (int k = 0; k < 2; ++k) {
