@@ -224,6 +224,131 @@ tdo_status multiscale(Run& r, uint32_t* m_io, double turn_threshold, uint32_t* c
   return TDO_OK;
 }
 
+// Optional shortening after the scales (input `shorten`), in rounds of three sweeps:
+// - partial shortcuts, forward and then backward (on the reversed polyline): from waypoint i, for
+//   the farthest segment [w_j, w_j+1] (j = i+1 .. i+kShortReach) first, a point p = w_j +
+//   t (w_j+1 - w_j) with t in kShortT (largest first) whose chord w_i -> p is clear replaces
+//   w_i+1 .. w_j. p -> w_j+1 is part of a verified segment, so every segment stays verified; the
+//   polyline gets shorter (triangle inequality) and loses j - i - 1 waypoints;
+// - relocation: an interior point moves a fraction s in kRelocS of the way to the nearest point
+//   of the chord between its neighbours when both new segments are clear (the sum of the two
+//   distances is convex in the point, so it never grows).
+// It stops early (keeping the valid polyline it has) when the check budget is spent. Finally every
+// interior point whose chord between its neighbours is clear is dropped, so the safety-critical
+// count stays exact.
+constexpr uint32_t kShortReach = 6u;   // segments ahead tried per start point
+constexpr uint32_t kShortRounds = 3u;  // forward + backward rounds at most
+constexpr double kShortT[6] = {0.9375, 0.875, 0.75, 0.5, 0.25, 0.125};
+constexpr double kRelocS[3] = {0.5, 0.25, 0.125};
+
+void reverse_pts(tdo_correct* ctx, uint32_t m) {
+  for (uint32_t a = 0, b = m - 1u; a < b; ++a, --b) {
+    const tdo_vec3 t = ctx->pts[a];
+    ctx->pts[a] = ctx->pts[b];
+    ctx->pts[b] = t;
+    const uint32_t o = ctx->orig[a];
+    ctx->orig[a] = ctx->orig[b];
+    ctx->orig[b] = o;
+  }
+}
+
+// One forward sweep; returns false when the budget ran out.
+bool shortcut_sweep(Run& r, uint32_t* m_io) {
+  tdo_correct* ctx = r.ctx;
+  uint32_t m = *m_io;
+  bool ok_budget = true;
+  // Bounded: i grows every iteration.
+  for (uint32_t i = 0; i + 2u < m && ok_budget; ++i) {
+    const uint32_t j_max = i + kShortReach < m - 2u ? i + kShortReach : m - 2u;
+    bool done = false;
+    for (uint32_t j = j_max; j > i && !done && ok_budget; --j) {
+      const tdo_vec3 a = ctx->pts[j], b = ctx->pts[j + 1u];
+      for (double t : kShortT) {
+        const tdo_vec3 p{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+        const int ok = check(r, ctx->pts[i], p);
+        if (ok < 0) {
+          ok_budget = false;
+          break;
+        }
+        if (ok == 1) {
+          // w_i+1 .. w_j become the single point p (at index i+1).
+          ctx->pts[i + 1u] = p;
+          ctx->orig[i + 1u] = kNone;
+          m = remove_between(ctx, m, i + 1u, j + 1u);
+          done = true;
+          break;
+        }
+      }
+    }
+  }
+  *m_io = m;
+  return ok_budget;
+}
+
+// One relocation sweep; returns false when the budget ran out.
+bool relocate_sweep(Run& r, uint32_t m) {
+  tdo_vec3* p = r.ctx->pts;
+  for (uint32_t k = 1; k + 1u < m; ++k) {
+    const tdo_vec3 a = p[k - 1u], b = p[k], c = p[k + 1u];
+    const tdo_vec3 d = sub(c, a), w = sub(b, a);
+    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+    if (!(dd > 0.0)) continue;
+    double t = (w.x * d.x + w.y * d.y + w.z * d.z) / dd;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    const tdo_vec3 foot{a.x + t * d.x, a.y + t * d.y, a.z + t * d.z};
+    for (double sf : kRelocS) {
+      const tdo_vec3 q{b.x + sf * (foot.x - b.x), b.y + sf * (foot.y - b.y),
+                       b.z + sf * (foot.z - b.z)};
+      const int ok1 = check(r, a, q);
+      if (ok1 < 0) return false;
+      if (ok1 == 0) continue;
+      const int ok2 = check(r, q, c);
+      if (ok2 < 0) return false;
+      if (ok2 == 1) {
+        p[k] = q;
+        r.ctx->orig[k] = kNone;
+        break;
+      }
+    }
+  }
+  return true;
+}
+
+void shorten(Run& r, uint32_t* m_io, uint32_t* critical) {
+  tdo_correct* ctx = r.ctx;
+  uint32_t m = *m_io;
+  // Bounded: kShortRounds rounds of a forward and a backward sweep, fewer when a round changes
+  // nothing or the budget runs out.
+  bool budget_left = true;
+  for (uint32_t round = 0; round < kShortRounds && budget_left && m >= 3u; ++round) {
+    uint32_t removed = m;
+    budget_left = shortcut_sweep(r, &m);
+    if (budget_left && m >= 3u) {
+      reverse_pts(ctx, m);
+      budget_left = shortcut_sweep(r, &m);
+      reverse_pts(ctx, m);
+    }
+    if (budget_left) budget_left = relocate_sweep(r, m);
+    removed -= m;
+    if (removed == 0u && round > 0u) break;
+  }
+  // Drop points whose neighbours see each other; count the others.
+  uint32_t crit = 0;
+  uint32_t k = 1;
+  // Bounded: each iteration removes a point or advances k.
+  while (k + 1u < m) {
+    const int ok = check(r, ctx->pts[k - 1u], ctx->pts[k + 1u]);
+    if (ok == 1) {
+      m = remove_between(ctx, m, k - 1u, k + 1u);
+      continue;
+    }
+    if (ok == 0) ++crit;  // not counted when the budget ran out (removal not checked)
+    ++k;
+  }
+  *critical = crit;
+  *m_io = m;
+}
+
 }  // namespace
 
 extern "C" size_t tdo_correct_footprint(const tdo_correct_config* cfg) {
@@ -292,9 +417,10 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
     st = drop_collinear(r, n, &m);
   }
   // 3. The variant.
-  if (st == TDO_OK && in->mode == TDO_CORRECT_MULTISCALE)
+  if (st == TDO_OK && in->mode == TDO_CORRECT_MULTISCALE) {
     st = multiscale(r, &m, in->turn_threshold, &critical);
-  else if (st == TDO_OK && in->mode == TDO_CORRECT_GREEDY_LOS)
+    if (st == TDO_OK && in->shorten) shorten(r, &m, &critical);
+  } else if (st == TDO_OK && in->mode == TDO_CORRECT_GREEDY_LOS)
     st = greedy(r, &m, &critical);
   out->checks = r.checks;
   if (st != TDO_OK) return st;

@@ -143,6 +143,7 @@ extern "C" void tdo_plan_params_default(tdo_plan_params* p) {
   p->first_meet = 1;
   p->max_expansions = 0;
   p->correction = TDO_CORRECT_MULTISCALE;
+  p->shorten = 1;
   p->turn_threshold = 10.0 * kPi / 180.0;
   p->smoothing = TDO_SMOOTHING_G2;
   p->k = 1.0;
@@ -202,6 +203,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   ci.mode = p.correction;
   ci.clearance = clearance;
   ci.turn_threshold = p.turn_threshold;
+  ci.shorten = p.shorten;
   tdo_correct_output co;
   out->status = tdo_correct_run(pl->correct, &ci, &co);
   if (out->status != TDO_OK) return out->status;

@@ -391,4 +391,76 @@ TEST(Correct, GivenTheSameInput_WhenRunTwice_ThenOutputsAreBitIdentical) {
   }
 }
 
+double polyline_length(const tdo_vec3* p, uint32_t n) {
+  double s = 0.0;
+  for (uint32_t i = 1; i < n; ++i)
+    s += std::sqrt((p[i].x - p[i - 1].x) * (p[i].x - p[i - 1].x) +
+                   (p[i].y - p[i - 1].y) * (p[i].y - p[i - 1].y) +
+                   (p[i].z - p[i - 1].z) * (p[i].z - p[i - 1].z));
+  return s;
+}
+
+// The optional shortening after the scales (input `shorten`): on random maps every segment keeps
+// clearance (checked here), the ends stay, and it never adds a waypoint nor lengthens the polyline.
+TEST(
+    Correct,
+    GivenRandomMaps_WhenMultiscaleShortens_ThenSegmentsKeepClearanceAndPathIsNoLongerWithNoMorePoints) {
+  TestPlanner pl(tdo_test::make_cap(24 * 24 * 10, 24 * 24 * 10, 2000, 64, 20000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Corrector plain(2000, 200000), shortened(2000, 200000);
+  ASSERT_EQ(plain.status(), TDO_OK);
+  ASSERT_EQ(shortened.status(), TDO_OK);
+  Rng rng(11);
+  const double clearance = 0.5;
+  int compared = 0, shorter = 0;
+  for (int map = 0; map < 80; ++map) {
+    Map mp;
+    mp.m = VoxelMap(24, 24, 10, 0.5, v3(0.0, 0.0, 0.0));
+    const int n_boxes = rng.range(10, 40);
+    for (int b = 0; b < n_boxes; ++b) {
+      const double x = rng.uniform(0, 12), y = rng.uniform(0, 12);
+      const double wx = rng.uniform(0.3, 2.0), wy = rng.uniform(0.3, 2.0),
+                   h = rng.uniform(1.0, 6.0);
+      mp.boxes.push_back(tdo_box{v3(x, y, -0.5), v3(x + wx, y + wy, h)});
+    }
+    ASSERT_EQ(load_boxes(pl.grid(), mp, clearance), TDO_OK);
+    const tdo_voxel s{rng.range(0, 5), rng.range(0, 5), rng.range(0, 9)};
+    const tdo_voxel g{rng.range(18, 23), rng.range(18, 23), rng.range(0, 9)};
+    if (tdo_grid_is_blocked(pl.grid(), s) || tdo_grid_is_blocked(pl.grid(), g)) continue;
+    std::vector<tdo_vec3> pts;
+    if (!grid_path(pl, tdo_grid_voxel_center(pl.grid(), s), tdo_grid_voxel_center(pl.grid(), g),
+                   &pts))
+      continue;
+    tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, clearance);
+    tdo_correct_output a{}, b{};
+    if (tdo_correct_run(plain.ctx(), &in, &a) != TDO_OK) continue;  // grazing grid path
+    in.shorten = 1;
+    ASSERT_EQ(tdo_correct_run(shortened.ctx(), &in, &b), TDO_OK) << "map " << map;
+    ++compared;
+    ASSERT_GE(b.n_waypoints, 2u);
+    EXPECT_TRUE(same(b.waypoints[0], pts.front())) << "map " << map;
+    EXPECT_TRUE(same(b.waypoints[b.n_waypoints - 1], pts.back())) << "map " << map;
+    for (uint32_t i = 1; i < b.n_waypoints; ++i)
+      ASSERT_TRUE(mp.segment_ok(b.waypoints[i - 1], b.waypoints[i], clearance))
+          << "map " << map << " segment " << i;
+    EXPECT_LE(b.n_waypoints, a.n_waypoints) << "map " << map;
+    const double la = polyline_length(a.waypoints, a.n_waypoints);
+    const double lb = polyline_length(b.waypoints, b.n_waypoints);
+    EXPECT_LE(lb, la + 1e-9) << "map " << map;
+    if (lb < la - 1e-6) ++shorter;
+    // Ample budget: every interior point's removal was checked and fails.
+    EXPECT_EQ(b.n_safety_critical, b.n_waypoints - 2u) << "map " << map;
+    for (uint32_t i = 1; i + 1 < b.n_waypoints; ++i)
+      EXPECT_FALSE(mp.segment_ok(b.waypoints[i - 1], b.waypoints[i + 1], clearance + 1e-6))
+          << "map " << map << " point " << i << " could be dropped";
+    // Deterministic.
+    tdo_correct_output c{};
+    ASSERT_EQ(tdo_correct_run(shortened.ctx(), &in, &c), TDO_OK);
+    ASSERT_EQ(c.n_waypoints, b.n_waypoints);
+    EXPECT_EQ(std::memcmp(c.waypoints, b.waypoints, b.n_waypoints * sizeof(tdo_vec3)), 0);
+  }
+  EXPECT_GE(compared, 30);
+  EXPECT_GE(shorter, 1) << "the pass never shortened anything";
+}
+
 }  // namespace

@@ -6,7 +6,9 @@
 // For each map (default map1..map5): median and mean wall time of tdo_planner_plan with the default
 // parameters (stages 1-3, 5 and the metrics), expansions, the arena footprint, and the quality
 // columns of tdo (turns and length of the final path) against raw A* (turns and length of its grid
-// path). Exit status 2 on bad arguments or unreadable maps, 1 when a plan fails.
+// path), then one "met" / "NOT met" line per goal of issue 3 (time: Map1-3 <= 1 ms, Map4-5 <= 5 ms
+// median; quality: turns <= 10 % of A*'s, length <= A*'s). Exit status 2 on bad arguments or
+// unreadable maps, 1 when a plan fails.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +25,7 @@ namespace {
 struct Stats {
   double median_ms = 0.0;
   double mean_ms = 0.0;
+  double min_ms = 0.0;
 };
 
 Stats stats(std::vector<double> v) {
@@ -30,6 +33,7 @@ Stats stats(std::vector<double> v) {
   if (v.empty()) return s;
   std::sort(v.begin(), v.end());
   s.median_ms = v[v.size() / 2];
+  s.min_ms = v.front();
   double sum = 0.0;
   for (double x : v) sum += x;
   s.mean_ms = sum / static_cast<double>(v.size());
@@ -153,11 +157,12 @@ int main(int argc, char** argv) {
   std::printf("repeat %d per planner and map; clearance 0.5 m; tdo = default parameters\n\n",
               repeat);
   std::printf(
-      "| map | tdo median ms | tdo mean ms | tdo expansions | astar median ms | "
-      "astar expansions | arena bytes | feasible |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
+      "| map | tdo median ms | tdo mean ms | tdo min ms | tdo expansions | astar median ms | "
+      "astar expansions | arena bytes | feasible "
+      "|\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const Row& r : rows)
-    std::printf("| %s | %.3f | %.3f | %u | %.3f | %u | %zu | %s |\n", r.map.c_str(),
-                r.tdo.median_ms, r.tdo.mean_ms, r.tdo_expansions, r.astar.median_ms,
+    std::printf("| %s | %.3f | %.3f | %.3f | %u | %.3f | %u | %zu | %s |\n", r.map.c_str(),
+                r.tdo.median_ms, r.tdo.mean_ms, r.tdo.min_ms, r.tdo_expansions, r.astar.median_ms,
                 r.astar_expansions, r.arena, r.feasible ? "yes" : "no");
   std::printf(
       "\n| map | tdo turns | astar turns | turns ratio | tdo length m | astar length m | "
@@ -167,6 +172,23 @@ int main(int argc, char** argv) {
                 r.astar_turns,
                 r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0,
                 r.tdo_length, r.astar_length, r.tdo_length / r.astar_length);
+  // The goals of issue 3 (docs/performance.md), one line each.
+  std::printf("\n");
+  for (const Row& r : rows) {
+    double limit = 0.0;
+    if (r.map == "map1" || r.map == "map2" || r.map == "map3") limit = 1.0;
+    if (r.map == "map4" || r.map == "map5") limit = 5.0;
+    if (limit > 0.0)
+      std::printf("goal %s: median plan time %.3f ms <= %.0f ms: %s\n", r.map.c_str(),
+                  r.tdo.median_ms, limit, r.tdo.median_ms <= limit ? "met" : "NOT met");
+    const double turns_ratio =
+        r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0;
+    std::printf("goal %s: tdo turns %u <= 10%% of astar turns %u (ratio %.3f): %s\n", r.map.c_str(),
+                r.tdo_turns, r.astar_turns, turns_ratio,
+                10u * r.tdo_turns <= r.astar_turns ? "met" : "NOT met");
+    std::printf("goal %s: tdo length %.3f m <= astar length %.3f m: %s\n", r.map.c_str(),
+                r.tdo_length, r.astar_length, r.tdo_length <= r.astar_length ? "met" : "NOT met");
+  }
   std::printf("\nmaps: %zu\n", rows.size());
   return 0;
 }

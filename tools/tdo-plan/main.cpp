@@ -51,6 +51,7 @@ struct Options {
   double dt = 0.01;        /**< s, trajectory sample period */
   std::string smoothing = "g2";
   std::string correction = "multiscale";
+  std::string shorten = "on";
   double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
   double d_th = 0.0;               /**< deviation threshold, 0 = off */
@@ -290,6 +291,7 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["d_th"] = o.d_th;
   p["stop"] = o.stop;
   p["correction"] = o.correction;
+  p["shorten"] = o.shorten;
   p["a_lat_max"] = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
   p["v_cruise"] = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
   p["stop_angle_deg"] = o.stop_angle;
@@ -322,6 +324,7 @@ tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   pp.correction = o.correction == "greedy" ? TDO_CORRECT_GREEDY_LOS
                   : o.correction == "none" ? TDO_CORRECT_NONE
                                            : TDO_CORRECT_MULTISCALE;
+  pp.shorten = o.shorten == "on" ? 1 : 0;
   pp.smoothing = o.smoothing == "arc"    ? TDO_SMOOTHING_ARC
                  : o.smoothing == "none" ? TDO_SMOOTHING_NONE
                                          : TDO_SMOOTHING_G2;
@@ -584,6 +587,11 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--correction", o.correction, "multiscale | greedy | none (msf-mtpo: greedy)")
       ->check(CLI::IsMember({"multiscale", "greedy", "none"}));
+  app.add_option(
+         "--shorten", o.shorten,
+         "on | off: partial shortcuts after the multiscale correction (docs/performance.md)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   app.add_option("--smoothing", o.smoothing, "g2 | arc | none (msf-mtpo: arc)")
       ->check(CLI::IsMember({"g2", "arc", "none"}));
   app.add_option("--k", o.k, "corner radius scale")->capture_default_str();

@@ -33,6 +33,8 @@ static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, 
 // plan_request_t carries every field of tdo_plan_params. When this fails, the library's parameters
 // changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
 // plan_request_to_msg and to the tests, then update the size here.
+// (tdo_plan_params.shorten fits in padding and is not carried: plan_request_from_msg sets it to
+// the default 1.)
 static_assert(sizeof(tdo_plan_params) == 144, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
@@ -383,6 +385,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   p.first_meet = m.first_meet ? 1 : 0;
   p.max_expansions = static_cast<uint32_t>(m.max_expansions);
   p.correction = static_cast<tdo_correct_mode>(m.correction);
+  p.shorten = 1;  // not carried by plan_request_t (yet): the library's default
   p.turn_threshold = m.turn_threshold;
   p.smoothing = static_cast<tdo_smoothing>(m.smoothing);
   p.k = m.k;

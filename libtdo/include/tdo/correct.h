@@ -55,6 +55,10 @@ typedef struct tdo_correct_input {
   double clearance;       /**< m, every output segment keeps it */
   double turn_threshold;  /**< rad, finite, >= 0; windows whose interior turns are all below it
                                are tried first at each scale (sweep A) */
+  int shorten;            /**< MULTISCALE only: 1 = after the scales, partial shortcuts (a
+                               waypoint run is replaced by one point on a later segment whose
+                               chord is verified at clearance); fewer or equal waypoints, shorter
+                               polyline. 0 = off (the paper's correction alone) */
 } tdo_correct_input;
 
 /** Output polyline P2; storage in the context, valid until the next run. */

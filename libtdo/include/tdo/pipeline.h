@@ -42,6 +42,8 @@ typedef struct tdo_plan_params {
   int first_meet;              /**< bidirectional: stop at the first meeting (paper, default 1) */
   uint32_t max_expansions;     /**< search budget; 0 = the configured default */
   tdo_correct_mode correction; /**< multi-scale (default), greedy line of sight, none */
+  int shorten; /**< multi-scale: 1 = partial shortcuts after the scales (default, see correct.h
+                    and docs/performance.md); 0 = the paper's correction alone */
   double turn_threshold;   /**< rad, "straight" turns for the correction windows (default 10 deg) */
   tdo_smoothing smoothing; /**< g2 (default), arc, none */
   double k;                /**< radius scale (default 1) */
