@@ -342,24 +342,43 @@ struct Limits {
   double v_max, a_max, j_max, dt;
 };
 
-/** Checks 1-4 on one successful plan. */
+/** Pieces the checker saw, by kind, and the junctions it checked. */
+struct Seen {
+  long lines = 0, beziers = 0, arcs = 0, junctions = 0, samples = 0;
+};
+
+/**
+ * Checks 1-4 on one successful plan. `trajectory`: the plan reached stage 5 (else only the
+ * geometric path is checked: ends, clearance, junctions). Tangents are continuous at every
+ * junction but a stop point in g2 and arc mode; curvature vectors only in g2 mode.
+ */
 ::testing::AssertionResult check_plan(const World& world, double clearance, const tdo_vec3& start,
                                       const tdo_vec3& goal, const tdo_plan_result& r,
-                                      const Limits& lim, bool g2) {
+                                      const Limits& lim, tdo_smoothing mode, bool trajectory,
+                                      Seen* seen) {
   auto fail = [](const std::string& what) { return ::testing::AssertionFailure() << what; };
+  const bool g2 = mode == TDO_SMOOTHING_G2;
   const tdo_path& path = r.path;
   if (path.n == 0 || path.seg == nullptr) return fail("empty path");
-  if (r.n_samples < 2 || r.samples == nullptr) return fail("fewer than 2 samples");
+  if (!trajectory && r.n_samples != 0) return fail("samples without the trajectory stage");
+  if (trajectory && (r.n_samples < 2 || r.samples == nullptr)) return fail("fewer than 2 samples");
+  for (uint32_t i = 0; i < path.n; ++i) {
+    seen->lines += path.seg[i].kind == TDO_SEGMENT_LINE;
+    seen->beziers += path.seg[i].kind == TDO_SEGMENT_BEZIER;
+    seen->arcs += path.seg[i].kind == TDO_SEGMENT_ARC;
+  }
+  seen->junctions += path.n - 1;
+  seen->samples += r.n_samples;
   // 1. ends, bit-exact.
   if (!same(path.seg[0].p[0], start))
     return fail("path starts at " + str(vec(path.seg[0].p[0])) + ", not the start");
   const tdo_path_segment& last = path.seg[path.n - 1];
   const tdo_vec3 end = last.kind == TDO_SEGMENT_BEZIER ? last.p[3] : last.p[1];
   if (!same(end, goal)) return fail("path ends at " + str(vec(end)) + ", not the goal");
-  if (!same(r.samples[0].p, start))
+  if (trajectory && !same(r.samples[0].p, start))
     return fail("trajectory starts at " + str(vec(r.samples[0].p)) + ", not the start " +
                 str(vec(start)));
-  if (!same(r.samples[r.n_samples - 1].p, goal))
+  if (trajectory && !same(r.samples[r.n_samples - 1].p, goal))
     return fail("trajectory ends at " + str(vec(r.samples[r.n_samples - 1].p)) + ", not the goal " +
                 str(vec(goal)));
 
@@ -432,7 +451,7 @@ struct Limits {
     }
   }
 
-  // 4. junctions: positions always; tangents and curvature vectors in g2 mode.
+  // 4. junctions: positions always; tangents (not at stop points) and curvature vectors (g2).
   for (uint32_t i = 0; i + 1 < path.n; ++i) {
     const tdo_path_segment& s0 = path.seg[i];
     const tdo_path_segment& s1 = path.seg[i + 1];
@@ -440,14 +459,15 @@ struct Limits {
     if (gap > kJoinTol)
       return fail("gap of " + std::to_string(gap) + " m between segments " + std::to_string(i) +
                   " and " + std::to_string(i + 1));
-    if (!g2) continue;
-    if (s0.kind == TDO_SEGMENT_ARC || s1.kind == TDO_SEGMENT_ARC)
+    if (mode == TDO_SMOOTHING_NONE) continue;
+    if (g2 && (s0.kind == TDO_SEGMENT_ARC || s1.kind == TDO_SEGMENT_ARC))
       return fail("an arc in g2 mode at junction " + std::to_string(i));
     const EndGeometry e0 = end_geometry(s0, true);
     const EndGeometry e1 = end_geometry(s1, false);
     if (!s0.stop_at_end && norm(e0.t - e1.t) > kTangentTol)
       return fail("tangent kink of " + std::to_string(norm(e0.t - e1.t)) + " at junction " +
                   std::to_string(i) + " (no stop point)");
+    if (!g2) continue;
     const double jump = norm(e0.kn - e1.kn);
     const double scale = std::max(norm(e0.kn), norm(e1.kn));
     if (jump > kCurvTol * (1.0 + scale))
@@ -498,6 +518,7 @@ struct Tally {
   int queries = 0;
   int astar_ok = 0;
   int tdo_ok = 0;
+  Seen seen;
 };
 
 /**
@@ -532,8 +553,8 @@ tdo_status run_case(const std::string& label, const World& world, Planner& pl, d
   if (st != TDO_OK) return st;
   ++tally->tdo_ok;
   const Limits lim{params.v_max, params.a_max, params.j_max, params.dt};
-  EXPECT_TRUE(
-      check_plan(world, clearance, start, goal, res, lim, params.smoothing == TDO_SMOOTHING_G2));
+  EXPECT_TRUE(check_plan(world, clearance, start, goal, res, lim, params.smoothing,
+                         params.depth == TDO_PLAN_TRAJECTORY, &tally->seen));
   return st;
 }
 
@@ -639,15 +660,26 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
     run_case(label + " (own query)", world, pl, clearance, map.start, map.goal, params, &tally);
     run_case(label + " (random query)", world, pl, clearance, random_point(rng, map.desc),
              random_point(rng, map.desc), params, &tally);
+    // The paper's arcs (the ablation), geometric path only: clearance, ends, tangents.
+    tdo_plan_params arcs = params;
+    arcs.smoothing = TDO_SMOOTHING_ARC;
+    arcs.depth = TDO_PLAN_SMOOTH;
+    run_case(label + " (own query, arcs)", world, pl, clearance, map.start, map.goal, arcs, &tally);
     if (HasFailure()) {
       ADD_FAILURE() << label << " failed; its map:\n" << gen.text;
       break;
     }
   }
-  std::printf("random maps: %d generated; %d queries, A* ok %d, tdo ok %d\n", generated,
-              tally.queries, tally.astar_ok, tally.tdo_ok);
+  const Seen& seen = tally.seen;
+  std::printf(
+      "random maps: %d generated; %d queries, A* ok %d, tdo ok %d; checked %ld lines, "
+      "%ld Beziers, %ld arcs, %ld junctions, %ld samples\n",
+      generated, tally.queries, tally.astar_ok, tally.tdo_ok, seen.lines, seen.beziers, seen.arcs,
+      seen.junctions, seen.samples);
+  EXPECT_GT(seen.beziers, 500);  // the checker had curves to judge
+  EXPECT_GT(seen.arcs, 200);
   EXPECT_EQ(generated, kRandomMaps);
-  EXPECT_GE(tally.tdo_ok, generated);  // every own query is solvable (generate checked it)
+  EXPECT_GE(tally.tdo_ok, 2 * generated);  // every own query is solvable (generate checked it)
 }
 
 // The paper's maps at the default clearance 0.5 m: the map's query and 4 random ones each.
