@@ -275,7 +275,7 @@ tdo_plan_request pipeline_request(tdo_test::Rng& rng, const tdo_grid* grid, int 
       if (q % 3 == 1) p.lambda = __builtin_nan("");
       if (q % 3 == 2) p.dt = 0.0;
       break;
-    case 15:  // limits no corner can meet: the refinement gives up with a named status
+    case 15:  // very low dynamic limits: long, slow trajectories and many refinements
       p.j_max = 0.02;
       p.a_max = 0.05;
       p.a_lat_max = 0.05;
