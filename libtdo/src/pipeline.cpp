@@ -6,11 +6,22 @@
 
 #include "grid_internal.h"
 #include "planner_internal.h"
+#include "tdo/collision.h"
 
 namespace tdo_internal {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// m: the geometric stages verify at clearance - kClearanceTol, the allowance the feasibility report
+// gives the clearance too (trajectory.h). Without it a grid path running exactly at the clearance
+// (voxel centres next to cube faces, e.g. 0.3 m at 0.2 m voxels) fails the correction's check of
+// its own input by a rounding error of ~1e-16 m, and the plan ends as TDO_ERR_NO_PATH although the
+// search found a path.
+constexpr double kClearanceTol = 1e-9;
+
+double verify_clearance(double clearance) {
+  return clearance > kClearanceTol ? clearance - kClearanceTol : clearance;
+}
 
 bool positive(double v) { return isfinite(v) && v > 0.0; }
 bool non_negative(double v) { return isfinite(v) && v >= 0.0; }
@@ -34,19 +45,51 @@ tdo_status check_params(const tdo_plan_params& p) {
   return TDO_OK;
 }
 
-// Voxel centres of the search path, with the exact start and goal at the ends.
-void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_output& s) {
+// Voxel centres of the search path, with the exact start and goal at the ends. An end point
+// replaces its voxel's centre only when the segment from it to the next centre keeps the
+// clearance; otherwise the centre stays too (start -> c0 -> c1 ...), as a segment from a point of
+// a free voxel to that voxel's centre does (the voxel's centre and the point keep the clearance).
+// Without this, a start off its voxel's centre could cut past an obstacle corner to the next
+// centre and the correction stage would reject the whole path (TDO_ERR_NO_PATH) although the
+// search found one.
+void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_output& s,
+                double clearance) {
+  clearance = verify_clearance(clearance);
   tdo_vec3* w = pl->grid_path;
-  for (uint32_t i = 0; i < s.n_path; ++i) w[i] = tdo_grid_voxel_center(pl->grid, s.path[i]);
-  if (s.n_path == 1) {  // start and goal share a voxel: the straight segment between them
-    w[0] = req.start;
-    w[1] = req.goal;
-    pl->n_grid_path = 2;
+  const uint32_t n = s.n_path;
+  uint32_t m = 0;
+  w[m++] = req.start;
+  if (n == 1) {  // start and goal share a voxel
+    if (tdo_collision_segment_clear(pl->grid, req.start, req.goal, clearance) == 0)
+      w[m++] = tdo_grid_voxel_center(pl->grid, s.path[0]);
+    w[m++] = req.goal;
+    pl->n_grid_path = m;
     return;
   }
-  w[0] = req.start;
-  w[s.n_path - 1] = req.goal;
-  pl->n_grid_path = s.n_path;
+  const tdo_vec3 c1 = tdo_grid_voxel_center(pl->grid, s.path[1]);
+  if (tdo_collision_segment_clear(pl->grid, req.start, c1, clearance) == 0)
+    w[m++] = tdo_grid_voxel_center(pl->grid, s.path[0]);
+  for (uint32_t i = 1; i + 1 < n; ++i) w[m++] = tdo_grid_voxel_center(pl->grid, s.path[i]);
+  const tdo_vec3 cl = tdo_grid_voxel_center(pl->grid, s.path[n - 2]);
+  if (tdo_collision_segment_clear(pl->grid, cl, req.goal, clearance) == 0)
+    w[m++] = tdo_grid_voxel_center(pl->grid, s.path[n - 1]);
+  w[m++] = req.goal;
+  pl->n_grid_path = m;
+}
+
+// pipeline.md s.0: every point of the output keeps the clearance, the exact start and goal
+// included. The search checks their voxels (the centre rule); this checks the points themselves,
+// at every depth, so the raw searches and the full pipeline agree on what is plannable.
+tdo_status check_end_points(const tdo_grid* grid, const tdo_plan_request& req, double clearance) {
+  if (!(clearance > kClearanceTol)) return TDO_OK;
+  tdo_voxel v;
+  if (tdo_grid_world_to_voxel(grid, req.start, &v) && !tdo_grid_is_blocked(grid, v) &&
+      tdo_collision_point_distance(grid, req.start, clearance) < verify_clearance(clearance))
+    return TDO_ERR_START_BLOCKED;
+  if (tdo_grid_world_to_voxel(grid, req.goal, &v) && !tdo_grid_is_blocked(grid, v) &&
+      tdo_collision_point_distance(grid, req.goal, clearance) < verify_clearance(clearance))
+    return TDO_ERR_GOAL_BLOCKED;
+  return TDO_OK;
 }
 
 void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path,
@@ -79,10 +122,10 @@ bool has_trajectory(const tdo_capacity& c) {
 }
 
 tdo_correct_config correct_cfg(const tdo_capacity& c) {
-  return tdo_correct_config{c.max_path + 1u, c.max_checks};
+  return tdo_correct_config{c.max_path + 2u, c.max_checks};
 }
 tdo_smooth_config smooth_cfg(const tdo_capacity& c) {
-  return tdo_smooth_config{c.max_path + 1u, 3u * c.max_path + 7u, c.max_shrinks};
+  return tdo_smooth_config{c.max_path + 2u, 3u * c.max_path + 7u, c.max_shrinks};
 }
 tdo_traj_config traj_cfg(const tdo_capacity& c) {
   return tdo_traj_config{c.max_samples, 3u * c.max_path + 7u, c.max_profile, c.max_violations,
@@ -91,7 +134,7 @@ tdo_traj_config traj_cfg(const tdo_capacity& c) {
 
 size_t pipeline_footprint(const tdo_planner_config* cfg) {
   const tdo_capacity& c = cfg->cap;
-  size_t bytes = tdo_arena_round(static_cast<size_t>(c.max_path + 1u) * sizeof(tdo_vec3));
+  size_t bytes = tdo_arena_round(static_cast<size_t>(c.max_path + 2u) * sizeof(tdo_vec3));
   if (has_geometry(c)) {
     const tdo_correct_config cc = correct_cfg(c);
     const tdo_smooth_config sc = smooth_cfg(c);
@@ -107,7 +150,7 @@ size_t pipeline_footprint(const tdo_planner_config* cfg) {
 tdo_status pipeline_init(tdo_planner* pl, tdo_arena* arena) {
   const tdo_capacity& c = pl->cfg.cap;
   pl->grid_path =
-      static_cast<tdo_vec3*>(tdo_arena_alloc(arena, (c.max_path + 1u) * sizeof(tdo_vec3)));
+      static_cast<tdo_vec3*>(tdo_arena_alloc(arena, (c.max_path + 2u) * sizeof(tdo_vec3)));
   if (pl->grid_path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   pl->correct = nullptr;
   pl->smooth = nullptr;
@@ -184,8 +227,9 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.first_meet = p.first_meet;
   si.max_expansions = p.max_expansions;
   out->status = tdo_search_run(pl->search, &si, &out->search);
+  if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);
   if (out->status != TDO_OK) return out->status;
-  world_path(pl, *req, out->search);
+  world_path(pl, *req, out->search, clearance);
   out->grid_path = pl->grid_path;
   out->n_grid_path = pl->n_grid_path;
   out->reached = TDO_PLAN_SEARCH;
@@ -201,7 +245,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   ci.points = out->grid_path;
   ci.n_points = out->n_grid_path;
   ci.mode = p.correction;
-  ci.clearance = clearance;
+  ci.clearance = verify_clearance(clearance);
   ci.turn_threshold = p.turn_threshold;
   ci.shorten = p.shorten;
   tdo_correct_output co;
@@ -225,7 +269,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   mi.waypoints = out->waypoints;
   mi.n_waypoints = out->n_waypoints;
   mi.mode = p.smoothing;
-  mi.clearance = clearance;
+  mi.clearance = verify_clearance(clearance);
   mi.k = p.k;
   mi.v_cruise = p.v_cruise;
   mi.v_max = p.v_max;

@@ -20,7 +20,7 @@ struct tdo_planner {
   tdo_correct* correct;
   tdo_smooth* smooth;
   tdo_traj* traj;
-  tdo_vec3* grid_path;  // max_path + 1 world points of the last plan
+  tdo_vec3* grid_path;  // max_path + 2 world points of the last plan
   uint32_t n_grid_path;
 };
 

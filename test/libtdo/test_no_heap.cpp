@@ -2,8 +2,12 @@
 //
 // This executable replaces every allocation entry point (malloc family and all forms of operator
 // new/delete). While `armed` is set, any call is counted and aborts with a message on stderr. The
-// planner lives in a static buffer; the map is loaded and 1,000 queries (A* and bidirectional,
-// succeeding and failing) run with the trap armed. No GoogleTest here: gtest allocates.
+// planner lives in a static buffer; the map is loaded and 1,000 search queries (A* and
+// bidirectional, succeeding and failing) run with the trap armed; then the whole pipeline
+// (tdo_planner_plan: search, correction, smoothing, trajectory, metrics) runs 1,200 times on three
+// maps loaded while armed, at every depth, with every search kind, correction and smoothing mode,
+// succeeding and failing (bad parameters, unreachable goal, tiny budget, infeasible limits).
+// No GoogleTest here: gtest allocates.
 //
 // Under AddressSanitizer (or another sanitizer that owns malloc) the interposition is skipped and
 // only the queries run; the un-sanitized build is the proof.
@@ -188,9 +192,11 @@ constexpr uint32_t kVoxels = static_cast<uint32_t>(kNx * kNy * kNz);
 constexpr double kRes = 1.0;
 constexpr double kClearance = 0.6;
 constexpr int kQueries = 1000;
+constexpr int kPipelineMaps = 3;
+constexpr int kPlansPerMap = 400;
 
 // The whole planner memory: static, no vector, no heap.
-alignas(64) unsigned char g_arena[16u << 20];
+alignas(64) unsigned char g_arena[48u << 20];
 
 tdo_vec3 random_point(tdo_test::Rng& rng) {
   return tdo_vec3{rng.uniform(0.0, kNx * kRes), rng.uniform(0.0, kNy * kRes),
@@ -239,6 +245,59 @@ tdo_status load_map(tdo_grid* grid, tdo_test::Rng& rng) {
       }
   return tdo_grid_finish(grid, kClearance);
 }
+
+// One pipeline request; `q` picks depth, stage modes and the failure cases.
+tdo_plan_request pipeline_request(tdo_test::Rng& rng, const tdo_grid* grid, int q) {
+  tdo_plan_request r{};
+  tdo_plan_params_default(&r.params);
+  tdo_plan_params& p = r.params;
+  r.start = random_free_point(rng, grid);
+  r.goal = random_free_point(rng, grid);
+  p.depth = static_cast<tdo_plan_depth>(q % 4);
+  p.search = (q / 4) % 2 == 0 ? TDO_SEARCH_BIDIR : TDO_SEARCH_ASTAR;
+  p.correction = static_cast<tdo_correct_mode>((q / 8) % 3);
+  p.smoothing = static_cast<tdo_smoothing>((q / 24) % 3);
+  p.first_meet = (q / 72) % 2;
+  if ((q / 4) % 5 == 4) {  // plain search, no penalties and no direction constraint
+    p.lambda = 0.0;
+    p.mu = 0.0;
+    p.theta_max = 0.0;
+  }
+  switch (q % 20) {
+    case 5:  // into the sealed chamber: no path
+      r.goal = centre(13, 2, 2);
+      break;
+    case 9:  // a tiny budget
+      p.max_expansions = 3;
+      break;
+    case 13:  // bad parameters
+      if (q % 3 == 0) p.v_max = -1.0;
+      if (q % 3 == 1) p.lambda = __builtin_nan("");
+      if (q % 3 == 2) p.dt = 0.0;
+      break;
+    case 15:  // very low dynamic limits: long, slow trajectories and many refinements
+      p.j_max = 0.02;
+      p.a_max = 0.05;
+      p.a_lat_max = 0.05;
+      break;
+    case 17:  // other speeds and radius scale
+      p.v_max = rng.uniform(0.5, 5.0);
+      p.a_max = rng.uniform(1.0, 6.0);
+      p.a_lat_max = p.a_max;
+      p.v_cruise = p.v_max;
+      p.k = rng.uniform(0.3, 3.0);
+      break;
+    case 19:  // start blocked
+      r.start = centre(11, 2, 2);
+      break;
+    default:
+      break;
+  }
+  return r;
+}
+
+// Bit-identical points (the pipeline's ends are the exact start and goal).
+bool same_point(const tdo_vec3& a, const tdo_vec3& b) { return memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace
 
@@ -333,6 +392,13 @@ int main(int argc, char** argv) {
   cfg.cap.max_path = kVoxels + 1u;
   cfg.cap.max_clear_cells = 125;  // K = ceil(0.6 + 0.5) = 2
   cfg.cap.max_expansions = 1u << 22;
+  // The later stages (correction, smoothing, trajectory): without these they are not configured.
+  cfg.cap.max_checks = 100000;
+  cfg.cap.max_shrinks = 16;
+  cfg.cap.max_samples = 1u << 16;
+  cfg.cap.max_profile = 8u * (3u * cfg.cap.max_path + 7u) + 1u;
+  cfg.cap.max_violations = 32;
+  cfg.cap.max_refinements = 8;
   const size_t need = tdo_planner_footprint(&cfg);
   if (need == 0 || need > sizeof g_arena) {
     fprintf(stderr, "tdo_no_heap: footprint %zu does not fit the %zu-byte static arena\n", need,
@@ -350,6 +416,10 @@ int main(int argc, char** argv) {
   tdo_test::Rng rng(2024);
   unsigned long by_status[TDO_STATUS_COUNT] = {};
   unsigned long bad_paths = 0;
+  unsigned long plan_status[TDO_STATUS_COUNT] = {};
+  unsigned long plan_depth_ok[4] = {};
+  unsigned long bad_plans = 0;
+  tdo_status pipeline_load = TDO_OK;
 
   arm();  // ---- from here on, any heap call aborts ----
   const tdo_status loaded = load_map(grid, rng);
@@ -396,10 +466,39 @@ int main(int argc, char** argv) {
       }
     }
   }
+  // The whole pipeline, on three maps loaded while armed.
+  for (int m = 0; m < kPipelineMaps && loaded == TDO_OK; ++m) {
+    pipeline_load = load_map(grid, rng);
+    if (pipeline_load != TDO_OK) break;
+    for (int q = 0; q < kPlansPerMap; ++q) {
+      const tdo_plan_request req = pipeline_request(rng, grid, m * kPlansPerMap + q);
+      tdo_plan_result res;
+      const tdo_status st = tdo_planner_plan(planner, &req, &res);
+      if (static_cast<int>(st) >= 0 && st < TDO_STATUS_COUNT) ++plan_status[st];
+      if (st != res.status) ++bad_plans;
+      if (st != TDO_OK) {
+        if (res.n_samples != 0) ++bad_plans;  // never a trajectory with a failure
+        continue;
+      }
+      ++plan_depth_ok[req.params.depth];
+      if (res.n_grid_path < 2 || !same_point(res.grid_path[0], req.start) ||
+          !same_point(res.grid_path[res.n_grid_path - 1], req.goal))
+        ++bad_plans;
+      if (req.params.depth == TDO_PLAN_TRAJECTORY &&
+          (res.n_samples < 2 || !same_point(res.samples[0].p, req.start) ||
+           !same_point(res.samples[res.n_samples - 1].p, req.goal) || !res.feasibility.ok))
+        ++bad_plans;
+    }
+  }
   disarm();  // ---- heap allowed again ----
 
   if (loaded != TDO_OK) {
     fprintf(stderr, "tdo_no_heap: loading the map failed: %s\n", tdo_status_str(loaded));
+    return 1;
+  }
+  if (pipeline_load != TDO_OK) {
+    fprintf(stderr, "tdo_no_heap: loading a pipeline map failed: %s\n",
+            tdo_status_str(pipeline_load));
     return 1;
   }
   int failed = 0;
@@ -434,6 +533,30 @@ int main(int argc, char** argv) {
   if (by_status[TDO_OK] < 200) {
     fprintf(stderr, "tdo_no_heap: FAIL: only %lu successful queries\n", by_status[TDO_OK]);
     failed = 1;
+  }
+  if (bad_plans != 0) {
+    fprintf(stderr, "tdo_no_heap: FAIL: %lu plans with wrong ends, status or samples\n", bad_plans);
+    failed = 1;
+  }
+  printf("tdo_no_heap: %d pipeline plans on %d maps\n", kPipelineMaps * kPlansPerMap,
+         kPipelineMaps);
+  for (int s = 0; s < TDO_STATUS_COUNT; ++s)
+    if (plan_status[s] != 0)
+      printf("  %-22s %lu\n", tdo_status_str(static_cast<tdo_status>(s)), plan_status[s]);
+  const tdo_status plan_required[] = {TDO_OK, TDO_ERR_NO_PATH, TDO_ERR_BUDGET,
+                                      TDO_ERR_INVALID_ARGUMENT, TDO_ERR_START_BLOCKED};
+  for (tdo_status s : plan_required) {
+    if (plan_status[s] == 0) {
+      fprintf(stderr, "tdo_no_heap: FAIL: no plan ended with %s\n", tdo_status_str(s));
+      failed = 1;
+    }
+  }
+  for (int d = 0; d < 4; ++d) {
+    if (plan_depth_ok[d] < 50) {
+      fprintf(stderr, "tdo_no_heap: FAIL: only %lu successful plans at depth %d\n",
+              plan_depth_ok[d], d);
+      failed = 1;
+    }
   }
   if (failed)
     fputs("tdo_no_heap: FAILED\n", stdout);

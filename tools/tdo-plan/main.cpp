@@ -229,6 +229,11 @@ std::string explain(tdo_status st, const tdo_grid* grid, const tdo_vec3& start,
   const auto blocked = [&](const char* what, const tdo_vec3& p) {
     tdo_voxel v{};
     tdo_grid_world_to_voxel(grid, p, &v);
+    if (tdo_grid_is_blocked(grid, v) == 0) {  // the point itself (pipeline.h)
+      return std::string(what) + " " + fmt_vec(p) + " is within the clearance of " +
+             fmt(clearance) + " m of an obstacle (the point itself; its voxel " + fmt_voxel(v) +
+             " is free)";
+    }
     const bool occ = tdo_grid_is_occupied(grid, v) != 0;
     return std::string(what) + " " + fmt_vec(p) + " is blocked: voxel " + fmt_voxel(v) +
            (occ ? " intersects an obstacle"

@@ -71,7 +71,10 @@ typedef struct tdo_plan_result {
   tdo_status status;         /**< overall status (TDO_OK only when every stage run passed) */
   tdo_plan_depth reached;    /**< last stage that produced output */
   tdo_search_output search;  /**< stage 1 */
-  const tdo_vec3* grid_path; /**< m, voxel centres with the exact start and goal at the ends */
+  const tdo_vec3* grid_path; /**< m, voxel centres with the exact start and goal at the ends;
+                                  the start (goal) voxel's centre stays as well when the segment
+                                  from the start to the next centre (from the previous centre to
+                                  the goal) would not keep the clearance */
   uint32_t n_grid_path;
   const tdo_vec3* waypoints; /**< m, polyline P2 (stage 2) */
   uint32_t n_waypoints;
@@ -86,9 +89,16 @@ typedef struct tdo_plan_result {
 
 /**
  * @brief Plan on the planner's finished grid (its clearance applies). Allocates nothing.
- * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for a zero, negative or non-finite parameter;
- *         the search statuses; TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the
- *         limits; capacity and budget statuses.
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, an unknown enum value, a negative
+ *         or non-finite lambda, mu, theta_max or d_th (0 is valid: no penalty, no constraint,
+ *         threshold off), h_weight below 1 or non-finite, and, for the stages `depth` runs, a
+ *         negative or non-finite turn_threshold (correction), a zero, negative or non-finite k,
+ *         v_max, a_max, j_max, a_lat_max, v_cruise or stop_angle (smoothing) or dt (trajectory);
+ *         the search statuses; TDO_ERR_START_BLOCKED / TDO_ERR_GOAL_BLOCKED also when the start
+ *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
+ *         obstacle, at every depth (pipeline.md s.0: every point of the output keeps it);
+ * TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the limits; capacity and budget
+ * statuses.
  */
 tdo_status tdo_planner_plan(tdo_planner* planner, const tdo_plan_request* req,
                             tdo_plan_result* out);

@@ -1,0 +1,302 @@
+// tdo_planner_plan (pipeline.h): bad parameters, a clearance that leaves nothing free, an
+// unreachable goal, and repeatability of the whole pipeline. The geometric properties of plans on
+// many maps are in test/tools/test_pipeline_property.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "test_util.h"
+
+namespace {
+
+using tdo_test::TestPlanner;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int32_t kNx = 20, kNy = 12, kNz = 6;
+constexpr double kClearance = 0.5;
+
+/** Capacities for the whole pipeline on a kNx x kNy x kNz grid at 1 m, clearance up to `ratio`. */
+tdo_capacity pipeline_cap(double ratio) {
+  tdo_capacity cap{};
+  tdo_capacity_for_grid(&cap, kNx, kNy, kNz, ratio, 27u, 0u);
+  cap.max_boxes = 16;
+  return cap;
+}
+
+/**
+ * A 20 x 12 x 6 m room: a wall at x in [8, 9] with a 2 m door (y in [5, 7]) and a sealed chamber
+ * of cubes (shell x 14..18, y 0..4, z 0..4) whose centre voxel (16, 2, 2) is free but unreachable.
+ */
+tdo_status load_room(tdo_grid* grid, double clearance) {
+  const tdo_grid_desc d{kNx, kNy, kNz, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  tdo_status st = tdo_grid_reset(grid, &d);
+  const tdo_box walls[2] = {{tdo_vec3{8, 0, 0}, tdo_vec3{9, 5, 6}},
+                            {tdo_vec3{8, 7, 0}, tdo_vec3{9, 12, 6}}};
+  for (const tdo_box& b : walls)
+    if (st == TDO_OK) st = tdo_grid_add_box(grid, &b);
+  for (int32_t k = 0; k <= 4; ++k)
+    for (int32_t j = 0; j <= 4; ++j)
+      for (int32_t i = 14; i <= 18; ++i) {
+        const bool shell = i == 14 || i == 18 || j == 0 || j == 4 || k == 0 || k == 4;
+        if (shell && st == TDO_OK) st = tdo_grid_add_voxel(grid, i, j, k);
+      }
+  return st == TDO_OK ? tdo_grid_finish(grid, clearance) : st;
+}
+
+tdo_plan_request room_request() {
+  tdo_plan_request r{};
+  r.start = tdo_vec3{2.3, 2.2, 2.5};
+  r.goal = tdo_vec3{12.6, 9.4, 3.1};
+  tdo_plan_params_default(&r.params);
+  return r;
+}
+
+class Pipeline : public ::testing::Test {
+ protected:
+  Pipeline() : pl_(pipeline_cap(kClearance)) {}
+  void SetUp() override {
+    ASSERT_EQ(pl_.status(), TDO_OK);
+    ASSERT_EQ(load_room(pl_.grid(), kClearance), TDO_OK);
+  }
+  tdo_status plan(const tdo_plan_request& r) { return tdo_planner_plan(pl_.planner(), &r, &res_); }
+  TestPlanner pl_;
+  tdo_plan_result res_{};
+};
+
+TEST_F(Pipeline, GivenDefaultsWhenPlannedThenOkFromStartToGoal) {
+  const tdo_plan_request r = room_request();
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_EQ(res_.status, TDO_OK);
+  EXPECT_EQ(res_.reached, TDO_PLAN_TRAJECTORY);
+  ASSERT_GE(res_.n_samples, 2u);
+  EXPECT_EQ(std::memcmp(&res_.samples[0].p, &r.start, sizeof(tdo_vec3)), 0);
+  EXPECT_EQ(std::memcmp(&res_.samples[res_.n_samples - 1].p, &r.goal, sizeof(tdo_vec3)), 0);
+  EXPECT_TRUE(res_.feasibility.ok);
+}
+
+TEST_F(Pipeline, GivenLambdaAndMuZeroWhenPlannedThenValidWithoutPenalty) {
+  tdo_plan_request r = room_request();
+  r.params.lambda = 0.0;
+  r.params.mu = 0.0;
+  ASSERT_EQ(plan(r), TDO_OK);
+  // No turn term at all (equal up to the rounding of a differently ordered sum).
+  EXPECT_NEAR(res_.search.penalized_cost, res_.search.cost, 1e-12 * res_.search.cost);
+  r.params.lambda = 50.0;
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_GT(res_.search.penalized_cost, res_.search.cost);  // the door forces turns
+}
+
+/** One bad value of one parameter. */
+struct BadParam {
+  const char* name;
+  double value;
+  std::function<void(tdo_plan_params*, double)> set;
+};
+
+std::vector<BadParam> bad_params() {
+  std::vector<BadParam> v;
+  const auto add = [&v](const char* name, std::function<void(tdo_plan_params*, double)> set,
+                        std::vector<double> values) {
+    for (double x : values) v.push_back(BadParam{name, x, set});
+  };
+  const std::vector<double> not_non_negative = {-1.0, -1e-300, kNaN, kInfinity, -kInfinity};
+  const std::vector<double> not_positive = {0.0, -0.0, -2.0, kNaN, kInfinity, -kInfinity};
+  add(
+      "lambda", [](tdo_plan_params* p, double x) { p->lambda = x; }, not_non_negative);
+  add(
+      "mu", [](tdo_plan_params* p, double x) { p->mu = x; }, not_non_negative);
+  add(
+      "k", [](tdo_plan_params* p, double x) { p->k = x; }, not_positive);
+  add(
+      "v_max", [](tdo_plan_params* p, double x) { p->v_max = x; }, not_positive);
+  add(
+      "a_max", [](tdo_plan_params* p, double x) { p->a_max = x; }, not_positive);
+  add(
+      "j_max", [](tdo_plan_params* p, double x) { p->j_max = x; }, not_positive);
+  add(
+      "dt", [](tdo_plan_params* p, double x) { p->dt = x; }, not_positive);
+  add(
+      "a_lat_max", [](tdo_plan_params* p, double x) { p->a_lat_max = x; }, not_positive);
+  add(
+      "v_cruise", [](tdo_plan_params* p, double x) { p->v_cruise = x; }, not_positive);
+  add(
+      "stop_angle", [](tdo_plan_params* p, double x) { p->stop_angle = x; }, not_positive);
+  add(
+      "theta_max", [](tdo_plan_params* p, double x) { p->theta_max = x; }, not_non_negative);
+  add("h_weight", [](tdo_plan_params* p, double x) { p->h_weight = x; },
+      {0.0, 0.5, kNaN, kInfinity});
+  return v;
+}
+
+TEST_F(Pipeline, GivenZeroNegativeOrNonFiniteParameterWhenPlannedThenInvalidArgument) {
+  for (const BadParam& b : bad_params()) {
+    SCOPED_TRACE(std::string(b.name) + " = " + std::to_string(b.value));
+    tdo_plan_request r = room_request();
+    b.set(&r.params, b.value);
+    res_.n_samples = 12345u;
+    EXPECT_EQ(plan(r), TDO_ERR_INVALID_ARGUMENT);
+    EXPECT_EQ(res_.status, TDO_ERR_INVALID_ARGUMENT);
+    EXPECT_EQ(res_.n_samples, 0u);
+    EXPECT_EQ(res_.samples, nullptr);
+    EXPECT_EQ(res_.n_grid_path, 0u);
+  }
+  // The planner is unharmed: the next good request plans.
+  EXPECT_EQ(plan(room_request()), TDO_OK);
+}
+
+// Only values inside each enum's range of values (C++ [dcl.enum]) are written, so the test stays
+// defined behaviour (UBSan): 3 for the three-valued smoothing and correction modes.
+TEST_F(Pipeline, GivenUnknownModesOrNullPointersWhenPlannedThenInvalidArgument) {
+  const int bogus = 3;
+  tdo_plan_request r = room_request();
+  std::memcpy(&r.params.smoothing, &bogus, sizeof bogus);
+  EXPECT_EQ(plan(r), TDO_ERR_INVALID_ARGUMENT);
+  r = room_request();
+  std::memcpy(&r.params.correction, &bogus, sizeof bogus);
+  EXPECT_EQ(plan(r), TDO_ERR_INVALID_ARGUMENT);
+  r = room_request();
+  EXPECT_EQ(tdo_planner_plan(nullptr, &r, &res_), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_planner_plan(pl_.planner(), nullptr, &res_), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_planner_plan(pl_.planner(), &r, nullptr), TDO_ERR_INVALID_ARGUMENT);
+}
+
+TEST_F(Pipeline, GivenNonFiniteStartOrGoalWhenPlannedThenNamedStatus) {
+  tdo_plan_request r = room_request();
+  r.start.y = kNaN;
+  const tdo_status st = plan(r);
+  EXPECT_TRUE(st == TDO_ERR_INVALID_ARGUMENT || st == TDO_ERR_START_OUT_OF_BOUNDS)
+      << tdo_status_str(st);
+  r = room_request();
+  r.goal.z = kInfinity;
+  const tdo_status sg = plan(r);
+  EXPECT_TRUE(sg == TDO_ERR_INVALID_ARGUMENT || sg == TDO_ERR_GOAL_OUT_OF_BOUNDS)
+      << tdo_status_str(sg);
+  EXPECT_EQ(res_.n_samples, 0u);
+}
+
+TEST_F(Pipeline, GivenGoalInSealedChamberWhenPlannedAtEveryDepthThenNoPath) {
+  for (int depth = TDO_PLAN_SEARCH; depth <= TDO_PLAN_TRAJECTORY; ++depth) {
+    for (tdo_search_kind kind : {TDO_SEARCH_ASTAR, TDO_SEARCH_BIDIR}) {
+      SCOPED_TRACE("depth " + std::to_string(depth) + ", " + tdo_test::kind_name(kind));
+      tdo_plan_request r = room_request();
+      r.goal = tdo_vec3{16.5, 2.5, 2.5};  // free at 0.5 m, walled in
+      r.params.depth = static_cast<tdo_plan_depth>(depth);
+      r.params.search = kind;
+      EXPECT_EQ(plan(r), TDO_ERR_NO_PATH);
+      EXPECT_EQ(res_.status, TDO_ERR_NO_PATH);
+      EXPECT_EQ(res_.n_samples, 0u);
+      EXPECT_EQ(res_.n_grid_path, 0u);
+    }
+  }
+}
+
+// Voxel (7, 2, 2) is free at 0.5 m (its centre x = 7.5 is exactly 0.5 m from the wall at x = 8),
+// but the point x = 7.7 in it is 0.3 m from the wall: no output can keep the clearance there.
+TEST_F(Pipeline,
+       GivenStartOrGoalPointWithinClearanceInAFreeVoxelWhenPlannedThenBlockedAtEveryDepth) {
+  tdo_voxel v{};
+  ASSERT_TRUE(tdo_grid_world_to_voxel(pl_.grid(), tdo_vec3{7.7, 2.5, 2.5}, &v));
+  ASSERT_FALSE(tdo_grid_is_blocked(pl_.grid(), v));
+  for (int depth = TDO_PLAN_SEARCH; depth <= TDO_PLAN_TRAJECTORY; ++depth) {
+    SCOPED_TRACE("depth " + std::to_string(depth));
+    tdo_plan_request r = room_request();
+    r.params.depth = static_cast<tdo_plan_depth>(depth);
+    r.start = tdo_vec3{7.7, 2.5, 2.5};
+    EXPECT_EQ(plan(r), TDO_ERR_START_BLOCKED);
+    EXPECT_EQ(res_.n_samples, 0u);
+    r = room_request();
+    r.params.depth = static_cast<tdo_plan_depth>(depth);
+    r.goal = tdo_vec3{7.7, 2.5, 2.5};
+    EXPECT_EQ(plan(r), TDO_ERR_GOAL_BLOCKED);
+    r.goal = tdo_vec3{7.5, 2.5, 2.5};  // exactly at the clearance: allowed
+    EXPECT_EQ(plan(r), TDO_OK);
+  }
+}
+
+TEST(PipelineClearance, GivenClearanceSoLargeNothingIsFreeWhenPlannedThenStartBlocked) {
+  const double clearance = 30.0;  // more than the room's diagonal from the walls
+  TestPlanner pl(pipeline_cap(clearance));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  ASSERT_EQ(load_room(pl.grid(), clearance), TDO_OK);
+  EXPECT_EQ(tdo_grid_blocked_count(pl.grid()), static_cast<uint32_t>(kNx * kNy * kNz));
+  tdo_plan_result res{};
+  for (int depth = TDO_PLAN_SEARCH; depth <= TDO_PLAN_TRAJECTORY; ++depth) {
+    tdo_plan_request r = room_request();
+    r.params.depth = static_cast<tdo_plan_depth>(depth);
+    EXPECT_EQ(tdo_planner_plan(pl.planner(), &r, &res), TDO_ERR_START_BLOCKED);
+    EXPECT_EQ(res.n_samples, 0u);
+  }
+}
+
+TEST(PipelineClearance, GivenClearanceBeyondTheStencilWhenFinishingThenClearanceCapacity) {
+  TestPlanner pl(pipeline_cap(kClearance));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  EXPECT_EQ(load_room(pl.grid(), 30.0), TDO_ERR_CLEARANCE_CAPACITY);
+  tdo_plan_request r = room_request();
+  tdo_plan_result res{};
+  EXPECT_EQ(tdo_planner_plan(pl.planner(), &r, &res), TDO_ERR_MAP_NOT_READY);
+}
+
+TEST(PipelineNotConfigured, GivenSearchOnlyCapacitiesWhenAskedForATrajectoryThenNotConfigured) {
+  tdo_capacity cap = pipeline_cap(kClearance);
+  cap.max_checks = 0;  // no correction, smoothing or trajectory contexts
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  ASSERT_EQ(load_room(pl.grid(), kClearance), TDO_OK);
+  tdo_plan_request r = room_request();
+  tdo_plan_result res{};
+  EXPECT_EQ(tdo_planner_plan(pl.planner(), &r, &res), TDO_ERR_NOT_CONFIGURED);
+  r.params.depth = TDO_PLAN_SEARCH;
+  EXPECT_EQ(tdo_planner_plan(pl.planner(), &r, &res), TDO_OK);
+}
+
+/** Everything a plan produced, as bytes, for bit-exact comparison. */
+std::vector<unsigned char> bytes_of(const tdo_plan_result& r) {
+  std::vector<unsigned char> b;
+  const auto put = [&b](const void* p, size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    b.insert(b.end(), c, c + n);
+  };
+  put(&r.status, sizeof r.status);
+  put(&r.search.cost, sizeof r.search.cost);
+  put(&r.search.expansions, sizeof r.search.expansions);
+  put(r.grid_path, r.n_grid_path * sizeof(tdo_vec3));
+  put(r.waypoints, r.n_waypoints * sizeof(tdo_vec3));
+  for (uint32_t i = 0; i < r.path.n; ++i) {  // field by field: structs have padding
+    const tdo_path_segment& s = r.path.seg[i];
+    put(&s.kind, sizeof s.kind);
+    put(s.p, sizeof s.p);
+    put(&s.length, sizeof s.length);
+    put(&s.v_limit, sizeof s.v_limit);
+    put(&s.stop_at_end, sizeof s.stop_at_end);
+  }
+  put(r.samples, r.n_samples * sizeof(tdo_sample));  // doubles only
+  const tdo_metrics& m = r.metrics;
+  for (double x : {m.length_m, m.total_turn_deg, m.min_clearance_m, m.avg_curvature, m.smoothness,
+                   m.energy, m.flight_time_s})
+    put(&x, sizeof x);
+  put(&m.turns, sizeof m.turns);
+  return b;
+}
+
+TEST_F(Pipeline, GivenTheSameRequestTwiceWithAnotherInBetweenThenBitIdenticalResults) {
+  const tdo_plan_request r = room_request();
+  ASSERT_EQ(plan(r), TDO_OK);
+  const std::vector<unsigned char> first = bytes_of(res_);
+  tdo_plan_request other = room_request();
+  other.goal = tdo_vec3{18.5, 10.5, 1.5};
+  other.params.smoothing = TDO_SMOOTHING_ARC;
+  other.params.depth = TDO_PLAN_SMOOTH;
+  ASSERT_EQ(plan(other), TDO_OK);
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_TRUE(first == bytes_of(res_));
+  EXPECT_GT(first.size(), 1000u);
+}
+
+}  // namespace
