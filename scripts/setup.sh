@@ -28,6 +28,10 @@ PACKAGES=(
   python3-matplotlib
   python3-numpy
   libglib2.0-dev # LCM: the wheel's liblcm links the system GLib (apps, lcm-gen)
+  libompl-dev      # tools/baselines: OMPL RRTConnect / RRT* (tdo-bench)
+  libpagmo-dev     # tools/baselines: pagmo2 PSO / grey wolf optimizer (tdo-bench)
+  libnlopt-dev     # tools/tdo-tune: NLopt (C library)
+  libnlopt-cxx-dev # tools/tdo-tune: nlopt.hpp
 )
 
 log() { printf '[setup] %s\n' "$*"; }
