@@ -19,6 +19,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tdo_plot  # noqa: E402  (sets the Agg backend, re-executes with Debian's python if needed)
 from tdo_plot import BadInput, plt  # noqa: E402
 from matplotlib import colors  # noqa: E402
+from matplotlib.collections import PatchCollection  # noqa: E402
 from matplotlib.patches import Rectangle  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
@@ -49,35 +50,44 @@ def load(path):
 
 def draw(doc, out, dpi):
     m = tdo_plot.read_map(doc["map"])
-    if m.kind in ("octomap",) or m.cubes:
-        # forests: drop the ground layer so the trunks show in the top view
-        z0 = m.bounds[0][2]
-        m.cubes = [c for c in m.cubes if c[2] - c[3] / 2 > z0 + 0.25]
+    slice_note = "obstacles shaded by height"
+    if m.cubes:
+        # voxel maps (forests): show the voxels in the slice the paths fly through, else the
+        # canopy hides everything in the top view
+        zs = [q[2] for p in doc["planners"] for q in p.get("curve", [])]
+        zs += [doc["start"][2], doc["goal"][2]]
+        c = float(doc.get("clearance", 0.0))
+        zlo, zhi = min(zs) - c, max(zs) + c
+        m.cubes = [q for q in m.cubes if q[2] + q[3] / 2 >= zlo and q[2] - q[3] / 2 <= zhi]
+        slice_note = f"occupied voxels with z in [{zlo:.1f}, {zhi:.1f}] m"
     (x0, y0, z0), (x1, y1, z1) = m.bounds
-    fig = plt.figure(figsize=(12, 5.6))
+    fig = plt.figure(figsize=(12, 6.4))
     ax = fig.add_subplot(1, 2, 1)
     ax3 = fig.add_subplot(1, 2, 2, projection="3d")
     norm = colors.Normalize(vmin=z0, vmax=z1)
     cmap = plt.get_cmap("Greys")
+    rects, shades = [], []
     for b in sorted(m.boxes, key=lambda b: b[5]):
-        ax.add_patch(Rectangle((b[0], b[1]), b[3] - b[0], b[4] - b[1],
-                               facecolor=cmap(0.25 + 0.6 * norm(b[5])), edgecolor="none",
-                               alpha=0.85, zorder=1))
+        rects.append(Rectangle((b[0], b[1]), b[3] - b[0], b[4] - b[1]))
+        shades.append(cmap(0.25 + 0.6 * norm(b[5])))
     for c in m.cubes:
         h = c[3] / 2
-        ax.add_patch(Rectangle((c[0] - h, c[1] - h), c[3], c[3], facecolor="#888888",
-                               edgecolor="none", alpha=0.5, zorder=1))
+        rects.append(Rectangle((c[0] - h, c[1] - h), c[3], c[3]))
+        shades.append("#aaaaaa")
+    if rects:
+        ax.add_collection(PatchCollection(rects, facecolor=shades, edgecolor="none", alpha=0.85,
+                                          zorder=1))
     faces = []
     for b in m.boxes:
         faces.extend(tdo_plot._box_faces(b))
     if faces:
         ax3.add_collection3d(Poly3DCollection(faces, facecolor="#999999", edgecolor="none",
                                               alpha=0.12))
-    if m.cubes and len(m.cubes) < 60000:
-        xs = [c[0] for c in m.cubes]
-        ys = [c[1] for c in m.cubes]
-        zs = [c[2] for c in m.cubes]
-        ax3.scatter(xs, ys, zs, s=0.3, c="#999999", alpha=0.15)
+    if m.cubes:
+        step = max(1, len(m.cubes) // 5000)  # a thinned cloud is enough to show the trees
+        sub = m.cubes[::step]
+        ax3.scatter([c[0] for c in sub], [c[1] for c in sub], [c[2] for c in sub], s=0.5,
+                    c="#999999", alpha=0.2)
     for p in doc["planners"]:
         name = p["planner"]
         color, width = STYLE.get(name, ("#000000", 1.0))
@@ -101,8 +111,9 @@ def draw(doc, out, dpi):
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"{doc.get('name')}: top view (obstacles shaded by height)")
-    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), framealpha=0.9)
+    ax.set_title(f"{doc.get('name')}: top view ({slice_note})")
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="lower center", ncol=3,
+               framealpha=0.9)
     ax3.set_xlim(x0, x1)
     ax3.set_ylim(y0, y1)
     ax3.set_zlim(z0, z1)
@@ -111,7 +122,7 @@ def draw(doc, out, dpi):
     ax3.set_zlabel("z")
     ax3.view_init(elev=28, azim=-120)
     ax3.set_title("3D view")
-    fig.subplots_adjust(left=0.05, right=0.98, wspace=0.55)
+    fig.subplots_adjust(left=0.05, right=0.98, bottom=0.2, top=0.93, wspace=0.15)
     fig.savefig(out, dpi=dpi)
     plt.close(fig)
 

@@ -451,7 +451,7 @@ int run(int argc, char** argv) {
       std::string err;
       const std::string dir = o.maps_dir + "/forest_gen";
       if (!tdo_bench::load_case("forest", "forest" + id, dir + "/forest" + id + ".bt", o.clearance,
-                                4000000u, &c, &err))
+                                2000000u, &c, &err))
         throw BadInput{err};
       if (!tdo_bench::load_forest_queries(dir + "/start_and_end.csv", std::stoi(id), &c.queries,
                                           &err))
