@@ -51,13 +51,14 @@ numbers come from other maps and MATLAB; only the relations between planners are
 | `msf-mtpo` | the paper's baseline as described: bidirectional A* without turn/deviation terms, single-scale greedy line-of-sight correction, arc corners (eq. 8 radius), same stage 5 |
 | `astar` | "Original A*": raw 26-connected grid path |
 | `rrtconnect`, `rrtconnect-simplify` | OMPL 1.5 RRTConnect in the map bounds, raw / after `PathSimplifier::simplifyMax`; state check = libtdo exact point clearance, motion check = libtdo exact segment clearance; at most 100000 iterations (stands in for "Improved RRT") |
-| `rrtstar`, `rrtstar-simplify` | OMPL RRT* (path length objective), 20000 iterations, raw / simplified |
+| `rrtstar`, `rrtstar-simplify` | OMPL RRT* (path length objective), 10000 iterations (a 60 s wall-clock safety cap marks a run `ok_time_cap` in runs.csv), raw / simplified |
 | `pso`, `gwo` | pagmo2 particle swarm / grey wolf optimizer over 8 intermediate waypoints (population 40, 300 generations), fitness = length + 1000 x (1 + clearance deficit) per colliding segment; a champion that still collides is a failure (stand in for "Improved PSO" and ICSSA) |
 
 Stochastic planners run with seeds 0..S-1 (OMPL: `ompl::RNG::setSeed(seed + 1)` and iteration
 limits, so a seed gives the same path; pagmo: the seed of the population and the algorithm).
 Raw polylines (A*, RRT, PSO, ablation A-C) are measured as polylines (discrete curvature: turn
-angles over segment lengths) and flown stop-and-go for energy and flight time (libtdo smoothing
+angles over segment lengths, so their curvature and smoothness columns are not like-for-like with
+the curved paths of D, E, Full, tdo and msf-mtpo) and flown stop-and-go for energy and flight time (libtdo smoothing
 `none` + stage 5: at rest at every corner). A run succeeds when its final path begins exactly at
 the start, ends exactly at the goal and keeps the clearance everywhere (checked again after the
 planner); "feasible" counts runs whose trajectory passed libtdo's dynamic check
