@@ -266,7 +266,12 @@ int run(int argc, char** argv) {
         std::to_string(size[2]) + " m, " + std::to_string(columns) +
         " columns (seeds 2000..); held out: " + heldout +
         ". Objective J = mean over maps of [flight time / flight time at the defaults + 0.05 x "
-        "turns + 1 if infeasible] (10 for a failed map); lower is better.\n\n";
+        "turns + 1 if infeasible] (10 for a failed map); lower is better. Why Subplex (SBPLX): "
+        "J is deterministic but piecewise constant in the parameters (grid paths and turn counts "
+        "change in jumps), so model-based methods such as BOBYQA see flat or meaningless local "
+        "models; a derivative-free simplex method with large initial steps (0.25 of each range) "
+        "moves across the plateaus, and Subplex is NLopt's more robust Nelder-Mead variant. "
+        "Parameter bounds: lambda [0, 100], mu [0, 50], k [0.3, 3], theta_max [20, 180] deg.\n\n";
   md +=
       "| | lambda | mu | k | theta_max (deg) | J training | J held-out |\n"
       "|---|---:|---:|---:|---:|---:|---:|\n";
