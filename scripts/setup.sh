@@ -33,6 +33,10 @@ PACKAGES=(
   libnewlib-arm-none-eabi
   libstdc++-arm-none-eabi-newlib
   qemu-system-arm
+  libompl-dev      # tools/baselines: OMPL RRTConnect / RRT* (tdo-bench)
+  libpagmo-dev     # tools/baselines: pagmo2 PSO / grey wolf optimizer (tdo-bench)
+  libnlopt-dev     # tools/tdo-tune: NLopt (C library)
+  libnlopt-cxx-dev # tools/tdo-tune: nlopt.hpp
 )
 
 log() { printf '[setup] %s\n' "$*"; }

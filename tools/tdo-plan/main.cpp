@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "baselines.h"
 #include "path_metrics.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
@@ -550,6 +551,71 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   return kExitNoPlan;
 }
 
+/** tdo-plan's own planners plus those of tools/baselines (ablation models, OMPL, pagmo). */
+std::vector<std::string> planner_choices() {
+  std::vector<std::string> v = {"tdo", "astar", "bidir", "msf-mtpo"};
+  for (const std::string& n : tdo_baselines::planner_names())
+    if (std::find(v.begin(), v.end(), n) == v.end()) v.push_back(n);
+  return v;
+}
+
+bool is_bench_planner(const std::string& name) {
+  return name != "tdo" && name != "astar" && name != "bidir" && name != "msf-mtpo";
+}
+
+/** A planner of tools/baselines (the bench's interface): summary or JSON without a trajectory. */
+int run_bench_planner(const Options& o, const tdo_io::Map& map, double clearance) {
+  if (o.start.empty() && !map.has_start) throw BadInput{"no start: give --start X Y Z"};
+  if (o.goal.empty() && !map.has_goal) throw BadInput{"no goal: give --goal X Y Z"};
+  const tdo_vec3 start = o.start.empty() ? map.start : to_vec(o.start, "--start");
+  const tdo_vec3 goal = o.goal.empty() ? map.goal : to_vec(o.goal, "--goal");
+  std::string err;
+  auto env =
+      tdo_baselines::Environment::create(map, clearance, static_cast<uint32_t>(o.max_nodes), &err);
+  if (!env) throw BadInput{err};
+  auto planner = tdo_baselines::make_planner(o.planner, &err);
+  if (!planner) throw BadInput{err};
+  const tdo_baselines::PlanResult r =
+      planner->plan(*env, start, goal, static_cast<uint64_t>(o.seed));
+  const tdo_metrics& m = r.metrics;
+  if (o.json) {
+    nlohmann::json j;
+    j["status"] = r.status;
+    j["planner"] = o.planner;
+    j["params"] = {{"clearance", clearance}, {"seed", o.seed}};
+    for (const std::string& n : planner->param_names()) j["params"][n] = planner->param(n);
+    j["waypoints"] = nlohmann::json::array();
+    for (const tdo_vec3& q : r.path) j["waypoints"].push_back({q.x, q.y, q.z});
+    j["metrics"] = {{"plan_time_ms", r.plan_time_ms}, {"expansions", r.expansions}};
+    if (r.ok) {
+      j["metrics"].update({{"length_m", m.length_m},
+                           {"turns", m.turns},
+                           {"total_turn_deg", m.total_turn_deg},
+                           {"min_clearance_m", m.min_clearance_m},
+                           {"avg_curvature", m.avg_curvature},
+                           {"smoothness", m.smoothness},
+                           {"energy", m.energy},
+                           {"flight_time_s", m.flight_time_s},
+                           {"smooth", r.smooth}});
+    }
+    std::cout << j.dump() << std::endl;
+  } else {
+    std::printf("planner          %s (%s)\n", o.planner.c_str(), planner->description().c_str());
+    std::printf("status           %s\n", r.status.c_str());
+    if (r.ok) {
+      std::printf("waypoints        %zu\n", r.path.size());
+      std::printf("length_m         %.3f\n", m.length_m);
+      std::printf("turns            %u (%.1f deg in total)\n", m.turns, m.total_turn_deg);
+      std::printf("min_clearance_m  %.3f\n", m.min_clearance_m);
+    }
+    std::printf("plan_time_ms     %.3f\n", r.plan_time_ms);
+    std::fflush(stdout);
+  }
+  if (r.ok) return kExitOk;
+  std::fprintf(stderr, "tdo-plan: no plan: %s\n", r.status.c_str());
+  return kExitNoPlan;
+}
+
 int run(int argc, char** argv) {
   Options o;
   CLI::App app{
@@ -562,8 +628,9 @@ int run(int argc, char** argv) {
   app.add_option("--goal", o.goal, "goal X Y Z in m (default: the map's 'goal')")->expected(3);
   app.add_option("--planner", o.planner,
                  "tdo (the full TDO-MSF pipeline) | astar | bidir (raw grid paths, no penalties) | "
-                 "msf-mtpo (the paper's baseline)")
-      ->check(CLI::IsMember({"tdo", "astar", "bidir", "msf-mtpo"}))
+                 "msf-mtpo (the paper's baseline) | the bench's planners: model-a..model-e "
+                 "(ablation), rrtconnect[-simplify], rrtstar[-simplify], pso, gwo (--seed)")
+      ->check(CLI::IsMember(planner_choices()))
       ->capture_default_str();
   app.add_flag("--json", o.json, "print one JSON object on stdout");
   app.add_option(
@@ -647,6 +714,7 @@ int run(int argc, char** argv) {
       o.clearance_given ? o.clearance : (map.kind == tdo_io::MapKind::MovingAI ? 0.0 : 0.5);
 
   if (!o.scen_path.empty()) return run_scen(o, map, clearance, kind);
+  if (is_bench_planner(o.planner)) return run_bench_planner(o, map, clearance);
   return run_single(o, map, clearance, kind);
 }
 
