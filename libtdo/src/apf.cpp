@@ -65,9 +65,9 @@ constexpr double kArriveSpeed = 0.1;  // m/s
 constexpr double kMaxElapsedSteps = 10.0;  // the clock advances at most this many dt per step
 constexpr double kWallZone = 2.0;          // m beyond vehicle_radius: braking before walls
 constexpr double kWallFade = 1.0;          // m beyond vehicle_radius: no corrective push into walls
-constexpr double kPlanCredit = 0.3;   // m of deviation at which the plan's approach stops counting
-constexpr int kWallProbes = 4;        // look-ahead probes along the velocity
-constexpr double kWallProbeDt = 0.2;  // s between them
+constexpr double kOnPlan = 0.2;            // m: closer than this to the plan, no wall terms (E-APF)
+constexpr int kWallProbes = 4;             // look-ahead probes along the velocity
+constexpr double kWallProbeDt = 0.2;       // s between them
 
 bool pos(double x) { return isfinite(x) && x > 0.0; }
 bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
@@ -477,10 +477,15 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
     double el = st->t - c->prev_t;
     if (!(el > 0.0)) el = 0.0;
     if (el > kMaxElapsedSteps * q.dt) el = kMaxElapsedSteps * q.dt;
-    // The reference never lags the nearest trajectory point (the vehicle may rejoin ahead).
-    if (c->near_t - q.lookahead > c->tau) c->tau = c->near_t - q.lookahead;
+    // Far from the clock's point (pushed away), the reference never lags the nearest trajectory
+    // point: the vehicle may rejoin the plan further along. Not while tracking: near a corner the
+    // nearest point may lie on a later, nearby part of the plan.
     tdo_vec3 cp, cv, ca;
     traj_at(c, c->tau, &cp, &cv, &ca);
+    if (norm(sub(cp, p)) > 0.5 * q.hold_dist && c->near_t - q.lookahead > c->tau) {
+      c->tau = c->near_t - q.lookahead;
+      traj_at(c, c->tau, &cp, &cv, &ca);
+    }
     if (norm(sub(cp, p)) <= q.hold_dist) {
       c->tau += el;
       if (c->tau > c->t_end) c->tau = c->t_end;
@@ -599,7 +604,9 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   // Near a wall (within kWallFade beyond vehicle_radius) the corrective command's component
   // into the wall (everything but the trajectory's own feed-forward acceleration) fades out, to
   // zero at contact: the field may move the vehicle along or away from a wall, not into it.
-  if (near.wall_d < kWallFade) {
+  // On the plan (E-APF within kOnPlan of it) the plan vouches for the clearance: no wall terms.
+  const bool on_plan = eapf && t->deviation < kOnPlan && c->mode == TDO_APF_MODE_TRACK;
+  if (near.wall_d < kWallFade && !on_plan) {
     const tdo_vec3 ff = (c->mode == TDO_APF_MODE_TRACK && eapf) ? a_ref : v3(0.0, 0.0, 0.0);
     const tdo_vec3 corr = sub(a_des, ff);
     const double into = dot(corr, near.wall_n);
@@ -609,13 +616,8 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   // Braking at walls (in every mode): approaching the static geometry at normal speed v_n within
   // the wall zone asks for the deceleration that stops within the remaining distance (less the
   // distance covered while the jerk limit builds it up).
-  if (near.wall_w < 1.0) {
-    // Approach speed in excess of the plan's own (the plan keeps the clearance by itself), the
-    // plan's credit fading out as the vehicle leaves the plan (gone at kPlanCredit deviation).
-    const double plan_n = -dot(v_ref, near.wall_n);
-    const double credit =
-        eapf && t->deviation < kPlanCredit ? 1.0 - t->deviation / kPlanCredit : 0.0;
-    const double v_n = -dot(st->v, near.wall_n) - (plan_n > 0.0 ? plan_n * credit : 0.0);
+  if (near.wall_w < 1.0 && !on_plan) {
+    const double v_n = -dot(st->v, near.wall_n);
     if (v_n > 0.0) {
       double room = near.wall_d - v_n * (q.a_max / q.j_max);
       if (room < q.d_min) room = q.d_min;

@@ -24,18 +24,20 @@
  *   sqrt(2 j_max (v_max - |v|)), in a discrete form, so the jerk limit can stop the speed at
  *   v_max), the jerk limit
  *   |a - a_prev| <= j_max dt, |a| <= a_max and |v| <= v_max (tdo_motion_limit, sim.h, applies the
- *   same rule). Within 1 m of the static geometry (beyond vehicle_radius) the component of the
- *   command minus the E-APF feed-forward that points into the geometry fades linearly to zero at
- *   contact: the field moves the vehicle along or away from a wall, never into it (the reported
- *   terms are the unmodified gradients). Within 2 m a braking term n v_n^2 / (2 max(d - v_n
- *   a_max / j_max, d_min)) is added (n the unit normal away from the geometry, v_n the approach
- *   speed in excess of the reference velocity's own, that credit fading out by 0.3 m of
- *   deviation; d the distance beyond vehicle_radius, also probed 0.2-0.8 s ahead along v): the
- *   deceleration that stops before contact.
+ *   same rule). Wall terms (classical APF always; E-APF only when more than 0.2 m off the plan,
+ *   or escaping: on the plan the plan vouches for the clearance): within 1 m of the static
+ *   geometry (beyond vehicle_radius) the component of the command minus the E-APF feed-forward
+ *   that points into the geometry fades linearly to zero at contact, so the field moves the
+ *   vehicle along or away from a wall, never into it (the reported terms are the unmodified
+ *   gradients); within 2 m a braking term n v_n^2 / (2 max(d - v_n a_max / j_max, d_min)) is
+ *   added (n the unit normal away from the geometry, v_n the approach speed, d the distance
+ *   beyond vehicle_radius, also probed 0.2-0.8 s ahead along v): the deceleration that stops
+ *   before contact.
  * - trajectory clock tau: advances with the vehicle time (state.t), but is held while the
  *   vehicle is more than `hold_dist` from the trajectory point at tau (pushed away by a mover),
- *   so the reference waits; tau + lookahead never lags the time of the last nearest trajectory
- *   point (a vehicle that rejoins ahead is not pulled back).
+ *   so the reference waits; while the vehicle is more than hold_dist / 2 from that point,
+ *   tau + lookahead never lags the time of the last nearest trajectory point (a vehicle that
+ *   rejoins the plan further along is not pulled back).
  * - local minimum: every `lm_window` seconds the progress is compared with the window's start
  *   (E-APF: arclength of the nearest trajectory point; APF: best distance to the goal). Detected
  *   when the progress is below `lm_progress`, the vehicle is farther than `lm_goal_dist` from the
