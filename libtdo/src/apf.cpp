@@ -73,7 +73,12 @@ bool pos(double x) { return isfinite(x) && x > 0.0; }
 bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
 
 bool params_ok(const tdo_apf_params* p) {
-  if (p->kind != TDO_FOLLOWER_EAPF && p->kind != TDO_FOLLOWER_APF) return false;
+  // Read the enum's bytes as an int: a C caller may have stored any value there.
+  int kind = 0;
+  static_assert(sizeof(kind) == sizeof(p->kind), "enum size");
+  memcpy(&kind, &p->kind, sizeof kind);
+  if (kind != static_cast<int>(TDO_FOLLOWER_EAPF) && kind != static_cast<int>(TDO_FOLLOWER_APF))
+    return false;
   return pos(p->dt) && pos(p->k_a) && pos(p->att_dist) && nonneg(p->k_r) && pos(p->d_0) &&
          pos(p->d_0_static) && pos(p->d_min) && nonneg(p->k_g) && pos(p->k_d) &&
          nonneg(p->lookahead) && pos(p->hold_dist) && nonneg(p->horizon) &&
