@@ -404,7 +404,7 @@ extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
         return TDO_ERR_INVALID_ARGUMENT;
     }
   }
-  memcpy(c->samples, task->samples, static_cast<size_t>(n) * sizeof(tdo_sample));
+  if (n > 0u) memcpy(c->samples, task->samples, static_cast<size_t>(n) * sizeof(tdo_sample));
   c->n = n;
   c->sample_dt = sdt;
   if (n >= 2u) {
