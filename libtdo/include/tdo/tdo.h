@@ -5,6 +5,7 @@
 #ifndef TDO_TDO_H
 #define TDO_TDO_H
 
+#include "tdo/apf.h"
 #include "tdo/arena.h"
 #include "tdo/collision.h"
 #include "tdo/config.h"
@@ -15,6 +16,7 @@
 #include "tdo/pipeline.h"
 #include "tdo/planner.h"
 #include "tdo/search.h"
+#include "tdo/sim.h"
 #include "tdo/smooth.h"
 #include "tdo/status.h"
 #include "tdo/trajectory.h"
