@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   std::string url = tdo_lcm::kDefaultUrl;
   std::vector<double> start;
   std::vector<double> bounds;
+  std::vector<double> goal;
   bool no_movers = false;
   double duration = 0.0;
   bool quiet = false;
@@ -64,6 +65,15 @@ int main(int argc, char** argv) {
   app.add_option("--bounds", bounds,
                  "m, XMIN YMIN ZMIN XMAX YMAX ZMAX where movers reflect (default: the map's)")
       ->expected(6);
+  app.add_flag("--request-goal", cfg.request_goal,
+               "demo: send one TDO_PLAN_REQUEST (request 1, libtdo's default parameters) from the "
+               "start to the goal after --request-delay s, as a ground station would");
+  app.add_option("--goal", goal, "m, goal X Y Z of --request-goal (default: the map's goal)")
+      ->expected(3);
+  app.add_option("--request-delay", cfg.request_delay_s, "s after start before --request-goal")
+      ->capture_default_str();
+  app.add_option("--request-channel", cfg.request_channel, "plan request out (--request-goal)")
+      ->capture_default_str();
   app.add_option("--rate", cfg.rate_hz, "Hz, simulator steps per second")->capture_default_str();
   app.add_flag(
       "--lockstep", cfg.lockstep,
@@ -109,6 +119,10 @@ int main(int argc, char** argv) {
   if (start.size() == 3) {
     cfg.has_start = true;
     cfg.start = tdo_vec3{start[0], start[1], start[2]};
+  }
+  if (goal.size() == 3) {
+    cfg.has_goal = true;
+    cfg.goal = tdo_vec3{goal[0], goal[1], goal[2]};
   }
   if (bounds.size() == 6) {
     cfg.has_bounds = true;

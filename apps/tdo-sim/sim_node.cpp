@@ -65,6 +65,10 @@ bool SimNode::start(std::string* error) {
   if (cfg_.map_id < 0) return fail_with("the map id must be >= 0");
   if (!(cfg_.brake_gain >= 0.0) || !std::isfinite(cfg_.brake_gain))
     return fail_with("the brake gain must be finite and >= 0");
+  if (cfg_.has_goal) {
+    has_goal_ = true;
+    goal_ = cfg_.goal;
+  }
 
   // The map file: geometry for the collision check and the message, movers, default start.
   tdo_io::Map map;
@@ -87,8 +91,10 @@ bool SimNode::start(std::string* error) {
     map_msg_.map_id = cfg_.map_id;
     map_msg_.vehicle_id = -1;
     has_map_ = true;
-    has_goal_ = map.has_goal;
-    goal_ = map.goal;
+    if (!cfg_.has_goal) {
+      has_goal_ = map.has_goal;
+      goal_ = map.goal;
+    }
     if (cfg_.movers)
       for (const tdo_io::Mover& m : map.movers)
         movers.push_back(tdo_mover{static_cast<uint32_t>(m.id), m.pos, m.vel, m.radius});
@@ -156,11 +162,15 @@ bool SimNode::start(std::string* error) {
       cfg_.setpoint_channel,
       [this](const void* d, std::size_t n, const std::string&) { on_setpoint(d, n); });
   if (!ok) return fail_with("cannot subscribe");
+  if (cfg_.request_goal && !has_goal_)
+    return fail_with("a plan request needs a goal (--goal, or a map file with one)");
   publish_map();
+  if (cfg_.request_goal && cfg_.lockstep) publish_request();
   publish_state();
   const auto now = std::chrono::steady_clock::now();
   next_tick_ = now + seconds(1.0 / cfg_.rate_hz);
   next_map_ = now + seconds(cfg_.map_period_s > 0.0 ? cfg_.map_period_s : 0.0);
+  request_at_ = now + seconds(cfg_.request_delay_s > 0.0 ? cfg_.request_delay_s : 0.0);
   return true;
 }
 
@@ -265,6 +275,23 @@ void SimNode::publish_map() {
   ++counters_.maps_published;
 }
 
+bool SimNode::publish_request() {
+  if (sim_ == nullptr || !has_goal_) return false;
+  tdo_plan_request req{};
+  tdo_plan_params_default(&req.params);
+  req.start = current().state.p;
+  req.goal = goal_;
+  tdo::plan_request_t m{};
+  plan_request_to_msg(req, -1.0, &m);  // clearance: the map's hint
+  m.utime = wall_utime();
+  m.request_id = 1;
+  m.vehicle_id = cfg_.vehicle_id;
+  m.map_id = has_map_ ? cfg_.map_id : -1;
+  bus_->publish(cfg_.request_channel, m);
+  requested_ = true;
+  return true;
+}
+
 tdo::status_t SimNode::status_message() const {
   tdo::status_t s{};
   s.utime = wall_utime();
@@ -307,6 +334,7 @@ void SimNode::poll(std::chrono::steady_clock::time_point now) {
     publish_map();
     next_map_ = now + seconds(cfg_.map_period_s);
   }
+  if (cfg_.request_goal && !requested_ && now >= request_at_) publish_request();
   if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
   publish_status();
   const auto period = seconds(cfg_.heartbeat_period_s);
@@ -319,6 +347,7 @@ std::chrono::steady_clock::time_point SimNode::next_due() const {
   if (cfg_.heartbeat_period_s > 0.0) t = next_status_;
   if (!cfg_.lockstep) t = std::min(t, next_tick_);
   if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0) t = std::min(t, next_map_);
+  if (cfg_.request_goal && !requested_) t = std::min(t, request_at_);
   return t;
 }
 

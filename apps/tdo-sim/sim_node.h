@@ -13,6 +13,8 @@
  * Every step publishes the state and the movers, both stamped with the simulated clock:
  * utime = the start utime + steps * dt. start() publishes the map and the initial state and movers.
  * The map is published again every map_period_s (timed mode) for programs that start later.
+ * For demos, request_goal sends one TDO_PLAN_REQUEST (request_id 1) from the vehicle's position to
+ * the goal request_delay_s after start (timed mode; lock-step: in start()).
  *
  * Bad input is never fatal; counted in the heartbeat by "setpoint.<reason>":
  *  - undecodable bytes: rejected; a setpoint for another vehicle: ignored (other_vehicle);
@@ -46,6 +48,7 @@ struct SimConfig {
   std::string obstacles_channel = kChannelObstacles; /**< movers out */
   std::string map_channel = kChannelMap;             /**< the map file out */
   std::string status_channel = kChannelStatus;       /**< heartbeats out */
+  std::string request_channel = kChannelPlanRequest; /**< the demo request out (request_goal) */
   double rate_hz = 50.0;        /**< Hz, steps per second; the simulator's dt = 1 / rate */
   bool lockstep = false;        /**< one step per received setpoint instead of the timer */
   std::string map_file;         /**< map to publish and simulate in; empty: none */
@@ -69,6 +72,11 @@ struct SimConfig {
   double brake_gain = 2.0;         /**< 1/s, braking command a = -gain v */
   int64_t start_utime = 0;         /**< us, utime of the initial state; 0 = the wall clock */
   uint32_t max_movers = 256;       /**< capacity: movers simulated */
+  bool request_goal = false;       /**< demo: send one plan request, start -> goal, with libtdo's
+                                        default parameters (as a ground station would) */
+  bool has_goal = false;           /**< goal given (else the map's goal) */
+  tdo_vec3 goal{};                 /**< m, world frame */
+  double request_delay_s = 1.0;    /**< s after start (timed mode) before the request goes out */
   double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
 };
 
@@ -117,6 +125,9 @@ class SimNode {
 
   /** @brief Publish the map (when there is one). */
   void publish_map();
+
+  /** @brief Publish the demo plan request (request_goal) now. @return false without a goal. */
+  bool publish_request();
 
   /** @brief Publish a heartbeat now. */
   void publish_status();
@@ -168,6 +179,8 @@ class SimNode {
   std::chrono::steady_clock::time_point next_status_;
   std::chrono::steady_clock::time_point next_tick_;
   std::chrono::steady_clock::time_point next_map_;
+  std::chrono::steady_clock::time_point request_at_;
+  bool requested_ = false;
 };
 
 }  // namespace tdo_lcm

@@ -299,6 +299,40 @@ TEST_F(SimNodeTimedTest, StepsAtTheRateAndBrakesWithoutSetpoints) {
   EXPECT_EQ(maps_.size(), 2u);
 }
 
+TEST(SimNodeStandalone, DemoRequestFromTheStartToTheMapsGoal) {
+  tdo_lcm::Bus bus("memq://");
+  std::vector<tdo::plan_request_t> requests;
+  tdo_lcm::SimConfig cfg;
+  cfg.vehicle_id = kVehicle;
+  cfg.lockstep = true;  // lock-step: the request goes out in start()
+  cfg.request_goal = true;
+  ASSERT_TRUE(bus.subscribe(cfg.request_channel, collect(&requests)));
+  {
+    tdo_lcm::SimNode node(&bus, cfg);  // no map, no --goal: refused
+    std::string error;
+    EXPECT_FALSE(node.start(&error));
+    EXPECT_NE(error.find("goal"), std::string::npos) << error;
+  }
+  cfg.map_file = kMap6;
+  tdo_lcm::SimNode node(&bus, cfg);
+  std::string error;
+  ASSERT_TRUE(node.start(&error)) << error;
+  while (bus.handle_timeout(0) > 0) {
+  }
+  ASSERT_EQ(requests.size(), 1u);
+  const tdo::plan_request_t& r = requests[0];
+  EXPECT_EQ(r.request_id, 1);
+  EXPECT_EQ(r.vehicle_id, kVehicle);
+  EXPECT_EQ(r.map_id, 1);
+  EXPECT_EQ(r.clearance, -1.0);  // the map's hint
+  EXPECT_EQ(r.start[0], 2.0);    // Map6's start and goal
+  EXPECT_EQ(r.start[2], 3.0);
+  EXPECT_EQ(r.goal[0], 49.0);
+  EXPECT_EQ(r.goal[1], 49.0);
+  EXPECT_EQ(r.goal[2], 15.0);
+  EXPECT_EQ(r.depth, tdo::plan_request_t::DEPTH_TRAJECTORY);
+}
+
 TEST(SimNodeStandalone, CollisionsAreCountedAndWithoutAMapTheBoundsAreUsed) {
   tdo_lcm::Bus bus("memq://");
   std::vector<tdo::map_t> maps;
