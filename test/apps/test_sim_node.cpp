@@ -15,7 +15,9 @@
 
 #include "sim_node.h"
 #include "tdo/tdo.h"
+#include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
+#include "tdo_lcm/grid_host.h"
 #include "tdo_lcm/wire.h"
 
 namespace {
@@ -297,6 +299,56 @@ TEST_F(SimNodeTimedTest, StepsAtTheRateAndBrakesWithoutSetpoints) {
   EXPECT_EQ(states_.back().position[0], 2.0);
   // The map went out again (its period is 1 s).
   EXPECT_EQ(maps_.size(), 2u);
+}
+
+TEST(SimNodeStandalone, VoxelMapFilesArePublishedRunLengthEncoded) {
+  // MovingAI (.3dmap: a header line "voxel 105 132 105", then 512 distinct voxels) and OctoMap
+  // (.bt): the occupied voxels go out run-length encoded, and the planner's adapter loads them
+  // back into a grid with the same voxels occupied (the planner side of the same message).
+  for (const char* file : {"movingai/Simple.3dmap", "octomap/geb079.bt"}) {
+    SCOPED_TRACE(file);
+    tdo_lcm::Bus bus("memq://");
+    std::vector<tdo::map_t> maps;
+    tdo_lcm::SimConfig cfg;
+    cfg.lockstep = true;
+    cfg.map_file = std::string(TDO_MAPS_DIR) + "/" + file;
+    cfg.map_clearance = 0.0;
+    cfg.map_resolution = 0.4;  // OcTree at 0.4 m instead of its 0.05 m: a small, fast grid
+    ASSERT_TRUE(bus.subscribe(cfg.map_channel, collect(&maps)));
+    tdo_lcm::SimNode node(&bus, cfg);
+    std::string error;
+    ASSERT_TRUE(node.start(&error)) << error;
+    while (bus.handle_timeout(0) > 0) {
+    }
+    ASSERT_EQ(maps.size(), 1u);
+    const tdo::map_t& m = maps[0];
+    EXPECT_EQ(m.encoding, tdo::map_t::ENCODING_RLE);
+    EXPECT_EQ(m.n_boxes, 0);
+    ASSERT_GT(m.n_runs, 1);
+    int64_t occupied = 0, total = 0;
+    for (int32_t i = 0; i < m.n_runs; ++i) {
+      if (i % 2 == 1) occupied += m.runs[i];
+      total += m.runs[i];
+    }
+    EXPECT_EQ(total, int64_t{m.size[0]} * m.size[1] * m.size[2]);
+    if (std::string(file).find("3dmap") != std::string::npos) {
+      EXPECT_EQ(m.size[0], 105);
+      EXPECT_EQ(m.size[1], 132);
+      EXPECT_EQ(m.size[2], 105);
+      EXPECT_EQ(occupied, 512);  // one voxel per line after the header
+    } else {
+      EXPECT_GT(occupied, 1000);
+    }
+    tdo_lcm::GridHost host;
+    ASSERT_TRUE(host.start(m.size[0], m.size[1], m.size[2], 1, 1.0, &error)) << error;
+    ASSERT_TRUE(tdo_lcm::map_to_grid(m, host.capacity(), -1.0, host.grid()).ok());
+    int64_t in_grid = 0;
+    for (int32_t k = 0; k < m.size[2]; ++k)
+      for (int32_t j = 0; j < m.size[1]; ++j)
+        for (int32_t i = 0; i < m.size[0]; ++i)
+          in_grid += tdo_grid_is_occupied(host.grid(), tdo_voxel{i, j, k}) ? 1 : 0;
+    EXPECT_EQ(in_grid, occupied);
+  }
 }
 
 TEST(SimNodeStandalone, DemoRequestFromTheStartToTheMapsGoal) {
