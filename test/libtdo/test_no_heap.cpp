@@ -319,6 +319,70 @@ constexpr int kProbes = 12;
 
 }  // namespace
 
+// ---------------------------------------------------------------------------------------------
+// Follower and simulator (apf.h, sim.h): stepped with the trap armed, from static arenas.
+namespace {
+
+alignas(64) unsigned char g_follow_arena[1u << 20];
+tdo_sample g_line[1201];  // 12 s along a straight line at 0.01 s
+
+// E-APF among movers along a straight trajectory, then the classical APF towards a goal with one
+// escape allowed (it may end in TDO_ERR_LOCAL_MINIMUM). Returns the number of unexpected statuses.
+int fly_follower_armed(const tdo_grid* grid) {
+  tdo_arena arena;
+  tdo_arena_init(&arena, g_follow_arena, sizeof g_follow_arena);
+  const tdo_apf_config acfg{1201u, 4u, 200u};
+  const tdo_sim_config scfg{4u};
+  tdo_apf* apf = nullptr;
+  tdo_sim* sim = nullptr;
+  if (tdo_apf_init(&apf, &arena, &acfg) != TDO_OK) return 1;
+  if (tdo_sim_init(&sim, &arena, &scfg) != TDO_OK) return 1;
+  for (int i = 0; i <= 1200; ++i) {  // quintic rest-to-rest ramp; no feed-forward (v, a zero)
+    const double t = i * 0.01, u = t / 12.0;
+    const double s = 14.0 * (10 * u * u * u - 15 * u * u * u * u + 6 * u * u * u * u * u);
+    g_line[i].t = t;
+    g_line[i].p = tdo_vec3{1.0 + s, 1.0 + 0.5 * s, 7.5};
+    g_line[i].v = tdo_vec3{0.0, 0.0, 0.0};
+    g_line[i].a = tdo_vec3{0.0, 0.0, 0.0};
+  }
+  const tdo_mover movers[3] = {{1u, {8.0, 8.0, 7.5}, {-0.5, -0.8, 0.0}, 0.6},
+                               {2u, {12.0, 2.0, 7.0}, {-1.0, 0.6, 0.1}, 0.8},
+                               {3u, {3.0, 12.0, 7.5}, {0.7, -0.9, 0.0}, 0.5}};
+  int bad = 0;
+  for (int kind = 0; kind < 2; ++kind) {
+    tdo_apf_params p;
+    tdo_apf_params_default(&p, kind == 0 ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF);
+    p.max_escapes = 1u;
+    const tdo_apf_task task{g_line, 1201u, tdo_vec3{14.5, 14.5, 1.5}, grid, 0.0};
+    if (tdo_apf_reset(apf, &p, &task) != TDO_OK) return bad + 1;
+    tdo_sim_params sp;
+    tdo_sim_params_default(&sp);
+    sp.bounds = tdo_box{{0.0, 0.0, 0.0}, {16.0, 16.0, 8.0}};
+    sp.grid = grid;
+    sp.accel_noise = 0.2;
+    tdo_vehicle_state s0{};
+    s0.p = g_line[0].p;
+    if (tdo_sim_reset(sim, &sp, &s0, movers, kind == 0 ? 3u : 0u) != TDO_OK) return bad + 1;
+    tdo_sim_output so;
+    if (tdo_sim_get(sim, &so) != TDO_OK) return bad + 1;
+    for (int k = 0; k < 1500; ++k) {
+      const tdo_apf_input in{so.state, so.movers, so.n_movers};
+      tdo_apf_output out;
+      const tdo_status st = tdo_apf_run(apf, &in, &out);
+      if (st != TDO_OK && st != TDO_ERR_LOCAL_MINIMUM) ++bad;
+      const tdo_sim_input si{out.setpoint};
+      if (tdo_sim_run(sim, &si, &so) != TDO_OK) ++bad;
+    }
+    // Capacity overflow is a status, armed as well.
+    tdo_mover many[5] = {movers[0], movers[1], movers[2], movers[0], movers[1]};
+    tdo_setpoint sp_out;
+    if (tdo_apf_step(apf, &so.state, many, 5u, &sp_out) != TDO_ERR_OBSTACLE_CAPACITY) ++bad;
+  }
+  return bad;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
 #if TDO_NO_HEAP_SANITIZED
   printf("no-heap trap disabled under ASan\n");
@@ -396,6 +460,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  const int follower_bad = loaded == TDO_OK ? fly_follower_armed(grid) : 0;
   disarm();  // ---- heap allowed again ----
 
   if (loaded != TDO_OK) {
@@ -407,6 +472,10 @@ int main(int argc, char** argv) {
   for (int k = 0; k < kKinds; ++k) heap_calls += g_calls[k];
   if (heap_calls != 0) {
     fprintf(stderr, "tdo_no_heap: FAIL: %lu heap calls while armed\n", heap_calls);
+    failed = 1;
+  }
+  if (follower_bad != 0) {
+    fprintf(stderr, "tdo_no_heap: FAIL: %d unexpected follower/simulator statuses\n", follower_bad);
     failed = 1;
   }
   if (bad_paths != 0) {

@@ -19,16 +19,20 @@
  *   planned trajectory (polyline through the samples), F_guide = 2 k_g (p_near - p).
  * - command     a_des = -grad U_total - k_d (v - v_ref) (+ a_ref feed-forward for E-APF, where
  *   v_ref, a_ref are the trajectory's at the reference time; classical APF: v_ref = 0, no
- *   feed-forward), then a speed governor (acceleration along v limited to
- *   sqrt(2 j_max (v_max - |v|)) so the jerk limit can stop the speed at v_max), the jerk limit
+ *   feed-forward), then a speed governor (acceleration along v limited to about
+ *   sqrt(2 j_max (v_max - |v|)), in a discrete form, so the jerk limit can stop the speed at
+ *   v_max), the jerk limit
  *   |a - a_prev| <= j_max dt, |a| <= a_max and |v| <= v_max (tdo_motion_limit, sim.h, applies the
  *   same rule).
- * - trajectory clock tau: advances by dt per step, but is held while the vehicle is more than
- *   `hold_dist` from the trajectory point at tau (pushed away by a mover), so the reference waits.
+ * - trajectory clock tau: advances with the vehicle time (state.t), but is held while the
+ *   vehicle is more than `hold_dist` from the trajectory point at tau (pushed away by a mover),
+ *   so the reference waits; tau + lookahead never lags the time of the last nearest trajectory
+ *   point (a vehicle that rejoins ahead is not pulled back).
  * - local minimum: every `lm_window` seconds the progress is compared with the window's start
  *   (E-APF: arclength of the nearest trajectory point; APF: best distance to the goal). Detected
  *   when the progress is below `lm_progress`, the vehicle is farther than `lm_goal_dist` from the
- *   goal, and the force is small (|F_total| < lm_force) or the vehicle slow (|v| < lm_speed).
+ *   goal, and the force is small (|F_total| < lm_force, now or averaged over the window) or the
+ *   vehicle slow (|v| < lm_speed, now or as net displacement over the window: oscillations count).
  *   Escape: for `escape_time` the attraction and guidance are replaced by a tangential term of
  *   magnitude k_t, perpendicular to the repulsion normal, turning about an axis fixed at the
  *   detection. After `max_escapes` detections without progress in between the follower gives up:
@@ -88,13 +92,14 @@ typedef struct tdo_apf_params {
   double dt;              /**< s, step period, > 0 (default 0.02 = 50 Hz) */
   double k_a;             /**< 1/s^2, attraction gain, > 0 (E-APF 4, APF 1) */
   double att_dist;        /**< m, attraction is conic beyond this distance, > 0 (E-APF 2,
-                               APF 2.5) */
+                               APF 4: cruise k_a att_dist / k_d = 2 m/s) */
   double k_r;             /**< m^4/s^2, repulsion gain, >= 0 (default 1.5) */
   double d_0;             /**< m, influence distance of movers, > 0 (default 2.5) */
-  double d_0_static;      /**< m, influence distance of the static map, > 0 (default 0.2) */
+  double d_0_static;      /**< m, influence distance of the static map, > 0 (E-APF 0.25,
+                               APF 2) */
   double d_min;           /**< m, floor of the repulsion distance, > 0 (default 0.05) */
   double k_g;             /**< 1/s^2, guidance gain, >= 0 (E-APF 2, ignored by APF) */
-  double k_d;             /**< 1/s, damping, > 0 (E-APF 4, APF 1) */
+  double k_d;             /**< 1/s, damping, > 0 (E-APF 4, APF 2: both critically damped) */
   double lookahead;       /**< s, reference time ahead of the clock, >= 0 (default 0.1) */
   double hold_dist;       /**< m, the clock holds while farther than this from its point, > 0
                                (default 1) */
@@ -122,8 +127,8 @@ void tdo_apf_params_default(tdo_apf_params* p, tdo_follower_kind kind);
 
 /** Capacities; every one sizes an arena array or bounds a loop, see tdo_apf_footprint. */
 typedef struct tdo_apf_config {
-  uint32_t max_samples;    /**< trajectory samples kept (>= 2; 40 bytes each: position and
-                                arclength) */
+  uint32_t max_samples;    /**< trajectory samples kept (>= 2; 88 bytes each: the sample and
+                                its arclength) */
   uint32_t max_movers;     /**< moving obstacles accepted per step (>= 1; no storage, bounds the
                                 per-step work) */
   uint32_t nearest_window; /**< samples searched per step for the nearest trajectory point,

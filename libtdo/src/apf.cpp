@@ -1,0 +1,576 @@
+// Online follower: trajectory-guided enhanced APF and the classical APF baseline (pipeline.md s.4,
+// paper eq. 10-14). See apf.h for the exact field, command and local-minimum rules.
+#include "tdo/apf.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+#include "tdo/sim.h"
+#include "vec3.h"
+
+using tdo_internal::add;
+using tdo_internal::cross;
+using tdo_internal::dot;
+using tdo_internal::finite3;
+using tdo_internal::lerp;
+using tdo_internal::mul;
+using tdo_internal::norm;
+using tdo_internal::sub;
+using tdo_internal::unit_or;
+using tdo_internal::v3;
+
+struct tdo_apf {
+  tdo_apf_config cfg;
+  tdo_sample* samples;  // max_samples, copied at reset
+  double* arc;          // m, arclength of each sample along the polyline
+  tdo_apf_params prm;
+  int ready;
+  uint32_t n;            // samples
+  double sample_dt;      // s
+  double t_end;          // s, time of the last sample
+  tdo_vec3 goal;         // m
+  const tdo_grid* grid;  // static map or NULL
+  double t0;             // s
+  // Running state.
+  int started;
+  double prev_t;      // s, vehicle time of the previous step
+  double tau;         // s, trajectory clock
+  uint32_t near_seg;  // segment of the last nearest point
+  double near_t;      // s, trajectory time of the last nearest point
+  tdo_apf_mode mode;
+  double win_t;       // s, start of the progress window
+  double win_p;       // m, progress at the window start
+  tdo_vec3 win_pos;   // m, position at the window start
+  tdo_vec3 win_f;     // m/s^2, sum of F_total over the window's steps
+  uint32_t win_n;     // steps in the window
+  double goal_d0;     // m, goal distance at the first step
+  double best_goal;   // m, best goal distance so far
+  double escape_end;  // s
+  double escape_p;    // m, progress at the escape start
+  tdo_vec3 escape_axis;
+  tdo_vec3 escape_n;  // last repulsion normal seen during the escape
+  uint32_t fails_in_row;
+  uint32_t lm_detections;
+  uint32_t escapes;
+  uint32_t steps;
+  int arrived_reported;
+};
+
+namespace {
+
+constexpr double kEps = 1e-12;
+constexpr double kFdStep = 1e-4;      // m, central-difference step of the static distance gradient
+constexpr double kArriveSpeed = 0.1;  // m/s
+constexpr double kMaxElapsedSteps = 10.0;  // the clock advances at most this many dt per step
+
+bool pos(double x) { return isfinite(x) && x > 0.0; }
+bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
+
+bool params_ok(const tdo_apf_params* p) {
+  if (p->kind != TDO_FOLLOWER_EAPF && p->kind != TDO_FOLLOWER_APF) return false;
+  return pos(p->dt) && pos(p->k_a) && pos(p->att_dist) && nonneg(p->k_r) && pos(p->d_0) &&
+         pos(p->d_0_static) && pos(p->d_min) && nonneg(p->k_g) && pos(p->k_d) &&
+         nonneg(p->lookahead) && pos(p->hold_dist) && nonneg(p->horizon) &&
+         nonneg(p->vehicle_radius) && nonneg(p->mover_margin) && pos(p->v_max) && pos(p->a_max) &&
+         pos(p->j_max) && pos(p->goal_tol) && pos(p->lm_window) && pos(p->lm_progress) &&
+         pos(p->lm_force) && pos(p->lm_speed) && pos(p->lm_goal_dist) && nonneg(p->k_t) &&
+         pos(p->escape_time);
+}
+
+bool state_ok(const tdo_vehicle_state* s) {
+  return isfinite(s->t) && finite3(s->p) && finite3(s->v) && finite3(s->a);
+}
+
+bool movers_ok(const tdo_mover* m, uint32_t n) {
+  if (n > 0u && m == nullptr) return false;
+  for (uint32_t i = 0; i < n; ++i)
+    if (!finite3(m[i].p) || !finite3(m[i].v) || !pos(m[i].radius)) return false;
+  return true;
+}
+
+// Trajectory sample interpolated at time t (clamped to [0, t_end]).
+void traj_at(const tdo_apf* c, double t, tdo_vec3* p, tdo_vec3* v, tdo_vec3* a) {
+  if (!(t > 0.0)) t = 0.0;
+  if (t > c->t_end) t = c->t_end;
+  double fi = t / c->sample_dt;
+  uint32_t i = static_cast<uint32_t>(fi);
+  if (i >= c->n - 1u) i = c->n - 2u;
+  double u = fi - static_cast<double>(i);
+  if (u < 0.0) u = 0.0;
+  if (u > 1.0) u = 1.0;
+  const tdo_sample& s0 = c->samples[i];
+  const tdo_sample& s1 = c->samples[i + 1u];
+  *p = lerp(s0.p, s1.p, u);
+  *v = lerp(s0.v, s1.v, u);
+  *a = lerp(s0.a, s1.a, u);
+}
+
+// Nearest point of the polyline, searching the segments within nearest_window of `seg0`.
+void nearest_point(const tdo_apf* c, tdo_vec3 p, uint32_t seg0, tdo_vec3* out, uint32_t* seg_out,
+                   double* arc_out, double* t_out) {
+  const uint32_t nseg = c->n - 1u;
+  const uint32_t w = c->cfg.nearest_window;
+  const uint32_t lo = seg0 > w ? seg0 - w : 0u;
+  uint32_t hi = seg0 + w;  // inclusive
+  if (hi >= nseg || hi < seg0) hi = nseg - 1u;
+  double best = HUGE_VAL;
+  for (uint32_t i = lo; i <= hi; ++i) {
+    const tdo_vec3 a = c->samples[i].p, b = c->samples[i + 1u].p;
+    const tdo_vec3 ab = sub(b, a);
+    const double l2 = dot(ab, ab);
+    double u = l2 > kEps ? dot(sub(p, a), ab) / l2 : 0.0;
+    if (u < 0.0) u = 0.0;
+    if (u > 1.0) u = 1.0;
+    const tdo_vec3 q = add(a, mul(ab, u));
+    const tdo_vec3 d = sub(p, q);
+    const double dd = dot(d, d);
+    if (dd < best) {
+      best = dd;
+      *out = q;
+      *seg_out = i;
+      *arc_out = c->arc[i] + u * (c->arc[i + 1u] - c->arc[i]);
+      *t_out = (static_cast<double>(i) + u) * c->sample_dt;
+    }
+  }
+}
+
+// 1/2 k_r (1/d - 1/d0)^2 and its derivative magnitude k_r (1/d - 1/d0) / d^2 (d floored).
+void rep_profile(double k_r, double d, double d0, double d_min, double* u, double* g) {
+  if (d >= d0) {
+    *u = 0.0;
+    *g = 0.0;
+    return;
+  }
+  if (d < d_min) d = d_min;
+  const double s = 1.0 / d - 1.0 / d0;
+  *u = 0.5 * k_r * s * s;
+  *g = k_r * s / (d * d);
+}
+
+struct Near {
+  uint32_t seg;
+  double arc;
+  double t;  // s, trajectory time of the nearest point
+};
+
+// The whole field at `st` for the follower's current clock; `near` gets the nearest point.
+void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_mover* movers,
+                   uint32_t n_movers, double ref_time, tdo_apf_terms* t, Near* near) {
+  const tdo_apf_params& q = c->prm;
+  memset(t, 0, sizeof(*t));
+  const tdo_vec3 p = st->p;
+  near->seg = c->near_seg;
+  near->arc = 0.0;
+  near->t = c->near_t;
+  // Attraction.
+  if (q.kind == TDO_FOLLOWER_EAPF) {
+    tdo_vec3 rv, ra;
+    traj_at(c, ref_time, &t->ref, &rv, &ra);
+  } else {
+    t->ref = c->goal;
+  }
+  const tdo_vec3 e = sub(t->ref, p);
+  const double dg = norm(e);
+  if (dg <= q.att_dist) {
+    t->u_att = 0.5 * q.k_a * dg * dg;
+    t->f_att = mul(e, q.k_a);
+  } else {
+    t->u_att = q.k_a * q.att_dist * (dg - 0.5 * q.att_dist);
+    t->f_att = mul(e, q.k_a * q.att_dist / dg);
+  }
+  // Guidance.
+  if (q.kind == TDO_FOLLOWER_EAPF) {
+    nearest_point(c, p, c->near_seg, &t->nearest, &near->seg, &near->arc, &near->t);
+    const tdo_vec3 d = sub(t->nearest, p);
+    t->deviation = norm(d);
+    t->u_guide = q.k_g * t->deviation * t->deviation;
+    t->f_guide = mul(d, 2.0 * q.k_g);
+  } else {
+    t->nearest = c->goal;
+  }
+  // Static repulsion.
+  t->static_dist = HUGE_VAL;
+  if (c->grid != nullptr) {
+    const double cap = q.vehicle_radius + q.d_0_static + 1.0;
+    const double dist = tdo_collision_point_distance(c->grid, p, cap);
+    t->static_dist = dist;
+    const double d = dist - q.vehicle_radius;
+    if (d < q.d_0_static && dist > 0.0) {
+      double u, g;
+      rep_profile(q.k_r, d, q.d_0_static, q.d_min, &u, &g);
+      const double h = kFdStep;
+      const tdo_vec3 grad = v3((tdo_collision_point_distance(c->grid, v3(p.x + h, p.y, p.z), cap) -
+                                tdo_collision_point_distance(c->grid, v3(p.x - h, p.y, p.z), cap)) /
+                                   (2.0 * h),
+                               (tdo_collision_point_distance(c->grid, v3(p.x, p.y + h, p.z), cap) -
+                                tdo_collision_point_distance(c->grid, v3(p.x, p.y - h, p.z), cap)) /
+                                   (2.0 * h),
+                               (tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z + h), cap) -
+                                tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z - h), cap)) /
+                                   (2.0 * h));
+      t->u_rep_static = u;
+      t->f_rep_static = mul(grad, g);
+    }
+  }
+  // Moving spheres: predicted closest approach within the horizon.
+  t->mover_gap = HUGE_VAL;
+  t->mover_pred_gap = HUGE_VAL;
+  for (uint32_t i = 0; i < n_movers; ++i) {
+    const tdo_mover& m = movers[i];
+    const tdo_vec3 r = sub(p, m.p);
+    const tdo_vec3 w = sub(st->v, m.v);
+    const double reach = m.radius + q.vehicle_radius;
+    const double gap = norm(r) - reach;
+    if (gap < t->mover_gap) t->mover_gap = gap;
+    const double w2 = dot(w, w);
+    double ts = w2 > kEps ? -dot(r, w) / w2 : 0.0;
+    if (ts < 0.0) ts = 0.0;
+    if (ts > q.horizon) ts = q.horizon;
+    const tdo_vec3 rs = add(r, mul(w, ts));
+    const double nrs = norm(rs);
+    const double d = nrs - reach - q.mover_margin;
+    if (d < t->mover_pred_gap) t->mover_pred_gap = d;
+    if (d >= q.d_0) continue;
+    double u, g;
+    rep_profile(q.k_r, d, q.d_0, q.d_min, &u, &g);
+    // Direction: away from the predicted closest point; head-on (rs ~ 0): sideways, horizontal.
+    tdo_vec3 side = unit_or(cross(v3(0.0, 0.0, 1.0), w), v3(1.0, 0.0, 0.0), 1e-9);
+    tdo_vec3 dir = unit_or(rs, unit_or(r, side, 1e-9), 1e-9);
+    t->u_rep_movers += u;
+    t->f_rep_movers = add(t->f_rep_movers, mul(dir, g));
+  }
+  t->f_total = add(add(t->f_att, t->f_guide), add(t->f_rep_static, t->f_rep_movers));
+  t->u_total = t->u_att + t->u_guide + t->u_rep_static + t->u_rep_movers;
+}
+
+double ref_time_of(const tdo_apf* c) {
+  if (c->prm.kind != TDO_FOLLOWER_EAPF) return 0.0;
+  double r = c->tau + c->prm.lookahead;
+  return r < c->t_end ? r : c->t_end;
+}
+
+}  // namespace
+
+extern "C" void tdo_apf_params_default(tdo_apf_params* p, tdo_follower_kind kind) {
+  if (p == nullptr) return;
+  memset(p, 0, sizeof(*p));
+  const bool eapf = kind != TDO_FOLLOWER_APF;
+  p->kind = eapf ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
+  p->dt = 0.02;
+  p->k_a = eapf ? 4.0 : 1.0;
+  p->att_dist = eapf ? 2.0 : 4.0;
+  p->k_r = 1.5;
+  p->d_0 = 2.5;
+  p->d_0_static = eapf ? 0.25 : 2.0;
+  p->d_min = 0.05;
+  p->k_g = eapf ? 2.0 : 0.0;
+  p->k_d = eapf ? 4.0 : 2.0;
+  p->lookahead = 0.1;
+  p->hold_dist = 1.0;
+  p->horizon = 2.5;
+  p->vehicle_radius = 0.25;
+  p->mover_margin = 0.25;
+  p->v_max = 3.0;
+  p->a_max = 3.0;
+  p->j_max = 10.0;
+  p->goal_tol = 0.2;
+  p->lm_window = 2.0;
+  p->lm_progress = 0.3;
+  p->lm_force = 0.5;
+  p->lm_speed = 0.2;
+  p->lm_goal_dist = 1.0;
+  p->k_t = 2.0;
+  p->escape_time = 3.0;
+  p->max_escapes = 3u;
+}
+
+extern "C" size_t tdo_apf_footprint(const tdo_apf_config* cfg) {
+  if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_movers == 0u ||
+      cfg->nearest_window == 0u || cfg->max_samples > 0x7FFFFFFFu)
+    return 0;
+  const size_t ns = cfg->max_samples;
+  return tdo_arena_round(sizeof(tdo_apf)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+         tdo_arena_round(ns * sizeof(double));
+}
+
+extern "C" tdo_status tdo_apf_init(tdo_apf** out, tdo_arena* arena, const tdo_apf_config* cfg) {
+  if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_apf_footprint(cfg) == 0)
+    return TDO_ERR_INVALID_ARGUMENT;
+  *out = nullptr;
+  tdo_apf* c = static_cast<tdo_apf*>(tdo_arena_alloc(arena, sizeof(tdo_apf)));
+  if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(c, 0, sizeof(*c));
+  c->cfg = *cfg;
+  const size_t ns = cfg->max_samples;
+  c->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
+  c->arc = static_cast<double*>(tdo_arena_alloc(arena, ns * sizeof(double)));
+  if (c->samples == nullptr || c->arc == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  *out = c;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
+                                    const tdo_apf_task* task) {
+  if (c == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  c->ready = 0;
+  if (prm == nullptr || task == nullptr || !params_ok(prm) || !isfinite(task->t0))
+    return TDO_ERR_INVALID_ARGUMENT;
+  const bool eapf = prm->kind == TDO_FOLLOWER_EAPF;
+  if (eapf) {
+    if (task->samples == nullptr || task->n_samples < 2u) return TDO_ERR_INVALID_ARGUMENT;
+  } else if (!finite3(task->goal) || (task->n_samples > 0u && task->samples == nullptr)) {
+    return TDO_ERR_INVALID_ARGUMENT;
+  }
+  if (task->n_samples > c->cfg.max_samples) return TDO_ERR_SAMPLE_CAPACITY;
+  if (task->grid != nullptr && !(tdo_grid_clearance(task->grid) >= 0.0))
+    return TDO_ERR_MAP_NOT_READY;
+  const uint32_t n = task->n_samples;
+  double sdt = 0.0;
+  if (n >= 2u) {
+    sdt = task->samples[1].t - task->samples[0].t;
+    if (!(fabs(task->samples[0].t) <= 1e-9) || !pos(sdt)) return TDO_ERR_INVALID_ARGUMENT;
+    for (uint32_t i = 0; i < n; ++i) {
+      const tdo_sample& s = task->samples[i];
+      const double expect = static_cast<double>(i) * sdt;
+      if (!isfinite(s.t) || fabs(s.t - expect) > 1e-6 * (expect > 1.0 ? expect : 1.0) ||
+          !finite3(s.p) || !finite3(s.v) || !finite3(s.a))
+        return TDO_ERR_INVALID_ARGUMENT;
+    }
+  }
+  memcpy(c->samples, task->samples, static_cast<size_t>(n) * sizeof(tdo_sample));
+  c->n = n;
+  c->sample_dt = sdt;
+  if (n >= 2u) {
+    c->arc[0] = 0.0;
+    for (uint32_t i = 1; i < n; ++i)
+      c->arc[i] = c->arc[i - 1u] + norm(sub(c->samples[i].p, c->samples[i - 1u].p));
+    c->t_end = static_cast<double>(n - 1u) * sdt;
+  } else {
+    c->t_end = 0.0;
+  }
+  c->prm = *prm;
+  c->goal = eapf ? c->samples[n - 1u].p : task->goal;
+  c->grid = task->grid;
+  c->t0 = task->t0;
+  c->started = 0;
+  c->prev_t = 0.0;
+  c->tau = 0.0;
+  c->near_seg = 0u;
+  c->near_t = 0.0;
+  c->mode = TDO_APF_MODE_TRACK;
+  c->win_t = 0.0;
+  c->win_p = 0.0;
+  c->win_pos = v3(0.0, 0.0, 0.0);
+  c->win_f = v3(0.0, 0.0, 0.0);
+  c->win_n = 0u;
+  c->goal_d0 = 0.0;
+  c->best_goal = 0.0;
+  c->escape_end = 0.0;
+  c->escape_p = 0.0;
+  c->escape_axis = v3(0.0, 0.0, 1.0);
+  c->escape_n = v3(1.0, 0.0, 0.0);
+  c->fails_in_row = 0u;
+  c->lm_detections = 0u;
+  c->escapes = 0u;
+  c->steps = 0u;
+  c->arrived_reported = 0;
+  c->ready = 1;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_apf_eval(const tdo_apf* c, const tdo_vehicle_state* st,
+                                   const tdo_mover* movers, uint32_t n_movers, tdo_apf_terms* out) {
+  if (c == nullptr || st == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  if (n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
+  if (!state_ok(st) || !movers_ok(movers, n_movers)) return TDO_ERR_INVALID_ARGUMENT;
+  Near near;
+  compute_terms(c, st, movers, n_movers, ref_time_of(c), out, &near);
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_output* out) {
+  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  if (in->n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
+  const tdo_vehicle_state* st = &in->state;
+  if (!state_ok(st) || !movers_ok(in->movers, in->n_movers)) return TDO_ERR_INVALID_ARGUMENT;
+  const tdo_apf_params& q = c->prm;
+  const bool eapf = q.kind == TDO_FOLLOWER_EAPF;
+  memset(out, 0, sizeof(*out));
+  uint32_t events = 0u;
+
+  // Trajectory clock.
+  const tdo_vec3 p = st->p;
+  if (!c->started) {
+    c->started = 1;
+    double tau = st->t - c->t0;
+    if (!(tau > 0.0)) tau = 0.0;
+    c->tau = tau < c->t_end ? tau : c->t_end;
+    c->goal_d0 = norm(sub(p, c->goal));
+    c->best_goal = c->goal_d0;
+    c->win_t = st->t;
+    c->win_pos = p;
+  } else if (eapf) {
+    double el = st->t - c->prev_t;
+    if (!(el > 0.0)) el = 0.0;
+    if (el > kMaxElapsedSteps * q.dt) el = kMaxElapsedSteps * q.dt;
+    // The reference never lags the nearest trajectory point (the vehicle may rejoin ahead).
+    if (c->near_t - q.lookahead > c->tau) c->tau = c->near_t - q.lookahead;
+    tdo_vec3 cp, cv, ca;
+    traj_at(c, c->tau, &cp, &cv, &ca);
+    if (norm(sub(cp, p)) <= q.hold_dist) {
+      c->tau += el;
+      if (c->tau > c->t_end) c->tau = c->t_end;
+    } else {
+      events |= TDO_APF_EVENT_CLOCK_HELD;
+    }
+  }
+  c->prev_t = st->t;
+  const double rt = ref_time_of(c);
+
+  // Field.
+  Near near;
+  tdo_apf_terms* t = &out->terms;
+  compute_terms(c, st, in->movers, in->n_movers, rt, t, &near);
+  if (eapf) {
+    c->near_seg = near.seg;
+    c->near_t = near.t;
+  }
+  const double gd = norm(sub(p, c->goal));
+  if (gd < c->best_goal) c->best_goal = gd;
+  const double progress = eapf ? near.arc : c->goal_d0 - c->best_goal;
+  if (t->mover_pred_gap < q.d_0) events |= TDO_APF_EVENT_REPULSED;
+  c->win_f = add(c->win_f, t->f_total);
+  ++c->win_n;
+
+  // Reference velocity and feed-forward.
+  tdo_vec3 v_ref = v3(0.0, 0.0, 0.0), a_ref = v3(0.0, 0.0, 0.0);
+  if (eapf) {
+    tdo_vec3 rp;
+    traj_at(c, rt, &rp, &v_ref, &a_ref);
+  }
+  const double speed = norm(st->v);
+  const tdo_vec3 f_rep = add(t->f_rep_static, t->f_rep_movers);
+
+  // Arrival.
+  const bool clock_done = !eapf || c->tau >= c->t_end;
+  if (c->mode == TDO_APF_MODE_TRACK && clock_done && gd <= q.goal_tol && speed < kArriveSpeed) {
+    c->mode = TDO_APF_MODE_ARRIVED;
+    if (!c->arrived_reported) events |= TDO_APF_EVENT_GOAL_REACHED;
+    c->arrived_reported = 1;
+  }
+
+  // Local-minimum detector (track mode) and escape bookkeeping.
+  if (c->mode == TDO_APF_MODE_ESCAPE && st->t >= c->escape_end) {
+    c->mode = TDO_APF_MODE_TRACK;
+    if (progress - c->escape_p >= q.lm_progress) {
+      events |= TDO_APF_EVENT_ESCAPE_OK;
+      c->fails_in_row = 0u;
+    }
+    c->win_t = st->t;
+    c->win_p = progress;
+    c->win_pos = p;
+    c->win_f = v3(0.0, 0.0, 0.0);
+    c->win_n = 0u;
+  }
+  if (c->mode == TDO_APF_MODE_TRACK && st->t - c->win_t >= q.lm_window) {
+    const bool no_progress = progress - c->win_p < q.lm_progress;
+    const bool far = gd > q.lm_goal_dist;
+    // Small force or slow: also over the window, so that an oscillation in front of an obstacle
+    // (large force and speed at every instant, none on average) counts.
+    const double span = st->t - c->win_t;
+    const double mean_f = c->win_n > 0u ? norm(c->win_f) / static_cast<double>(c->win_n) : 0.0;
+    const double mean_v = norm(sub(p, c->win_pos)) / span;
+    const bool weak = norm(t->f_total) < q.lm_force || speed < q.lm_speed || mean_f < q.lm_force ||
+                      mean_v < q.lm_speed;
+    if (no_progress && far && weak) {
+      ++c->lm_detections;
+      events |= TDO_APF_EVENT_LM_DETECTED;
+      if (c->fails_in_row >= q.max_escapes) {
+        c->mode = TDO_APF_MODE_STUCK;
+        events |= TDO_APF_EVENT_ESCAPE_FAILED;
+      } else {
+        ++c->fails_in_row;
+        ++c->escapes;
+        events |= TDO_APF_EVENT_ESCAPE_START;
+        c->mode = TDO_APF_MODE_ESCAPE;
+        c->escape_end = st->t + q.escape_time;
+        c->escape_p = progress;
+        const tdo_vec3 g = unit_or(sub(t->ref, p), v3(1.0, 0.0, 0.0), 1e-9);
+        const tdo_vec3 n = unit_or(f_rep, mul(g, -1.0), 1e-9);
+        // Turn about n x g (towards the goal side); head-on (g = -n): about z, i.e. sideways.
+        tdo_vec3 axis = cross(n, g);
+        if (norm(axis) <= 1e-6) axis = v3(0.0, 0.0, 1.0);
+        if (norm(cross(axis, n)) <= 1e-6) axis = v3(1.0, 0.0, 0.0);
+        c->escape_axis = unit_or(axis, v3(0.0, 0.0, 1.0), 1e-12);
+        c->escape_n = n;
+      }
+    } else if (!no_progress && c->fails_in_row > 0u) {
+      events |= TDO_APF_EVENT_ESCAPE_OK;
+      c->fails_in_row = 0u;
+    }
+    c->win_t = st->t;
+    c->win_p = progress;
+    c->win_pos = p;
+    c->win_f = v3(0.0, 0.0, 0.0);
+    c->win_n = 0u;
+  }
+
+  // Command.
+  tdo_vec3 a_des;
+  switch (c->mode) {
+    case TDO_APF_MODE_ESCAPE: {
+      if (norm(f_rep) > 1e-9) c->escape_n = unit_or(f_rep, c->escape_n, 1e-9);
+      const tdo_vec3 tan = unit_or(cross(c->escape_axis, c->escape_n), v3(0.0, 0.0, 0.0), 1e-9);
+      a_des = add(add(f_rep, mul(tan, q.k_t)), mul(st->v, -q.k_d));
+      break;
+    }
+    case TDO_APF_MODE_STUCK:
+      a_des = add(f_rep, mul(st->v, -q.k_d));
+      break;
+    default:
+      a_des = add(t->f_total, mul(sub(st->v, v_ref), -q.k_d));
+      if (eapf) a_des = add(a_des, a_ref);
+      break;
+  }
+  out->a_des = a_des;
+  // Speed governor: the acceleration along v may not exceed what the jerk limit can remove
+  // before the speed reaches v_max. Discrete form: after a step with along-acceleration a the
+  // speed still grows by about a dt + a^2/(2 j) + a dt/2 while the jerk limit brings a to zero,
+  // so a <= j (-1.5 dt + sqrt(2.25 dt^2 + 2 room / j)).
+  if (speed > 1e-9) {
+    const tdo_vec3 vh = mul(st->v, 1.0 / speed);
+    const double along = dot(a_des, vh);
+    const double room = q.v_max - speed;
+    const double allowed =
+        room > 0.0 ? q.j_max * (sqrt(2.25 * q.dt * q.dt + 2.0 * room / q.j_max) - 1.5 * q.dt) : 0.0;
+    if (along > allowed) a_des = sub(a_des, mul(vh, along - allowed));
+  }
+  tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);
+
+  ++c->steps;
+  out->ref_time = rt;
+  out->progress = progress;
+  out->mode = c->mode;
+  out->events = events;
+  out->lm_detections = c->lm_detections;
+  out->escapes = c->escapes;
+  out->steps = c->steps;
+  return c->mode == TDO_APF_MODE_STUCK ? TDO_ERR_LOCAL_MINIMUM : TDO_OK;
+}
+
+extern "C" tdo_status tdo_apf_step(tdo_apf* c, const tdo_vehicle_state* state,
+                                   const tdo_mover* movers, uint32_t n_movers,
+                                   tdo_setpoint* setpoint) {
+  if (state == nullptr || setpoint == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  tdo_apf_input in;
+  in.state = *state;
+  in.movers = movers;
+  in.n_movers = n_movers;
+  tdo_apf_output out;
+  const tdo_status s = tdo_apf_run(c, &in, &out);
+  if (s == TDO_OK || s == TDO_ERR_LOCAL_MINIMUM) *setpoint = out.setpoint;
+  return s;
+}

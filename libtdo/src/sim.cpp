@@ -1,0 +1,253 @@
+// Deterministic simulator: jerk-limited double integrator and constant-velocity spheres reflected
+// at the bounds (sim.h).
+#include "tdo/sim.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "tdo/collision.h"
+#include "vec3.h"
+
+using tdo_internal::add;
+using tdo_internal::dot;
+using tdo_internal::finite3;
+using tdo_internal::mul;
+using tdo_internal::norm;
+using tdo_internal::sub;
+using tdo_internal::v3;
+
+struct tdo_sim {
+  tdo_sim_config cfg;
+  tdo_mover* movers;  // max_movers
+  uint32_t n;
+  tdo_sim_params prm;
+  tdo_vehicle_state state;
+  uint64_t rng;
+  uint32_t steps;
+  double t_start;  // s
+  int ready;
+};
+
+namespace {
+
+constexpr double kStaticCap = 10.0;  // m, cap of the static distance query
+constexpr int kMaxReflections = 4;   // per axis and step
+
+bool pos(double x) { return isfinite(x) && x > 0.0; }
+bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
+
+double comp(tdo_vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+void set_comp(tdo_vec3* v, int k, double x) {
+  if (k == 0)
+    v->x = x;
+  else if (k == 1)
+    v->y = x;
+  else
+    v->z = x;
+}
+
+// splitmix64 (Vigna).
+uint64_t next_u64(uint64_t* s) {
+  uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Zero mean, unit variance: sum of four uniforms in [-0.5, 0.5) scaled by sqrt(3).
+double noise(uint64_t* s) {
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+    sum += static_cast<double>(next_u64(s) >> 11) * (1.0 / 9007199254740992.0) - 0.5;
+  return sum * 1.7320508075688772;
+}
+
+void advance_mover(tdo_mover* m, const tdo_box& b, double dt) {
+  for (int k = 0; k < 3; ++k) {
+    const double lo = comp(b.min, k), hi = comp(b.max, k);
+    double x = comp(m->p, k) + comp(m->v, k) * dt;
+    double u = comp(m->v, k);
+    for (int r = 0; r < kMaxReflections; ++r) {
+      if (x > hi) {
+        x = 2.0 * hi - x;
+        u = -u;
+      } else if (x < lo) {
+        x = 2.0 * lo - x;
+        u = -u;
+      } else {
+        break;
+      }
+    }
+    if (x > hi) x = hi;
+    if (x < lo) x = lo;
+    set_comp(&m->p, k, x);
+    set_comp(&m->v, k, u);
+  }
+}
+
+void fill_output(const tdo_sim* c, tdo_sim_output* out) {
+  memset(out, 0, sizeof(*out));
+  out->state = c->state;
+  out->movers = c->movers;
+  out->n_movers = c->n;
+  out->steps = c->steps;
+  out->mover_gap = HUGE_VAL;
+  out->nearest_mover = 0u;
+  for (uint32_t i = 0; i < c->n; ++i) {
+    const double gap =
+        norm(sub(c->state.p, c->movers[i].p)) - c->movers[i].radius - c->prm.vehicle_radius;
+    if (gap < out->mover_gap) {
+      out->mover_gap = gap;
+      out->nearest_mover = c->movers[i].id;
+    }
+  }
+  out->static_dist = HUGE_VAL;
+  if (c->prm.grid != nullptr)
+    out->static_dist = tdo_collision_point_distance(c->prm.grid, c->state.p, kStaticCap);
+  out->collision_mover = out->mover_gap < 0.0 ? 1 : 0;
+  out->collision_static = out->static_dist < c->prm.static_clearance ? 1 : 0;
+}
+
+}  // namespace
+
+extern "C" void tdo_motion_limit(const tdo_vehicle_state* s, tdo_vec3 a_des, double v_max,
+                                 double a_max, double j_max, double dt, tdo_setpoint* out) {
+  if (s == nullptr || out == nullptr) return;
+  if (!isfinite(a_des.x)) a_des.x = 0.0;
+  if (!isfinite(a_des.y)) a_des.y = 0.0;
+  if (!isfinite(a_des.z)) a_des.z = 0.0;
+  // Jerk.
+  tdo_vec3 da = sub(a_des, s->a);
+  const double dmax = j_max * dt;
+  const double nda = norm(da);
+  if (nda > dmax) da = mul(da, dmax / nda);
+  tdo_vec3 a = add(s->a, da);
+  // Acceleration.
+  const double na = norm(a);
+  if (na > a_max) a = mul(a, a_max / na);
+  // Speed.
+  tdo_vec3 v = add(s->v, mul(a, dt));
+  const double nv = norm(v);
+  if (nv > v_max) {
+    v = mul(v, v_max / nv);
+    a = mul(sub(v, s->v), 1.0 / dt);
+  }
+  out->t = s->t + dt;
+  out->a = a;
+  out->v = v;
+  out->p = add(s->p, mul(add(s->v, v), 0.5 * dt));
+}
+
+extern "C" void tdo_sim_params_default(tdo_sim_params* p) {
+  if (p == nullptr) return;
+  memset(p, 0, sizeof(*p));
+  p->dt = 0.02;
+  p->v_max = 3.0;
+  p->a_max = 3.0;
+  p->j_max = 10.0;
+  p->bounds.min = v3(0.0, 0.0, 0.0);
+  p->bounds.max = v3(1.0, 1.0, 1.0);
+  p->vehicle_radius = 0.25;
+  p->static_clearance = 0.25;
+  p->grid = nullptr;
+  p->seed = 1u;
+  p->accel_noise = 0.0;
+}
+
+extern "C" size_t tdo_sim_footprint(const tdo_sim_config* cfg) {
+  if (cfg == nullptr || cfg->max_movers == 0u || cfg->max_movers > 0x7FFFFFFFu) return 0;
+  return tdo_arena_round(sizeof(tdo_sim)) +
+         tdo_arena_round(static_cast<size_t>(cfg->max_movers) * sizeof(tdo_mover));
+}
+
+extern "C" tdo_status tdo_sim_init(tdo_sim** out, tdo_arena* arena, const tdo_sim_config* cfg) {
+  if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_sim_footprint(cfg) == 0)
+    return TDO_ERR_INVALID_ARGUMENT;
+  *out = nullptr;
+  tdo_sim* c = static_cast<tdo_sim*>(tdo_arena_alloc(arena, sizeof(tdo_sim)));
+  if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(c, 0, sizeof(*c));
+  c->cfg = *cfg;
+  c->movers = static_cast<tdo_mover*>(
+      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_movers) * sizeof(tdo_mover)));
+  if (c->movers == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  *out = c;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
+                                    const tdo_vehicle_state* initial, const tdo_mover* movers,
+                                    uint32_t n_movers) {
+  if (c == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  c->ready = 0;
+  if (prm == nullptr || initial == nullptr || (n_movers > 0u && movers == nullptr))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (!pos(prm->dt) || !pos(prm->v_max) || !pos(prm->a_max) || !pos(prm->j_max) ||
+      !nonneg(prm->vehicle_radius) || !nonneg(prm->static_clearance) || !nonneg(prm->accel_noise) ||
+      !finite3(prm->bounds.min) || !finite3(prm->bounds.max) ||
+      !(prm->bounds.max.x > prm->bounds.min.x) || !(prm->bounds.max.y > prm->bounds.min.y) ||
+      !(prm->bounds.max.z > prm->bounds.min.z))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (!isfinite(initial->t) || !finite3(initial->p) || !finite3(initial->v) || !finite3(initial->a))
+    return TDO_ERR_INVALID_ARGUMENT;
+  for (uint32_t i = 0; i < n_movers; ++i)
+    if (!finite3(movers[i].p) || !finite3(movers[i].v) || !pos(movers[i].radius))
+      return TDO_ERR_INVALID_ARGUMENT;
+  if (n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
+  if (prm->grid != nullptr && !(tdo_grid_clearance(prm->grid) >= 0.0)) return TDO_ERR_MAP_NOT_READY;
+  c->prm = *prm;
+  c->state = *initial;
+  c->t_start = initial->t;
+  if (n_movers > 0u) memcpy(c->movers, movers, static_cast<size_t>(n_movers) * sizeof(tdo_mover));
+  c->n = n_movers;
+  c->rng = prm->seed;
+  c->steps = 0u;
+  c->ready = 1;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_sim_run(tdo_sim* c, const tdo_sim_input* in, tdo_sim_output* out) {
+  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  const tdo_sim_params& q = c->prm;
+  tdo_setpoint next;
+  tdo_motion_limit(&c->state, in->setpoint.a, q.v_max, q.a_max, q.j_max, q.dt, &next);
+  if (q.accel_noise > 0.0) {
+    const tdo_vec3 w = v3(noise(&c->rng), noise(&c->rng), noise(&c->rng));
+    next.a = add(next.a, mul(w, q.accel_noise));
+    tdo_vec3 v = add(c->state.v, mul(next.a, q.dt));
+    const double nv = norm(v);
+    if (nv > q.v_max) {
+      v = mul(v, q.v_max / nv);
+      next.a = mul(sub(v, c->state.v), 1.0 / q.dt);
+    }
+    next.v = v;
+    next.p = add(c->state.p, mul(add(c->state.v, v), 0.5 * q.dt));
+  }
+  ++c->steps;
+  c->state.t = c->t_start + static_cast<double>(c->steps) * q.dt;
+  c->state.p = next.p;
+  c->state.v = next.v;
+  c->state.a = next.a;
+  for (uint32_t i = 0; i < c->n; ++i) advance_mover(&c->movers[i], q.bounds, q.dt);
+  fill_output(c, out);
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_sim_step(tdo_sim* c, const tdo_setpoint* setpoint,
+                                   tdo_vehicle_state* state) {
+  if (c == nullptr || setpoint == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  tdo_sim_input in;
+  in.setpoint = *setpoint;
+  tdo_sim_output out;
+  const tdo_status s = tdo_sim_run(c, &in, &out);
+  if (s == TDO_OK && state != nullptr) *state = out.state;
+  return s;
+}
+
+extern "C" tdo_status tdo_sim_get(const tdo_sim* c, tdo_sim_output* out) {
+  if (c == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  fill_output(c, out);
+  return TDO_OK;
+}

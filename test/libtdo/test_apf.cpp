@@ -1,0 +1,509 @@
+// The E-APF follower and the classical APF baseline (apf.h): forces against finite differences of
+// the potentials and an independent closest-point model, the potential along an executed path,
+// the U-shaped trap, tracking accuracy, determinism, capacities and bad parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "rng.h"
+#include "tdo/tdo.h"
+#include "test_util.h"
+
+namespace {
+
+using tdo_test::TestPlanner;
+
+constexpr double kPi = 3.14159265358979323846;
+
+double norm3(tdo_vec3 a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
+tdo_vec3 sub3(tdo_vec3 a, tdo_vec3 b) { return tdo_vec3{a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+/** A follower in a heap block of exactly its footprint. */
+struct Follower {
+  std::vector<unsigned char> mem;
+  tdo_arena arena{};
+  tdo_apf* apf = nullptr;
+  tdo_status init_status = TDO_ERR_INVALID_ARGUMENT;
+  explicit Follower(uint32_t samples, uint32_t movers = 8u, uint32_t window = 100000u) {
+    tdo_apf_config cfg{samples, movers, window};
+    mem.assign(tdo_apf_footprint(&cfg), 0u);
+    tdo_arena_init(&arena, mem.data(), mem.size());
+    init_status = tdo_apf_init(&apf, &arena, &cfg);
+  }
+};
+
+/** A simulator in a heap block of exactly its footprint. */
+struct Sim {
+  std::vector<unsigned char> mem;
+  tdo_arena arena{};
+  tdo_sim* sim = nullptr;
+  explicit Sim(uint32_t movers) {
+    tdo_sim_config cfg{movers};
+    mem.assign(tdo_sim_footprint(&cfg), 0u);
+    tdo_arena_init(&arena, mem.data(), mem.size());
+    EXPECT_EQ(tdo_sim_init(&sim, &arena, &cfg), TDO_OK);
+  }
+};
+
+/** Rest-to-rest half circle (radius 5 m, z = 2 m) in `T` s, quintic in the angle, every `dt`. */
+std::vector<tdo_sample> arc_trajectory(double T, double dt, tdo_vec3 c = {10.0, 10.0, 2.0}) {
+  std::vector<tdo_sample> s;
+  const double R = 5.0;
+  const int n = static_cast<int>(std::lround(T / dt));
+  for (int i = 0; i <= n; ++i) {
+    const double t = i * dt, u = t / T;
+    const double th = kPi * (10 * u * u * u - 15 * u * u * u * u + 6 * u * u * u * u * u);
+    const double thd = kPi * (30 * u * u - 60 * u * u * u + 30 * u * u * u * u) / T;
+    const double thdd = kPi * (60 * u - 180 * u * u + 120 * u * u * u) / (T * T);
+    tdo_sample x{};
+    x.t = t;
+    x.p = tdo_vec3{c.x + R * std::cos(th), c.y + R * std::sin(th), c.z};
+    x.v = tdo_vec3{-R * std::sin(th) * thd, R * std::cos(th) * thd, 0.0};
+    x.a = tdo_vec3{-R * (std::cos(th) * thd * thd + std::sin(th) * thdd),
+                   R * (-std::sin(th) * thd * thd + std::cos(th) * thdd), 0.0};
+    s.push_back(x);
+  }
+  return s;
+}
+
+/** A finished 20 x 20 x 6 m grid with the given boxes. */
+void make_grid(TestPlanner* tp, const std::vector<tdo_box>& boxes) {
+  ASSERT_EQ(tp->status(), TDO_OK);
+  const tdo_grid_desc d{20, 20, 6, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(tp->grid(), &d), TDO_OK);
+  for (const auto& b : boxes) ASSERT_EQ(tdo_grid_add_box(tp->grid(), &b), TDO_OK);
+  ASSERT_EQ(tdo_grid_finish(tp->grid(), 0.5), TDO_OK);
+}
+
+tdo_capacity small_cap() { return tdo_test::make_cap(20u * 20u * 6u, 27u * 2400u, 2400u, 16u); }
+
+/** Independent model: closest point of a box to p. */
+tdo_vec3 box_closest(const tdo_box& b, tdo_vec3 p) {
+  return tdo_vec3{std::fmin(std::fmax(p.x, b.min.x), b.max.x),
+                  std::fmin(std::fmax(p.y, b.min.y), b.max.y),
+                  std::fmin(std::fmax(p.z, b.min.z), b.max.z)};
+}
+
+// GIVEN the documented defaults WHEN they are checked THEN reset accepts them for both kinds.
+TEST(Apf, DefaultsAreValid) {
+  const auto traj = arc_trajectory(12.0, 0.01);
+  Follower f(static_cast<uint32_t>(traj.size()));
+  ASSERT_EQ(f.init_status, TDO_OK);
+  for (tdo_follower_kind k : {TDO_FOLLOWER_EAPF, TDO_FOLLOWER_APF}) {
+    tdo_apf_params p;
+    tdo_apf_params_default(&p, k);
+    EXPECT_EQ(p.kind, k);
+    EXPECT_DOUBLE_EQ(p.dt, 0.02);  // 50 Hz
+    EXPECT_DOUBLE_EQ(p.v_max, 3.0);
+    EXPECT_DOUBLE_EQ(p.a_max, 3.0);
+    EXPECT_DOUBLE_EQ(p.j_max, 10.0);
+    tdo_apf_task task{traj.data(), static_cast<uint32_t>(traj.size()), traj.back().p, nullptr, 0.0};
+    EXPECT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  }
+}
+
+TEST(Apf, FootprintAndInit) {
+  tdo_apf_config bad{1u, 1u, 1u};
+  EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
+  bad = tdo_apf_config{10u, 0u, 1u};
+  EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
+  bad = tdo_apf_config{10u, 1u, 0u};
+  EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
+  EXPECT_EQ(tdo_apf_footprint(nullptr), 0u);
+  tdo_apf_config cfg{100u, 4u, 10u};
+  const size_t fp = tdo_apf_footprint(&cfg);
+  ASSERT_GT(fp, 100u * sizeof(tdo_sample));
+  std::vector<unsigned char> mem(fp);
+  tdo_arena a;
+  tdo_arena_init(&a, mem.data(), fp - 1u);
+  tdo_apf* apf = nullptr;
+  EXPECT_EQ(tdo_apf_init(&apf, &a, &cfg), TDO_ERR_ARENA_TOO_SMALL);
+  tdo_arena_init(&a, mem.data(), fp);
+  EXPECT_EQ(tdo_apf_init(&apf, &a, &cfg), TDO_OK);
+  EXPECT_EQ(tdo_apf_init(nullptr, &a, &cfg), TDO_ERR_INVALID_ARGUMENT);
+  // Not reset yet.
+  tdo_vehicle_state s{};
+  tdo_setpoint sp{};
+  EXPECT_EQ(tdo_apf_step(apf, &s, nullptr, 0u, &sp), TDO_ERR_NOT_CONFIGURED);
+}
+
+TEST(Apf, BadParametersAndCapacities) {
+  const auto traj = arc_trajectory(12.0, 0.01);
+  const uint32_t n = static_cast<uint32_t>(traj.size());
+  Follower f(n, 2u);
+  ASSERT_EQ(f.init_status, TDO_OK);
+  tdo_apf_params p;
+  tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+  tdo_apf_task task{traj.data(), n, traj.back().p, nullptr, 0.0};
+  auto with = [&](auto mutate) {
+    tdo_apf_params q = p;
+    mutate(&q);
+    return tdo_apf_reset(f.apf, &q, &task);
+  };
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->dt = 0.0; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->k_a = -1.0; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->d_0 = NAN; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->v_max = INFINITY; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->k_r = -0.1; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) {
+              const int bad = 7;  // not a tdo_follower_kind
+              static_assert(sizeof(q->kind) == sizeof(bad), "enum size");
+              std::memcpy(&q->kind, &bad, sizeof bad);
+            }),
+            TDO_ERR_INVALID_ARGUMENT);
+  // A failed reset leaves the follower unconfigured.
+  tdo_vehicle_state s{};
+  s.p = traj[0].p;
+  tdo_setpoint sp{};
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 0u, &sp), TDO_ERR_NOT_CONFIGURED);
+  // Trajectory checks.
+  tdo_apf_task t2 = task;
+  t2.n_samples = 1u;
+  EXPECT_EQ(tdo_apf_reset(f.apf, &p, &t2), TDO_ERR_INVALID_ARGUMENT);
+  std::vector<tdo_sample> uneven = traj;
+  uneven[5].t += 0.003;
+  t2 = task;
+  t2.samples = uneven.data();
+  EXPECT_EQ(tdo_apf_reset(f.apf, &p, &t2), TDO_ERR_INVALID_ARGUMENT);
+  std::vector<tdo_sample> longer = traj;
+  longer.push_back(traj.back());
+  longer.back().t = traj.back().t + 0.01;
+  t2.samples = longer.data();
+  t2.n_samples = n + 1u;
+  EXPECT_EQ(tdo_apf_reset(f.apf, &p, &t2), TDO_ERR_SAMPLE_CAPACITY);
+  // APF needs no trajectory but a finite goal.
+  tdo_apf_params pa;
+  tdo_apf_params_default(&pa, TDO_FOLLOWER_APF);
+  tdo_apf_task ta{nullptr, 0u, tdo_vec3{1.0, 2.0, NAN}, nullptr, 0.0};
+  EXPECT_EQ(tdo_apf_reset(f.apf, &pa, &ta), TDO_ERR_INVALID_ARGUMENT);
+  ta.goal.z = 3.0;
+  EXPECT_EQ(tdo_apf_reset(f.apf, &pa, &ta), TDO_OK);
+  // Unfinished grid.
+  TestPlanner tp(small_cap());
+  const tdo_grid_desc d{20, 20, 6, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(tp.grid(), &d), TDO_OK);
+  ta.grid = tp.grid();
+  EXPECT_EQ(tdo_apf_reset(f.apf, &pa, &ta), TDO_ERR_MAP_NOT_READY);
+  // Step: mover capacity and bad movers.
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  tdo_mover m[3] = {{1u, {0.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, 0.5},
+                    {2u, {1.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, 0.5},
+                    {3u, {2.0, 0.0, 2.0}, {0.0, 0.0, 0.0}, 0.5}};
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 3u, &sp), TDO_ERR_OBSTACLE_CAPACITY);
+  m[0].radius = 0.0;
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 2u, &sp), TDO_ERR_INVALID_ARGUMENT);
+  m[0].radius = 0.5;
+  m[1].v.x = NAN;
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 2u, &sp), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 1u, &sp), TDO_ERR_INVALID_ARGUMENT);
+  s.v.y = NAN;
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 0u, &sp), TDO_ERR_INVALID_ARGUMENT);
+  s.v.y = 0.0;
+  EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 1u, &sp), TDO_OK);
+}
+
+// GIVEN a box, a trajectory and movers WHEN the field is evaluated at random points THEN every
+// force equals minus the central difference of its potential, and the static repulsion matches
+// an independent closest-point model of the box.
+TEST(Apf, ForcesAreMinusGradients) {
+  TestPlanner tp(small_cap());
+  const tdo_box box{{9.0, 9.0, 0.0}, {11.0, 11.0, 3.0}};
+  make_grid(&tp, {box});
+  const auto traj = arc_trajectory(12.0, 0.01);
+  Follower f(static_cast<uint32_t>(traj.size()));
+  ASSERT_EQ(f.init_status, TDO_OK);
+  tdo_apf_params p;
+  tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+  p.d_0_static = 1.0;  // wide enough to sample the static field
+  tdo_apf_task task{traj.data(), static_cast<uint32_t>(traj.size()), traj.back().p, tp.grid(), 0.0};
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  tdo_test::Rng rng(7);
+  int checked_static = 0, checked_movers = 0, checked_att = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    tdo_vehicle_state s{};
+    // Points around the box face x = 11 (static) and near the arc.
+    if (trial % 2 == 0)
+      s.p = tdo_vec3{rng.uniform(11.3, 12.2), rng.uniform(8.0, 12.0), rng.uniform(0.5, 3.8)};
+    else
+      s.p = tdo_vec3{rng.uniform(4.0, 16.0), rng.uniform(10.5, 16.0), rng.uniform(1.0, 3.0)};
+    s.v = tdo_vec3{rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-0.5, 0.5)};
+    tdo_mover m[2] = {
+        {1u,
+         {s.p.x + rng.uniform(-3.0, 3.0), s.p.y + rng.uniform(-3.0, 3.0), s.p.z + 0.3},
+         {rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), 0.0},
+         0.6},
+        {2u, {s.p.x + 2.5, s.p.y - 1.0, s.p.z}, {-1.0, 0.5, 0.0}, 0.8}};
+    tdo_apf_terms t0{};
+    ASSERT_EQ(tdo_apf_eval(f.apf, &s, m, 2u, &t0), TDO_OK);
+    // Stay away from the floors and kinks of the potentials.
+    if (t0.mover_pred_gap < 0.2 || t0.static_dist - p.vehicle_radius < 0.15) continue;
+    const double h = 1e-5;
+    tdo_vec3 g_att{}, g_guide{}, g_static{}, g_movers{};
+    double* comps[4][3] = {{&g_att.x, &g_att.y, &g_att.z},
+                           {&g_guide.x, &g_guide.y, &g_guide.z},
+                           {&g_static.x, &g_static.y, &g_static.z},
+                           {&g_movers.x, &g_movers.y, &g_movers.z}};
+    for (int ax = 0; ax < 3; ++ax) {
+      tdo_vehicle_state sp = s, sm = s;
+      double* cp = ax == 0 ? &sp.p.x : ax == 1 ? &sp.p.y : &sp.p.z;
+      double* cm = ax == 0 ? &sm.p.x : ax == 1 ? &sm.p.y : &sm.p.z;
+      *cp += h;
+      *cm -= h;
+      // The movers are fixed in the world: evaluate with the same mover states.
+      tdo_apf_terms tp1{}, tm1{};
+      ASSERT_EQ(tdo_apf_eval(f.apf, &sp, m, 2u, &tp1), TDO_OK);
+      ASSERT_EQ(tdo_apf_eval(f.apf, &sm, m, 2u, &tm1), TDO_OK);
+      *comps[0][ax] = -(tp1.u_att - tm1.u_att) / (2 * h);
+      *comps[1][ax] = -(tp1.u_guide - tm1.u_guide) / (2 * h);
+      *comps[2][ax] = -(tp1.u_rep_static - tm1.u_rep_static) / (2 * h);
+      *comps[3][ax] = -(tp1.u_rep_movers - tm1.u_rep_movers) / (2 * h);
+    }
+    auto close = [](tdo_vec3 a, tdo_vec3 b, double tol) {
+      return norm3(sub3(a, b)) <= tol * (1.0 + norm3(b));
+    };
+    EXPECT_TRUE(close(t0.f_att, g_att, 1e-4)) << "trial " << trial;
+    // The squared distance to the curve is smooth where the nearest point is unique: near it.
+    if (t0.deviation < 1.5) {
+      EXPECT_TRUE(close(t0.f_guide, g_guide, 1e-4)) << "trial " << trial;
+    }
+    ++checked_att;
+    if (t0.u_rep_static > 0.0) {
+      EXPECT_TRUE(close(t0.f_rep_static, g_static, 2e-3)) << "trial " << trial;
+      // Independent model: one box, exact closest point.
+      const tdo_vec3 q = box_closest(box, s.p);
+      const tdo_vec3 r = sub3(s.p, q);
+      const double dist = norm3(r);
+      const double d = dist - p.vehicle_radius;
+      const double mag = p.k_r * (1.0 / d - 1.0 / p.d_0_static) / (d * d);
+      const tdo_vec3 expect{mag * r.x / dist, mag * r.y / dist, mag * r.z / dist};
+      EXPECT_TRUE(close(t0.f_rep_static, expect, 2e-3)) << "trial " << trial;
+      EXPECT_NEAR(t0.static_dist, dist, 1e-9);
+      ++checked_static;
+    }
+    if (t0.u_rep_movers > 0.0) {
+      EXPECT_TRUE(close(t0.f_rep_movers, g_movers, 1e-3)) << "trial " << trial;
+      ++checked_movers;
+    }
+    // The total is the sum.
+    EXPECT_NEAR(t0.u_total, t0.u_att + t0.u_guide + t0.u_rep_static + t0.u_rep_movers, 1e-12);
+  }
+  EXPECT_GT(checked_att, 100);
+  EXPECT_GT(checked_static, 30);
+  EXPECT_GT(checked_movers, 30);
+}
+
+// GIVEN the classical APF in a static scene (a box beside the straight line to the goal) WHEN it
+// flies in the simulator THEN the total potential, sampled every 0.5 s, decreases until arrival.
+TEST(Apf, StaticPotentialDecreasesAlongExecutedPath) {
+  TestPlanner tp(small_cap());
+  make_grid(&tp, {tdo_box{{8.0, 5.2, 0.0}, {10.0, 7.0, 6.0}}});
+  Follower f(2u, 1u, 1u);
+  ASSERT_EQ(f.init_status, TDO_OK);
+  tdo_apf_params p;
+  tdo_apf_params_default(&p, TDO_FOLLOWER_APF);
+  const tdo_vec3 goal{17.0, 4.0, 3.0};
+  tdo_apf_task task{nullptr, 0u, goal, tp.grid(), 0.0};
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  Sim sim(1u);
+  tdo_sim_params sp;
+  tdo_sim_params_default(&sp);
+  sp.bounds = tdo_box{{0.0, 0.0, 0.0}, {20.0, 20.0, 6.0}};
+  sp.grid = tp.grid();
+  tdo_vehicle_state s0{};
+  s0.p = tdo_vec3{2.0, 4.0, 3.0};
+  ASSERT_EQ(tdo_sim_reset(sim.sim, &sp, &s0, nullptr, 0u), TDO_OK);
+  tdo_vehicle_state s = s0;
+  double last_u = HUGE_VAL;
+  bool repulsed = false, arrived = false;
+  for (int k = 0; k < 3000 && !arrived; ++k) {
+    tdo_apf_input in{s, nullptr, 0u};
+    tdo_apf_output out;
+    ASSERT_EQ(tdo_apf_run(f.apf, &in, &out), TDO_OK);
+    if (out.terms.u_rep_static > 0.0) repulsed = true;
+    if (k % 25 == 0) {
+      EXPECT_LT(out.terms.u_total, last_u) << "t = " << s.t;
+      last_u = out.terms.u_total;
+    }
+    arrived = (out.events & TDO_APF_EVENT_GOAL_REACHED) != 0u;
+    ASSERT_EQ(tdo_sim_step(sim.sim, &out.setpoint, &s), TDO_OK);
+  }
+  EXPECT_TRUE(arrived);
+  EXPECT_TRUE(repulsed) << "the box must have acted on the path";
+  EXPECT_LT(norm3(sub3(s.p, goal)), p.goal_tol);
+}
+
+/** A U-shaped cup open towards -x; the goal lies behind its bottom wall. */
+std::vector<tdo_box> cup() {
+  return {tdo_box{{10.0, 6.0, 0.0}, {10.5, 14.0, 6.0}},   // bottom (x = 10..10.5)
+          tdo_box{{5.0, 6.0, 0.0}, {10.5, 6.5, 6.0}},     // side y = 6
+          tdo_box{{5.0, 13.5, 0.0}, {10.5, 14.0, 6.0}}};  // side y = 14
+}
+
+// GIVEN the classical APF inside a U-shaped cup with the goal behind it WHEN it flies THEN it is
+// trapped: the detector fires (small force, no progress, far from the goal), escapes start, and
+// the episode ends either at the goal or with TDO_ERR_LOCAL_MINIMUM; never a crash or a hang.
+TEST(Apf, UTrapIsDetected) {
+  TestPlanner tp(small_cap());
+  make_grid(&tp, cup());
+  for (uint32_t max_escapes : {0u, 3u}) {
+    Follower f(2u, 1u, 1u);
+    ASSERT_EQ(f.init_status, TDO_OK);
+    tdo_apf_params p;
+    tdo_apf_params_default(&p, TDO_FOLLOWER_APF);
+    p.max_escapes = max_escapes;
+    const tdo_vec3 goal{16.0, 10.0, 3.0};
+    tdo_apf_task task{nullptr, 0u, goal, tp.grid(), 0.0};
+    ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+    Sim sim(1u);
+    tdo_sim_params sp;
+    tdo_sim_params_default(&sp);
+    sp.bounds = tdo_box{{0.0, 0.0, 0.0}, {20.0, 20.0, 6.0}};
+    sp.grid = tp.grid();
+    tdo_vehicle_state s{};
+    s.p = tdo_vec3{7.0, 10.0, 3.0};
+    ASSERT_EQ(tdo_sim_reset(sim.sim, &sp, &s, nullptr, 0u), TDO_OK);
+    uint32_t detections = 0, escapes = 0;
+    bool failed = false, arrived = false;
+    double first_detection = -1.0;
+    for (int k = 0; k < 6000 && !failed && !arrived; ++k) {  // 120 s
+      tdo_apf_input in{s, nullptr, 0u};
+      tdo_apf_output out;
+      const tdo_status st = tdo_apf_run(f.apf, &in, &out);
+      ASSERT_TRUE(st == TDO_OK || st == TDO_ERR_LOCAL_MINIMUM) << tdo_status_str(st);
+      if ((out.events & TDO_APF_EVENT_LM_DETECTED) != 0u) {
+        ++detections;
+        if (first_detection < 0.0) {
+          first_detection = s.t;
+          // Detected where the field is weak, far from the goal, inside the cup.
+          EXPECT_LT(s.p.x, 10.0);
+          EXPECT_GT(norm3(sub3(s.p, goal)), p.lm_goal_dist);
+        }
+      }
+      if ((out.events & TDO_APF_EVENT_ESCAPE_START) != 0u) ++escapes;
+      if (st == TDO_ERR_LOCAL_MINIMUM) {
+        failed = true;
+        EXPECT_NE(out.events & TDO_APF_EVENT_ESCAPE_FAILED, 0u);
+        EXPECT_EQ(out.mode, TDO_APF_MODE_STUCK);
+        // The braking setpoint is still within the limits.
+        EXPECT_LE(norm3(out.setpoint.a), p.a_max + 1e-9);
+        EXPECT_LE(norm3(out.setpoint.v), p.v_max + 1e-9);
+        // And the status stays.
+        ASSERT_EQ(tdo_sim_step(sim.sim, &out.setpoint, &s), TDO_OK);
+        tdo_setpoint again{};
+        EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 0u, &again), TDO_ERR_LOCAL_MINIMUM);
+      }
+      arrived = (out.events & TDO_APF_EVENT_GOAL_REACHED) != 0u;
+      ASSERT_EQ(tdo_sim_step(sim.sim, &out.setpoint, &s), TDO_OK);
+    }
+    EXPECT_GE(detections, 1u) << "max_escapes " << max_escapes;
+    EXPECT_GT(first_detection, 0.0);
+    EXPECT_LT(first_detection, 15.0);
+    EXPECT_TRUE(failed || arrived) << "max_escapes " << max_escapes;
+    EXPECT_LE(escapes, max_escapes);
+    if (max_escapes == 0u) {
+      EXPECT_TRUE(failed);
+      EXPECT_EQ(escapes, 0u);
+    } else {
+      EXPECT_GE(escapes, 1u);
+    }
+  }
+}
+
+/** Fly `traj` with E-APF in the simulator; return the mean and max distance to the polyline. */
+void fly_track(const std::vector<tdo_sample>& traj, const tdo_mover* movers, uint32_t n_movers,
+               double* mean_dev, double* max_dev, std::vector<tdo_vehicle_state>* states,
+               double* min_gap) {
+  Follower f(static_cast<uint32_t>(traj.size()), 4u, 200u);
+  ASSERT_EQ(f.init_status, TDO_OK);
+  tdo_apf_params p;
+  tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+  tdo_apf_task task{traj.data(), static_cast<uint32_t>(traj.size()), traj.back().p, nullptr, 0.0};
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  Sim sim(4u);
+  tdo_sim_params sp;
+  tdo_sim_params_default(&sp);
+  sp.bounds = tdo_box{{0.0, 0.0, 0.0}, {20.0, 20.0, 6.0}};
+  tdo_vehicle_state s{};
+  s.p = traj[0].p;
+  ASSERT_EQ(tdo_sim_reset(sim.sim, &sp, &s, movers, n_movers), TDO_OK);
+  double sum = 0.0, mx = 0.0;
+  int n = 0;
+  *min_gap = HUGE_VAL;
+  tdo_sim_output so;
+  ASSERT_EQ(tdo_sim_get(sim.sim, &so), TDO_OK);
+  for (int k = 0; k < 1500; ++k) {
+    tdo_apf_input in{so.state, so.movers, so.n_movers};
+    tdo_apf_output out;
+    ASSERT_EQ(tdo_apf_run(f.apf, &in, &out), TDO_OK);
+    tdo_sim_input si{out.setpoint};
+    ASSERT_EQ(tdo_sim_run(sim.sim, &si, &so), TDO_OK);
+    states->push_back(so.state);
+    *min_gap = std::fmin(*min_gap, so.mover_gap);
+    // Independent distance to the polyline.
+    double best = HUGE_VAL;
+    for (size_t i = 0; i + 1 < traj.size(); ++i) {
+      const tdo_vec3 a = traj[i].p, b = traj[i + 1].p, ab = sub3(b, a), ap = sub3(so.state.p, a);
+      const double l2 = ab.x * ab.x + ab.y * ab.y + ab.z * ab.z;
+      double u = l2 > 0 ? (ap.x * ab.x + ap.y * ab.y + ap.z * ab.z) / l2 : 0.0;
+      u = std::fmin(1.0, std::fmax(0.0, u));
+      best = std::fmin(best, norm3(sub3(ap, tdo_vec3{ab.x * u, ab.y * u, ab.z * u})));
+    }
+    sum += best;
+    mx = std::fmax(mx, best);
+    ++n;
+  }
+  *mean_dev = sum / n;
+  *max_dev = mx;
+}
+
+// GIVEN a feasible curved trajectory and no mover WHEN E-APF follows it THEN the mean deviation
+// is below 0.1 m and the executed v, a, j (finite differences of positions) stay within limits.
+TEST(Apf, EapfTracksWithoutMovers) {
+  const auto traj = arc_trajectory(12.0, 0.01);
+  double mean_dev = 0, max_dev = 0, gap = 0;
+  std::vector<tdo_vehicle_state> st;
+  fly_track(traj, nullptr, 0u, &mean_dev, &max_dev, &st, &gap);
+  EXPECT_LT(mean_dev, 0.1);
+  EXPECT_LT(max_dev, 0.3);
+  EXPECT_LT(norm3(sub3(st.back().p, traj.back().p)), 0.2);
+  const double dt = 0.02;
+  double vmax = 0, amax = 0, jmax = 0;
+  for (size_t i = 0; i + 3 < st.size(); ++i) {
+    tdo_vec3 v[3], a[2];
+    for (int k = 0; k < 3; ++k) {
+      const tdo_vec3 d = sub3(st[i + k + 1].p, st[i + k].p);
+      v[k] = tdo_vec3{d.x / dt, d.y / dt, d.z / dt};
+    }
+    for (int k = 0; k < 2; ++k) {
+      const tdo_vec3 d = sub3(v[k + 1], v[k]);
+      a[k] = tdo_vec3{d.x / dt, d.y / dt, d.z / dt};
+    }
+    vmax = std::fmax(vmax, norm3(v[0]));
+    amax = std::fmax(amax, norm3(a[0]));
+    jmax = std::fmax(jmax, norm3(sub3(a[1], a[0])) / dt);
+  }
+  EXPECT_LE(vmax, 3.0 * 1.01);
+  EXPECT_LE(amax, 3.0 * 1.01);
+  EXPECT_LE(jmax, 10.0 * 1.01);
+}
+
+// GIVEN a mover crossing the arc WHEN E-APF follows THEN it keeps clear of the mover, deviates
+// while avoiding and still reaches the goal; and the whole episode is bit-identical when re-run.
+TEST(Apf, EapfAvoidsACrossingMoverDeterministically) {
+  const auto traj = arc_trajectory(12.0, 0.01);
+  // Crosses the top of the arc (10, 15, 2) at about t = 6 s, moving along -x... towards +y.
+  const tdo_mover m{1u, {10.0, 9.0, 2.0}, {0.0, 1.0, 0.0}, 0.7};
+  double mean1 = 0, max1 = 0, gap1 = 0, mean2 = 0, max2 = 0, gap2 = 0;
+  std::vector<tdo_vehicle_state> a, b;
+  fly_track(traj, &m, 1u, &mean1, &max1, &a, &gap1);
+  fly_track(traj, &m, 1u, &mean2, &max2, &b, &gap2);
+  EXPECT_GT(gap1, 0.0) << "collision with the mover";
+  EXPECT_GT(max1, 0.2) << "the mover must have pushed the vehicle off the trajectory";
+  EXPECT_LT(norm3(sub3(a.back().p, traj.back().p)), 0.2);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(tdo_vehicle_state)), 0);
+}
+
+}  // namespace

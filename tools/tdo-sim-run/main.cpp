@@ -1,0 +1,315 @@
+// tdo-sim-run: plan with tdo_planner_plan, fly the dynamic episode in the libtdo simulator with the
+// E-APF or classical APF follower, write an episode JSON; or bench many seeded random episodes
+// with both followers side by side. Exit 0 done, 1 an episode failed its goal (--check), 2 bad
+// input.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "episode.h"
+#include "mapgen.h"
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+
+struct BadInput {
+  std::string message;
+};
+
+struct RandomSpec {
+  std::vector<int> size{20, 20, 10};
+  int columns = 25;
+  int movers = 6;
+  std::vector<double> speed{0.5, 1.5};
+  std::vector<double> radius{0.5, 1.0};
+};
+
+std::string scratch_dir() {
+  const auto d = std::filesystem::temp_directory_path() /
+                 ("tdo-sim-run-" + std::to_string(static_cast<long>(::getpid())));
+  std::filesystem::create_directories(d);
+  return d.string();
+}
+
+// Generate the random map of `seed` with tdo_mapgen (movers timed to cross the route) and load it.
+tdo_io::Map random_map(const RandomSpec& r, uint64_t seed, const std::string& dir) {
+  tdo_mapgen::Params p;
+  p.layout = tdo_mapgen::Layout::Columns;
+  for (int a = 0; a < 3; ++a) p.size[a] = r.size[static_cast<std::size_t>(a)];
+  p.columns = static_cast<uint32_t>(r.columns);
+  p.seed = seed;
+  p.movers = static_cast<uint32_t>(r.movers);
+  for (int i = 0; i < 2; ++i) {
+    p.mover_speed_mm[i] =
+        static_cast<int32_t>(std::lround(r.speed[static_cast<std::size_t>(i)] * 1000));
+    p.mover_radius_mm[i] =
+        static_cast<int32_t>(std::lround(r.radius[static_cast<std::size_t>(i)] * 1000));
+  }
+  const int64_t kM = 10000;  // 0.1 mm per m
+  const int64_t s[3] = {2 * kM, 2 * kM, 3 * kM};
+  const int64_t g[3] = {(r.size[0] - 1) * kM, (r.size[1] - 1) * kM, (r.size[2] / 2) * kM};
+  std::copy(s, s + 3, p.start);
+  std::copy(g, g + 3, p.goal);
+  const std::string bad = tdo_mapgen::validate(p);
+  if (!bad.empty()) throw BadInput{bad};
+  tdo_mapgen::Result res;
+  std::string err;
+  const std::string scratch = dir + "/scratch.tdomap";
+  if (!tdo_mapgen::generate(p, scratch, &res, &err)) throw BadInput{"random map: " + err};
+  const std::string path = dir + "/episode_" + std::to_string(seed) + ".tdomap";
+  {
+    std::ofstream f(path);
+    f << res.text;
+    if (!f) throw BadInput{path + ": cannot write"};
+  }
+  tdo_io::Map map;
+  if (!tdo_io::load_map(path, &map, &err)) throw BadInput{err};
+  std::filesystem::remove(path);
+  return map;
+}
+
+tdo_follower_kind parse_follower(const std::string& s) {
+  if (s == "eapf") return TDO_FOLLOWER_EAPF;
+  if (s == "apf") return TDO_FOLLOWER_APF;
+  throw BadInput{"--follower must be eapf or apf, got '" + s + "'"};
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Agg {
+  int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
+  int lm_episodes = 0, failed = 0;
+  long lm_events = 0;
+  double min_sep = HUGE_VAL, max_dev = 0.0, max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  std::vector<double> mean_dev, max_devs, overhead, seps;
+  void add(const tdo_episode::Metrics& m) {
+    ++episodes;
+    if (!m.planned) return;
+    ++planned;
+    success += m.success;
+    collisions += m.collision;
+    coll_mover += m.collision_mover;
+    coll_static += m.collision_static;
+    lm_events += m.lm_events;
+    lm_episodes += m.lm_events > 0;
+    failed += m.escape_failed;
+    min_sep = std::min(min_sep, m.min_mover_sep);
+    if (std::isfinite(m.min_mover_sep)) seps.push_back(m.min_mover_sep);
+    max_dev = std::max(max_dev, m.max_deviation);
+    mean_dev.push_back(m.mean_deviation);
+    max_devs.push_back(m.max_deviation);
+    if (m.success) overhead.push_back(m.time_overhead);
+    max_v = std::max(max_v, m.max_speed);
+    max_a = std::max(max_a, m.max_acc);
+    max_j = std::max(max_j, m.max_jerk);
+  }
+};
+
+double mean(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
+  auto row = [&](const char* name, auto f) {
+    std::printf("%-34s", name);
+    for (const auto& c : cols) std::printf(" %14s", f(c.second).c_str());
+    std::printf("\n");
+  };
+  auto s = [](double x, const char* fm = "%.3f") {
+    char b[64];
+    std::snprintf(b, sizeof b, fm, x);
+    return std::string(b);
+  };
+  std::printf("%-34s", "");
+  for (const auto& c : cols) std::printf(" %14s", c.first.c_str());
+  std::printf("\n");
+  row("episodes (planned)", [&](const Agg& a) {
+    return std::to_string(a.episodes) + " (" + std::to_string(a.planned) + ")";
+  });
+  row("success rate %",
+      [&](const Agg& a) { return s(100.0 * a.success / std::max(a.planned, 1), "%.2f"); });
+  row("collisions (mover / static)", [&](const Agg& a) {
+    return std::to_string(a.collisions) + " (" + std::to_string(a.coll_mover) + "/" +
+           std::to_string(a.coll_static) + ")";
+  });
+  row("min mover separation m", [&](const Agg& a) { return s(a.min_sep); });
+  row("median min separation m", [&](const Agg& a) { return s(median(a.seps)); });
+  row("mean deviation m (mean)", [&](const Agg& a) { return s(mean(a.mean_dev)); });
+  row("max deviation m (median)", [&](const Agg& a) { return s(median(a.max_devs)); });
+  row("max deviation m (max)", [&](const Agg& a) { return s(a.max_dev); });
+  row("time overhead s (median)", [&](const Agg& a) { return s(median(a.overhead), "%.2f"); });
+  row("local-minimum events", [&](const Agg& a) { return std::to_string(a.lm_events); });
+  row("episodes with a local minimum", [&](const Agg& a) { return std::to_string(a.lm_episodes); });
+  row("escape failed (named status)", [&](const Agg& a) { return std::to_string(a.failed); });
+  row("executed max speed m/s", [&](const Agg& a) { return s(a.max_v); });
+  row("executed max acc m/s^2", [&](const Agg& a) { return s(a.max_a); });
+  row("executed max jerk m/s^3", [&](const Agg& a) { return s(a.max_j); });
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{
+      "Plan a map's query with tdo_planner_plan, fly it in the libtdo simulator with the E-APF "
+      "or classical APF follower among the map's moving spheres, write the episode as JSON; or "
+      "(--bench N) fly N seeded random episodes with both followers and print the metrics side "
+      "by side.\nExit status: 0 done, 1 a --check goal missed, 2 bad input."};
+  std::string map_path, output, follower = "eapf";
+  bool random = false, no_movers = false, check = false;
+  int bench = 0;
+  uint64_t seed = 1;
+  double noise = 0.0;
+  RandomSpec r;
+  tdo_episode::Options o;
+  app.add_option("--map", map_path, "a .tdomap with start, goal and optional movers");
+  app.add_flag("--random", random, "a seeded random episode (--size --columns --movers --seed)");
+  app.add_option("--bench", bench,
+                 "fly N random episodes (seeds --seed .. --seed+N-1), both "
+                 "followers, and the no-mover case; print a table");
+  app.add_option("--follower", follower, "eapf (default) or apf");
+  app.add_option("-o,--output", output, "episode JSON file");
+  app.add_flag("--no-movers", no_movers, "ignore the movers");
+  app.add_option("--seed", seed, "random map seed (also the simulator's disturbance seed)");
+  app.add_option("--noise", noise, "simulator disturbance, m/s^2 standard deviation (default 0)");
+  app.add_option("--size", r.size, "X Y Z of random maps, whole metres (default 20 20 10)")
+      ->expected(3);
+  app.add_option("--columns", r.columns, "columns of random maps (default 25)");
+  app.add_option("--movers", r.movers, "movers of random maps (default 6)");
+  app.add_option("--mover-speed", r.speed, "MIN MAX m/s (default 0.5 1.5)")->expected(2);
+  app.add_option("--mover-radius", r.radius, "MIN MAX m (default 0.5 1)")->expected(2);
+  app.add_option("--time-factor", o.time_factor, "time limit = F * planned duration + 20 s (2)");
+  std::vector<std::string> overrides;
+  app.add_option("--param", overrides,
+                 "NAME=VALUE follower parameter override (tdo_apf_params field, e.g. k_r=2); "
+                 "applies to both followers in --bench");
+  app.add_flag("--check", check, "exit 1 unless success and no collision (single episode)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
+  }
+  if (!std::isfinite(noise) || noise < 0.0) throw BadInput{"--noise must be finite and >= 0"};
+  if (!std::isfinite(o.time_factor) || o.time_factor <= 0.0)
+    throw BadInput{"--time-factor must be finite and > 0"};
+  if (bench < 0 || bench > 100000) throw BadInput{"--bench must be in [0, 100000]"};
+  if (r.movers < 0 || r.movers > 1000) throw BadInput{"--movers must be in [0, 1000]"};
+  if (r.columns < 0 || r.columns > 100000) throw BadInput{"--columns must be in [0, 100000]"};
+  for (double v : r.speed)
+    if (!std::isfinite(v) || v <= 0.0 || v > 100.0) throw BadInput{"--mover-speed out of range"};
+  for (double v : r.radius)
+    if (!std::isfinite(v) || v <= 0.0 || v > 100.0) throw BadInput{"--mover-radius out of range"};
+  o.follower = parse_follower(follower);
+  for (const std::string& kv : overrides) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos) throw BadInput{"--param needs NAME=VALUE, got '" + kv + "'"};
+    double v = 0.0;
+    try {
+      std::size_t used = 0;
+      v = std::stod(kv.substr(eq + 1), &used);
+      if (used != kv.size() - eq - 1) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw BadInput{"--param " + kv + ": not a number"};
+    }
+    tdo_apf_params probe;
+    tdo_apf_params_default(&probe, TDO_FOLLOWER_EAPF);
+    if (!tdo_episode::set_param(&probe, kv.substr(0, eq), v))
+      throw BadInput{"--param: unknown follower parameter '" + kv.substr(0, eq) + "'"};
+    o.params.emplace_back(kv.substr(0, eq), v);
+  }
+  o.movers = !no_movers;
+  o.seed = seed;
+  o.accel_noise = noise;
+  const int sources = (map_path.empty() ? 0 : 1) + (random ? 1 : 0) + (bench > 0 ? 1 : 0);
+  if (sources != 1) throw BadInput{"give exactly one of --map FILE, --random, --bench N"};
+
+  if (bench > 0) {
+    const std::string dir = scratch_dir();
+    Agg eapf, apf, eapf_free, apf_free;
+    for (int i = 0; i < bench; ++i) {
+      const uint64_t sd = seed + static_cast<uint64_t>(i);
+      const tdo_io::Map map = random_map(r, sd, dir);
+      std::string err;
+      for (int variant = 0; variant < 4; ++variant) {
+        tdo_episode::Options vo = o;
+        vo.keep_samples = false;
+        vo.seed = sd;
+        vo.follower = (variant % 2 == 0) ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
+        vo.movers = variant < 2;
+        tdo_episode::Episode e;
+        if (!tdo_episode::run(map, vo, &e, &err)) throw BadInput{err};
+        Agg* a = variant == 0 ? &eapf : variant == 1 ? &apf : variant == 2 ? &eapf_free : &apf_free;
+        a->add(e.m);
+      }
+    }
+    std::filesystem::remove_all(dir);
+    std::printf(
+        "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns, %d movers "
+        "(%.2g-%.2g m/s, radius %.2g-%.2g m), seeds %llu..%llu\n",
+        bench, r.size[0], r.size[1], r.size[2], r.columns, r.movers, r.speed[0], r.speed[1],
+        r.radius[0], r.radius[1], static_cast<unsigned long long>(seed),
+        static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
+    print_table(
+        {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
+    return kExitOk;
+  }
+
+  tdo_io::Map map;
+  std::string dir;
+  if (random) {
+    dir = scratch_dir();
+    map = random_map(r, seed, dir);
+  } else {
+    std::string err;
+    if (!tdo_io::load_map(map_path, &map, &err)) throw BadInput{err};
+  }
+  tdo_episode::Episode e;
+  std::string err;
+  const bool ok = tdo_episode::run(map, o, &e, &err);
+  if (!dir.empty()) std::filesystem::remove_all(dir);
+  if (!ok) throw BadInput{err};
+  const tdo_episode::Metrics& m = e.m;
+  if (!output.empty()) {
+    std::ofstream f(output);
+    f << tdo_episode::to_json(e, map, o) << "\n";
+    if (!f) throw BadInput{output + ": cannot write"};
+  }
+  std::printf(
+      "%s: plan %s, %u movers, success %s, collision %s, min mover separation %.3f m, "
+      "deviation max %.3f mean %.3f m, time %.2f s (plan %.2f s), local minima %u, "
+      "max v %.3f a %.3f j %.3f\n",
+      tdo_episode::follower_name(o.follower),
+      tdo_status_str(static_cast<tdo_status>(m.plan_status)), m.movers, m.success ? "yes" : "no",
+      m.collision ? "yes" : "no", m.min_mover_sep, m.max_deviation, m.mean_deviation, m.time,
+      m.plan_duration, m.lm_events, m.max_speed, m.max_acc, m.max_jerk);
+  if (check && (!m.planned || !m.success || m.collision)) return kExitFailed;
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const BadInput& e) {
+    std::fprintf(stderr, "tdo-sim-run: error: %s\n", e.message.c_str());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tdo-sim-run: error: %s\n", e.what());
+    return kExitBadInput;
+  }
+}
