@@ -72,7 +72,7 @@ struct AvoidConfig {
   int32_t max_nz = 64;              /**< voxels along z */
   uint32_t max_boxes = 4096;        /**< obstacle boxes of one map */
   double max_clearance_ratio = 4.0; /**< largest map clearance / resolution */
-  uint32_t max_samples = 200000;    /**< trajectory samples (2000 s at 0.01 s) */
+  uint32_t max_samples = 100000;    /**< trajectory samples (1000 s at 0.01 s) */
   uint32_t max_movers = 256;        /**< moving obstacles per message */
   uint32_t nearest_window = 200;    /**< samples searched each way per step for the nearest point
                                          (2 s at the planner's default 0.01 s) */

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "avoid_node.h"
@@ -60,9 +61,8 @@ struct Flight {
   std::vector<double> final_p;
 };
 
-class ChainTest : public ::testing::TestWithParam<tdo_follower_kind> {};
-
-TEST_P(ChainTest, PlannerFollowerAndSimulatorFlyMap6ToTheGoal) {
+/** One whole run; every check of the run inside; the states it produced in `states_out`. */
+void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_out) {
   tdo_lcm::Bus bus("memq://");  // first: outlives the nodes
   ASSERT_TRUE(bus.good());
   std::vector<tdo::map_t> maps;
@@ -92,7 +92,7 @@ TEST_P(ChainTest, PlannerFollowerAndSimulatorFlyMap6ToTheGoal) {
 
   tdo_lcm::AvoidConfig ac;
   ac.vehicle_id = kVehicle;
-  ac.kind = GetParam();
+  ac.kind = kind;
   ac.lockstep = true;
   ac.max_nx = 50;
   ac.max_ny = 50;
@@ -191,8 +191,33 @@ TEST_P(ChainTest, PlannerFollowerAndSimulatorFlyMap6ToTheGoal) {
   std::printf(
       "[chain] %s: arrived %d after %.2f s of simulated time, %zu states, closest column "
       "%.3f m, smallest mover gap %.3f m\n",
-      GetParam() == TDO_FOLLOWER_APF ? "apf" : "eapf", run.arrived ? 1 : 0, run.time_s, run.states,
+      kind == TDO_FOLLOWER_APF ? "apf" : "eapf", run.arrived ? 1 : 0, run.time_s, run.states,
       run.min_static, run.min_mover);
+  *states_out = std::move(states);
+}
+
+class ChainTest : public ::testing::TestWithParam<tdo_follower_kind> {};
+
+TEST_P(ChainTest, PlannerFollowerAndSimulatorFlyMap6ToTheGoal) {
+  std::vector<tdo::vehicle_state_t> states;
+  fly_map6(GetParam(), &states);
+}
+
+// Lock-step over memq:// is deterministic: the same run twice gives the same states, bit for bit.
+TEST_P(ChainTest, TwoRunsAreIdenticalBitForBit) {
+  std::vector<tdo::vehicle_state_t> a, b;
+  fly_map6(GetParam(), &a);
+  fly_map6(GetParam(), &b);
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 100u);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k].utime, b[k].utime) << k;
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_EQ(a[k].position[i], b[k].position[i]) << k;
+      ASSERT_EQ(a[k].velocity[i], b[k].velocity[i]) << k;
+      ASSERT_EQ(a[k].acceleration[i], b[k].acceleration[i]) << k;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Followers, ChainTest, ::testing::Values(TDO_FOLLOWER_EAPF),
