@@ -63,6 +63,11 @@ constexpr double kEps = 1e-12;
 constexpr double kFdStep = 1e-4;      // m, central-difference step of the static distance gradient
 constexpr double kArriveSpeed = 0.1;  // m/s
 constexpr double kMaxElapsedSteps = 10.0;  // the clock advances at most this many dt per step
+constexpr double kWallZone = 2.0;          // m beyond vehicle_radius: braking before walls
+constexpr double kWallFade = 1.0;          // m beyond vehicle_radius: no corrective push into walls
+constexpr double kPlanCredit = 0.3;   // m of deviation at which the plan's approach stops counting
+constexpr int kWallProbes = 4;        // look-ahead probes along the velocity
+constexpr double kWallProbeDt = 0.2;  // s between them
 
 bool pos(double x) { return isfinite(x) && x > 0.0; }
 bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
@@ -75,7 +80,7 @@ bool params_ok(const tdo_apf_params* p) {
          nonneg(p->vehicle_radius) && nonneg(p->mover_margin) && pos(p->v_max) && pos(p->a_max) &&
          pos(p->j_max) && pos(p->goal_tol) && pos(p->lm_window) && pos(p->lm_progress) &&
          pos(p->lm_force) && pos(p->lm_speed) && pos(p->lm_goal_dist) && nonneg(p->k_t) &&
-         pos(p->escape_time);
+         pos(p->escape_time) && nonneg(p->k_r_static);
 }
 
 bool state_ok(const tdo_vehicle_state* s) {
@@ -151,7 +156,10 @@ void rep_profile(double k_r, double d, double d0, double d_min, double* u, doubl
 struct Near {
   uint32_t seg;
   double arc;
-  double t;  // s, trajectory time of the nearest point
+  double t;         // s, trajectory time of the nearest point
+  tdo_vec3 wall_n;  // unit normal away from the static geometry (valid when wall_w < 1)
+  double wall_w;    // 1 outside the wall zone, falling linearly to 0 at contact
+  double wall_d;    // m, distance beyond vehicle_radius (valid when wall_w < 1)
 };
 
 // The whole field at `st` for the follower's current clock; `near` gets the nearest point.
@@ -163,6 +171,9 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
   near->seg = c->near_seg;
   near->arc = 0.0;
   near->t = c->near_t;
+  near->wall_n = v3(0.0, 0.0, 0.0);
+  near->wall_w = 1.0;
+  near->wall_d = HUGE_VAL;
   // Attraction.
   if (q.kind == TDO_FOLLOWER_EAPF) {
     tdo_vec3 rv, ra;
@@ -192,13 +203,14 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
   // Static repulsion.
   t->static_dist = HUGE_VAL;
   if (c->grid != nullptr) {
-    const double cap = q.vehicle_radius + q.d_0_static + 1.0;
+    const double cap =
+        q.vehicle_radius + (q.d_0_static > kWallZone ? q.d_0_static : kWallZone) + 0.5;
     const double dist = tdo_collision_point_distance(c->grid, p, cap);
     t->static_dist = dist;
     const double d = dist - q.vehicle_radius;
-    if (d < q.d_0_static && dist > 0.0) {
-      double u, g;
-      rep_profile(q.k_r, d, q.d_0_static, q.d_min, &u, &g);
+    const bool repel = d < q.d_0_static && dist > 0.0;
+    const bool zone = d < kWallZone && dist > 0.0;
+    if (repel || zone) {
       const double h = kFdStep;
       const tdo_vec3 grad = v3((tdo_collision_point_distance(c->grid, v3(p.x + h, p.y, p.z), cap) -
                                 tdo_collision_point_distance(c->grid, v3(p.x - h, p.y, p.z), cap)) /
@@ -209,8 +221,56 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
                                (tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z + h), cap) -
                                 tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z - h), cap)) /
                                    (2.0 * h));
-      t->u_rep_static = u;
-      t->f_rep_static = mul(grad, g);
+      if (repel) {
+        double u, g;
+        rep_profile(q.k_r_static, d, q.d_0_static, q.d_min, &u, &g);
+        t->u_rep_static = u;
+        t->f_rep_static = mul(grad, g);
+      }
+      const double ng = norm(grad);
+      if (zone && ng > 1e-9) {
+        near->wall_n = mul(grad, 1.0 / ng);
+        near->wall_w = d > 0.0 ? d / kWallZone : 0.0;
+        near->wall_d = d;
+      }
+    }
+    // Look ahead along the velocity: a corner or another face may come closer than the face
+    // nearest now. The closest predicted point (if closer than now) sets the wall normal, and the
+    // distance left along it is its distance plus the approach covered until then.
+    double best = dist;
+    double best_tau = 0.0;
+    for (int k = 1; k <= kWallProbes; ++k) {
+      const double tau = kWallProbeDt * k;
+      const double dk = tdo_collision_point_distance(c->grid, add(p, mul(st->v, tau)), cap);
+      if (dk < best) {
+        best = dk;
+        best_tau = tau;
+      }
+    }
+    if (best_tau > 0.0 && best - q.vehicle_radius < kWallZone && best < dist - 1e-3) {
+      const tdo_vec3 x = add(p, mul(st->v, best_tau));
+      const double h = kFdStep;
+      const tdo_vec3 g2 = v3((tdo_collision_point_distance(c->grid, v3(x.x + h, x.y, x.z), cap) -
+                              tdo_collision_point_distance(c->grid, v3(x.x - h, x.y, x.z), cap)) /
+                                 (2.0 * h),
+                             (tdo_collision_point_distance(c->grid, v3(x.x, x.y + h, x.z), cap) -
+                              tdo_collision_point_distance(c->grid, v3(x.x, x.y - h, x.z), cap)) /
+                                 (2.0 * h),
+                             (tdo_collision_point_distance(c->grid, v3(x.x, x.y, x.z + h), cap) -
+                              tdo_collision_point_distance(c->grid, v3(x.x, x.y, x.z - h), cap)) /
+                                 (2.0 * h));
+      const double n2 = norm(g2);
+      if (n2 > 1e-9) {
+        const tdo_vec3 n = mul(g2, 1.0 / n2);
+        const double v_n = -dot(st->v, n);
+        double left = best - q.vehicle_radius + (v_n > 0.0 ? v_n * best_tau : 0.0);
+        if (left < 0.0) left = 0.0;
+        if (left < near->wall_d) {
+          near->wall_n = n;
+          near->wall_d = left;
+          near->wall_w = left / kWallZone;
+        }
+      }
     }
   }
   // Moving spheres: predicted closest approach within the horizon.
@@ -283,6 +343,7 @@ extern "C" void tdo_apf_params_default(tdo_apf_params* p, tdo_follower_kind kind
   p->k_t = 2.0;
   p->escape_time = 3.0;
   p->max_escapes = 3u;
+  p->k_r_static = eapf ? 0.0025 : 1.5;
 }
 
 extern "C" size_t tdo_apf_footprint(const tdo_apf_config* cfg) {
@@ -535,18 +596,61 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
       if (eapf) a_des = add(a_des, a_ref);
       break;
   }
+  // Near a wall (within kWallFade beyond vehicle_radius) the corrective command's component
+  // into the wall (everything but the trajectory's own feed-forward acceleration) fades out, to
+  // zero at contact: the field may move the vehicle along or away from a wall, not into it.
+  if (near.wall_d < kWallFade) {
+    const tdo_vec3 ff = (c->mode == TDO_APF_MODE_TRACK && eapf) ? a_ref : v3(0.0, 0.0, 0.0);
+    const tdo_vec3 corr = sub(a_des, ff);
+    const double into = dot(corr, near.wall_n);
+    const double keep = near.wall_d > 0.0 ? near.wall_d / kWallFade : 0.0;
+    if (into < 0.0) a_des = sub(a_des, mul(near.wall_n, into * (1.0 - keep)));
+  }
+  // Braking at walls (in every mode): approaching the static geometry at normal speed v_n within
+  // the wall zone asks for the deceleration that stops within the remaining distance (less the
+  // distance covered while the jerk limit builds it up).
+  if (near.wall_w < 1.0) {
+    // Approach speed in excess of the plan's own (the plan keeps the clearance by itself), the
+    // plan's credit fading out as the vehicle leaves the plan (gone at kPlanCredit deviation).
+    const double plan_n = -dot(v_ref, near.wall_n);
+    const double credit =
+        eapf && t->deviation < kPlanCredit ? 1.0 - t->deviation / kPlanCredit : 0.0;
+    const double v_n = -dot(st->v, near.wall_n) - (plan_n > 0.0 ? plan_n * credit : 0.0);
+    if (v_n > 0.0) {
+      double room = near.wall_d - v_n * (q.a_max / q.j_max);
+      if (room < q.d_min) room = q.d_min;
+      a_des = add(a_des, mul(near.wall_n, v_n * v_n / (2.0 * room)));
+    }
+  }
   out->a_des = a_des;
   // Speed governor: the acceleration along v may not exceed what the jerk limit can remove
-  // before the speed reaches v_max. Discrete form: after a step with along-acceleration a the
-  // speed still grows by about a dt + a^2/(2 j) + a dt/2 while the jerk limit brings a to zero,
-  // so a <= j (-1.5 dt + sqrt(2.25 dt^2 + 2 room / j)).
+  // before the speed reaches v_max. Discrete form: after a step with along-acceleration x the
+  // speed still grows by about x dt + x^2/(2 j) + x dt/2 while the jerk limit brings x to zero,
+  // so x <= j (-1.5 dt + sqrt(2.25 dt^2 + 2 room / j)). When it binds, the jerk budget of the
+  // step goes to the along component first (a uniform scaling of the whole change could leave
+  // the along acceleration too high), the rest to the perpendicular change.
   if (speed > 1e-9) {
     const tdo_vec3 vh = mul(st->v, 1.0 / speed);
     const double along = dot(a_des, vh);
     const double room = q.v_max - speed;
-    const double allowed =
+    const double bound =
         room > 0.0 ? q.j_max * (sqrt(2.25 * q.dt * q.dt + 2.0 * room / q.j_max) - 1.5 * q.dt) : 0.0;
-    if (along > allowed) a_des = sub(a_des, mul(vh, along - allowed));
+    const double prev_al = dot(st->a, vh);
+    if (along > bound || prev_al > bound) {
+      const double want_al = along < bound ? along : bound;
+      const double dj = q.j_max * q.dt;
+      double d_al = want_al - prev_al;
+      if (d_al > dj) d_al = dj;
+      if (d_al < -dj) d_al = -dj;
+      const double rest2 = dj * dj - d_al * d_al;
+      const double rest = rest2 > 0.0 ? sqrt(rest2) : 0.0;
+      const tdo_vec3 prev_perp = sub(st->a, mul(vh, prev_al));
+      const tdo_vec3 des_perp = sub(a_des, mul(vh, along));
+      tdo_vec3 d_perp = sub(des_perp, prev_perp);
+      const double n_perp = norm(d_perp);
+      if (n_perp > rest) d_perp = n_perp > 0.0 ? mul(d_perp, rest / n_perp) : d_perp;
+      a_des = add(add(st->a, mul(vh, d_al)), d_perp);
+    }
   }
   tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);
 

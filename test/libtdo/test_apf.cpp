@@ -217,6 +217,7 @@ TEST(Apf, ForcesAreMinusGradients) {
   tdo_apf_params p;
   tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
   p.d_0_static = 1.0;  // wide enough to sample the static field
+  p.k_r_static = 0.7;
   tdo_apf_task task{traj.data(), static_cast<uint32_t>(traj.size()), traj.back().p, tp.grid(), 0.0};
   ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
   tdo_test::Rng rng(7);
@@ -276,7 +277,7 @@ TEST(Apf, ForcesAreMinusGradients) {
       const tdo_vec3 r = sub3(s.p, q);
       const double dist = norm3(r);
       const double d = dist - p.vehicle_radius;
-      const double mag = p.k_r * (1.0 / d - 1.0 / p.d_0_static) / (d * d);
+      const double mag = p.k_r_static * (1.0 / d - 1.0 / p.d_0_static) / (d * d);
       const tdo_vec3 expect{mag * r.x / dist, mag * r.y / dist, mag * r.z / dist};
       EXPECT_TRUE(close(t0.f_rep_static, expect, 2e-3)) << "trial " << trial;
       EXPECT_NEAR(t0.static_dist, dist, 1e-9);

@@ -15,6 +15,7 @@ Exit status 0 written, 2 bad input.
 import argparse
 import json
 import math
+import os
 import sys
 
 PROG = "plot_episode"
@@ -47,6 +48,12 @@ def main():
         import matplotlib.pyplot as plt
         from matplotlib.patches import Circle, Rectangle
     except ImportError:
+        # A Python without matplotlib (a venv first on PATH): retry once with Debian's python3.
+        alt = "/usr/bin/python3"
+        if (os.path.exists(alt) and not os.environ.get("TDO_PLOT_REEXEC")
+                and os.path.realpath(sys.executable) != os.path.realpath(alt)):
+            os.environ["TDO_PLOT_REEXEC"] = "1"
+            os.execv(alt, [alt] + sys.argv)
         die("matplotlib is not installed (Debian: python3-matplotlib)")
 
     steps = ep["steps"]

@@ -69,6 +69,7 @@ bool set_param(tdo_apf_params* p, const std::string& name, double value) {
   static const Field kFields[] = {{"k_a", &tdo_apf_params::k_a},
                                   {"att_dist", &tdo_apf_params::att_dist},
                                   {"k_r", &tdo_apf_params::k_r},
+                                  {"k_r_static", &tdo_apf_params::k_r_static},
                                   {"d_0", &tdo_apf_params::d_0},
                                   {"d_0_static", &tdo_apf_params::d_0_static},
                                   {"d_min", &tdo_apf_params::d_min},
@@ -254,7 +255,8 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     if (dist(so.state.p, map.goal) <= o.goal_tol) arrived = true;
     if (o.keep_samples) {
       out->steps.push_back(Step{so.state.t, so.state.p, so.state.v, so.state.a, so.mover_gap,
-                                so.static_dist, dev, ao.events, static_cast<int>(ao.mode)});
+                                so.static_dist, dev, ao.events, static_cast<int>(ao.mode),
+                                ao.a_des});
       for (uint32_t i = 0; i < so.n_movers; ++i) out->tracks[i].push_back(so.movers[i].p);
     }
   }
@@ -326,6 +328,8 @@ std::string to_json(const Episode& e, const tdo_io::Map& map, const Options& o) 
   pj["dt"] = e.params.dt;
   pj["k_a"] = e.params.k_a;
   pj["k_r"] = e.params.k_r;
+  pj["k_r_static"] = e.params.k_r_static;
+  pj["d_0_static"] = e.params.d_0_static;
   pj["d_0"] = e.params.d_0;
   pj["k_g"] = e.params.k_g;
   pj["k_d"] = e.params.k_d;
@@ -349,7 +353,8 @@ std::string to_json(const Episode& e, const tdo_io::Map& map, const Options& o) 
                          {"static_dist", num(s.static_dist)},
                          {"deviation", s.deviation},
                          {"events", s.events},
-                         {"mode", s.mode}});
+                         {"mode", s.mode},
+                         {"a_des", vec(s.a_des)}});
   }
   j["steps"] = steps;
   json movers = json::array();

@@ -35,9 +35,9 @@ struct Options {
 };
 
 /**
- * @brief Set the follower parameter `name` (a field of tdo_apf_params: k_a, att_dist, k_r, d_0,
- *        d_0_static, d_min, k_g, k_d, lookahead, hold_dist, horizon, mover_margin, lm_window,
- *        lm_progress, lm_force, lm_speed, lm_goal_dist, k_t, escape_time, max_escapes).
+ * @brief Set the follower parameter `name` (a field of tdo_apf_params: k_a, att_dist, k_r,
+ * k_r_static, d_0, d_0_static, d_min, k_g, k_d, lookahead, hold_dist, horizon, mover_margin,
+ * lm_window, lm_progress, lm_force, lm_speed, lm_goal_dist, k_t, escape_time, max_escapes).
  * @return false for an unknown name.
  */
 bool set_param(tdo_apf_params* p, const std::string& name, double value);
@@ -51,6 +51,7 @@ struct Step {
   double deviation;   /**< m, distance to the planned path */
   uint32_t events;    /**< TDO_APF_EVENT_* of the follower step that led here */
   int mode;           /**< tdo_apf_mode after that step */
+  tdo_vec3 a_des;     /**< m/s^2, the follower's unlimited command of that step */
 };
 
 /** Metrics of one episode (issue 4). */

@@ -149,8 +149,10 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
     return std::to_string(a.collisions) + " (" + std::to_string(a.coll_mover) + "/" +
            std::to_string(a.coll_static) + ")";
   });
-  row("min mover separation m", [&](const Agg& a) { return s(a.min_sep); });
-  row("median min separation m", [&](const Agg& a) { return s(median(a.seps)); });
+  row("min mover separation m",
+      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : s(a.min_sep); });
+  row("median min separation m",
+      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : s(median(a.seps)); });
   row("mean deviation m (mean)", [&](const Agg& a) { return s(mean(a.mean_dev)); });
   row("max deviation m (median)", [&](const Agg& a) { return s(median(a.max_devs)); });
   row("max deviation m (max)", [&](const Agg& a) { return s(a.max_dev); });

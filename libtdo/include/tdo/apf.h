@@ -10,8 +10,9 @@
  *   potential grows linearly (conic), so |F_att| <= k_a * att_dist.
  * - repulsion   U_rep = 1/2 k_r (1/d - 1/d_0)^2 for d < d_0, summed over
  *   the static map: d = exact distance to the obstacle geometry (collision.h) - vehicle_radius,
- *     with its own influence distance d_0_static (the planned trajectory already keeps the
- *     planner's clearance, so this acts only when the vehicle is pushed towards a wall), and
+ *     with its own gain k_r_static and influence distance d_0_static (the planned trajectory
+ *     already keeps the planner's clearance, so this acts only when the vehicle is pushed
+ *     towards a wall), and
  *   each moving sphere: d = |r*| - radius - vehicle_radius - mover_margin, r* = predicted closest
  *     relative position within `horizon` (r = p - q, w = v - u, t* = clamp(-r.w/|w|^2, 0,
  *     horizon), r* = r + w t*), gradient taken at fixed v. d is floored at `d_min`.
@@ -23,7 +24,14 @@
  *   sqrt(2 j_max (v_max - |v|)), in a discrete form, so the jerk limit can stop the speed at
  *   v_max), the jerk limit
  *   |a - a_prev| <= j_max dt, |a| <= a_max and |v| <= v_max (tdo_motion_limit, sim.h, applies the
- *   same rule).
+ *   same rule). Within 1 m of the static geometry (beyond vehicle_radius) the component of the
+ *   command minus the E-APF feed-forward that points into the geometry fades linearly to zero at
+ *   contact: the field moves the vehicle along or away from a wall, never into it (the reported
+ *   terms are the unmodified gradients). Within 2 m a braking term n v_n^2 / (2 max(d - v_n
+ *   a_max / j_max, d_min)) is added (n the unit normal away from the geometry, v_n the approach
+ *   speed in excess of the reference velocity's own, that credit fading out by 0.3 m of
+ *   deviation; d the distance beyond vehicle_radius, also probed 0.2-0.8 s ahead along v): the
+ *   deceleration that stops before contact.
  * - trajectory clock tau: advances with the vehicle time (state.t), but is held while the
  *   vehicle is more than `hold_dist` from the trajectory point at tau (pushed away by a mover),
  *   so the reference waits; tau + lookahead never lags the time of the last nearest trajectory
@@ -120,6 +128,9 @@ typedef struct tdo_apf_params {
   double k_t;             /**< m/s^2, tangential escape magnitude, >= 0 (default 2) */
   double escape_time;     /**< s, duration of one escape, > 0 (default 3) */
   uint32_t max_escapes;   /**< escapes without progress before giving up (default 3) */
+  double k_r_static;      /**< m^4/s^2, repulsion gain of the static map, >= 0 (E-APF 0.0025:
+                               gentle, the planned trajectory already keeps the clearance and a
+                               stiff wall term would shake the vehicle off it; APF 1.5 = k_r) */
 } tdo_apf_params;
 
 /** Fill `p` with the defaults of `kind` (see tdo_apf_params). */
@@ -182,7 +193,8 @@ typedef struct tdo_apf_terms {
   tdo_vec3 nearest;      /**< m, nearest point of the planned trajectory (the goal for APF) */
   double deviation;      /**< m, |p - nearest| (E-APF); 0 for APF */
   double static_dist;    /**< m, exact distance to the static geometry, capped at
-                              vehicle_radius + d_0_static + 1 (HUGE_VAL without a grid) */
+                              vehicle_radius + max(d_0_static, 2) + 0.5 (HUGE_VAL without a
+                              grid) */
   double mover_gap;      /**< m, smallest current surface gap |p - q| - radius - vehicle_radius
                               over the movers (HUGE_VAL without movers) */
   double mover_pred_gap; /**< m, smallest predicted gap d over the movers (HUGE_VAL none) */
