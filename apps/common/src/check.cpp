@@ -45,6 +45,12 @@ const char* reason_str(Reason reason) {
       return "unknown_map";
     case Reason::too_large:
       return "too_large";
+    case Reason::no_plan:
+      return "no_plan";
+    case Reason::over_capacity:
+      return "over_capacity";
+    case Reason::library_error:
+      return "library_error";
   }
   return "unknown_reason";
 }

@@ -37,6 +37,10 @@ enum class Reason {
   no_map,               /**< a request before any map was loaded */
   unknown_map,          /**< a request for a map id other than the loaded one */
   too_large,            /**< a library result does not fit in a message (count > INT32_MAX) */
+  // ---- follower and simulator (tdo-avoid, tdo-sim)
+  no_plan,       /**< a trajectory answer without a plan to follow (error status, < 2 samples) */
+  over_capacity, /**< more items than the program's configured capacity (movers, samples) */
+  library_error, /**< the library refused the input (detail: the tdo_status name) */
 };
 
 /** @return the stable lower-case name of a reason, e.g. "non_finite". */

@@ -1,0 +1,330 @@
+// tdo-avoid's node: decode -> adapter -> tdo_apf_run -> encode (avoid_node.h).
+#include "avoid_node.h"
+
+#include <cmath>
+#include <new>
+#include <utility>
+
+#include "tdo_lcm/adapters.h"
+#include "tdo_lcm/vehicle.h"
+#include "tdo_lcm/wire.h"
+
+namespace tdo_lcm {
+namespace {
+
+int64_t wall_utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+AvoidNode::AvoidNode(Bus* bus, AvoidConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
+  started_ = std::chrono::steady_clock::now();
+  next_status_ = started_;
+  next_tick_ = started_;
+}
+
+bool AvoidNode::start(std::string* error) {
+  auto fail_with = [&](const std::string& msg) {
+    if (error != nullptr) *error = msg;
+    return false;
+  };
+  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
+  if (apf_ != nullptr) return fail_with("already started");
+  if (!(cfg_.rate_hz > 0.0) || !std::isfinite(cfg_.rate_hz))
+    return fail_with("the rate must be finite and > 0");
+  if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_with("the mover shift must be >= 0");
+  if (!grid_.start(cfg_.max_nx, cfg_.max_ny, cfg_.max_nz, cfg_.max_boxes, cfg_.max_clearance_ratio,
+                   error))
+    return false;
+
+  tdo_apf_params_default(&params_, cfg_.kind);
+  params_.dt = 1.0 / cfg_.rate_hz;
+  params_.v_max = cfg_.v_max;
+  params_.a_max = cfg_.a_max;
+  params_.j_max = cfg_.j_max;
+  params_.vehicle_radius = cfg_.vehicle_radius;
+
+  tdo_apf_config acfg{};
+  acfg.max_samples = cfg_.max_samples;
+  acfg.max_movers = cfg_.max_movers;
+  acfg.nearest_window = cfg_.nearest_window;
+  arena_bytes_ = tdo_apf_footprint(&acfg);
+  if (arena_bytes_ == 0)
+    return fail_with("invalid follower capacities (samples >= 2, movers >= 1, window >= 1)");
+  const std::size_t words =
+      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+  arena_.reset(new (std::nothrow) std::max_align_t[words]);
+  if (!arena_)
+    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+  tdo_arena arena;
+  tdo_arena_init(&arena, arena_.get(), words * sizeof(std::max_align_t));
+  tdo_status st = tdo_apf_init(&apf_, &arena, &acfg);
+  if (st != TDO_OK) {
+    apf_ = nullptr;
+    return fail_with(std::string("tdo_apf_init: ") + tdo_status_str(st));
+  }
+  // Let the library judge the parameters now (rate, limits) with a dummy straight task; the
+  // follower stays unused until a real trajectory resets it.
+  const tdo_sample probe[2] = {tdo_sample{0.0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                               tdo_sample{1.0, {1, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
+  tdo_apf_task task{};
+  task.samples = probe;
+  task.n_samples = 2;
+  task.goal = probe[1].p;
+  st = tdo_apf_reset(apf_, &params_, &task);
+  if (st != TDO_OK)
+    return fail_with(std::string("the follower refuses the parameters (rate, limits, radius): ") +
+                     tdo_status_str(st));
+
+  const auto sub = [this](const std::string& ch, void (AvoidNode::*fn)(const void*, std::size_t)) {
+    return bus_->subscribe(
+        ch, [this, fn](const void* d, std::size_t n, const std::string&) { (this->*fn)(d, n); });
+  };
+  const bool ok = sub(cfg_.trajectory_channel, &AvoidNode::on_trajectory) &&
+                  sub(cfg_.obstacles_channel, &AvoidNode::on_obstacles) &&
+                  sub(cfg_.state_channel, &AvoidNode::on_state) &&
+                  sub(cfg_.map_channel, &AvoidNode::on_map);
+  return ok ? true : fail_with("cannot subscribe");
+}
+
+void AvoidNode::refuse(const std::string& what, const Check& c) {
+  if (c.reason == Reason::other_vehicle || c.reason == Reason::no_plan)
+    ++counters_.ignored;
+  else
+    ++counters_.rejected;
+  ++counters_.reasons[what + "." + reason_str(c.reason)];
+}
+
+void AvoidNode::reset_task() {
+  tdo_apf_task task{};
+  task.samples = samples_.data();
+  task.n_samples = static_cast<uint32_t>(samples_.size());
+  task.goal = samples_.back().p;
+  task.grid = have_map_ ? grid_.grid() : nullptr;
+  task.t0 = task_t0_;
+  const tdo_status st = tdo_apf_reset(apf_, &params_, &task);
+  if (st == TDO_OK) {
+    task_ready_ = true;
+    return;
+  }
+  task_ready_ = false;
+  have_task_ = false;
+  refuse("trajectory",
+         fail(Reason::library_error, std::string("tdo_apf_reset: ") + tdo_status_str(st) +
+                                         " (request " + std::to_string(request_id_) + ")"));
+}
+
+void AvoidNode::on_trajectory(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::trajectory_t m{};
+  Check c = decode(data, size, &m);
+  if (c.ok() && m.vehicle_id != cfg_.vehicle_id)
+    c = fail(Reason::other_vehicle, "trajectory for vehicle " + std::to_string(m.vehicle_id));
+  if (c.ok()) c = check_counts(m);
+  if (c.ok() && (m.status_code != 0 || m.n_samples < 2))
+    c = fail(Reason::no_plan, "request " + std::to_string(m.request_id) + ": status " + m.status +
+                                  ", " + std::to_string(m.n_samples) + " samples");
+  if (c.ok() && static_cast<uint64_t>(m.n_samples) > cfg_.max_samples)
+    c = fail(Reason::over_capacity, std::to_string(m.n_samples) +
+                                        " samples, more than the capacity of " +
+                                        std::to_string(cfg_.max_samples));
+  std::vector<tdo_sample> samples;
+  if (c.ok()) c = samples_from_msg(m, &samples);
+  if (!c.ok()) {
+    refuse("trajectory", c);
+    return;
+  }
+  samples_ = std::move(samples);
+  request_id_ = m.request_id;
+  have_task_ = true;
+  task_ready_ = false;
+  task_t0_set_ = have_state_;  // starts now, or at the first state
+  task_t0_ = state_.t;
+  if (task_t0_set_) reset_task();
+  if (have_task_) ++counters_.trajectories;
+}
+
+void AvoidNode::on_obstacles(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::obstacles_t m{};
+  Check c = decode(data, size, &m);
+  std::vector<tdo_mover> movers;
+  if (c.ok()) c = movers_from_msg(m, cfg_.vehicle_id, cfg_.max_movers, &movers);
+  if (!c.ok()) {
+    refuse("obstacles", c);
+    return;
+  }
+  movers_ = std::move(movers);
+  movers_utime_ = m.utime;
+}
+
+void AvoidNode::on_state(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::vehicle_state_t m{};
+  Check c = decode(data, size, &m);
+  tdo_vehicle_state s{};
+  if (c.ok())
+    c = vehicle_state_from_msg(m, cfg_.vehicle_id, utime_ref_set_ ? utime_ref_ : m.utime, &s);
+  if (!c.ok()) {
+    refuse("state", c);
+    return;
+  }
+  if (!utime_ref_set_) {
+    utime_ref_ = m.utime;
+    utime_ref_set_ = true;
+  }
+  state_ = s;
+  state_utime_ = m.utime;
+  have_state_ = true;
+  if (cfg_.lockstep) tick();
+}
+
+void AvoidNode::on_map(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::map_t m{};
+  Check c = decode(data, size, &m);
+  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
+    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  if (c.ok() && have_map_ && m.map_id == map_id_) return;  // the map in use, sent again
+  // Everything is checked before the grid is touched, so a bad map leaves the current one in place.
+  if (c.ok()) c = map_check(m, grid_.capacity(), -1.0);
+  if (!c.ok()) {
+    refuse("map", c);
+    return;
+  }
+  c = map_to_grid(m, grid_.capacity(), -1.0, grid_.grid());
+  if (!c.ok()) {  // the grid was reset: no static repulsion until the next good map
+    have_map_ = false;
+    map_id_ = -1;
+    refuse("map", c);
+  } else {
+    have_map_ = true;
+    map_id_ = m.map_id;
+    ++counters_.maps_loaded;
+  }
+  // The follower must not step on a grid that changed under it: restart the task on the new one.
+  if (task_ready_) reset_task();
+}
+
+void AvoidNode::publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id) {
+  yaw_ = heading_of(sp.v, yaw_);
+  tdo::setpoint_t m{};
+  const Check c =
+      setpoint_to_msg(sp, state_utime_, cfg_.vehicle_id, setpoint_seq_, request_id, yaw_, st, &m);
+  if (!c.ok()) {  // the library promises finite setpoints; count it rather than send garbage
+    ++counters_.reasons[std::string("setpoint.") + reason_str(c.reason)];
+    ++counters_.rejected;
+    return;
+  }
+  bus_->publish(cfg_.setpoint_channel, m);
+  ++setpoint_seq_;
+  ++counters_.setpoints;
+}
+
+bool AvoidNode::tick() {
+  if (apf_ == nullptr || !have_state_) return false;
+  if (have_task_ && !task_ready_) {
+    if (!task_t0_set_) {
+      task_t0_ = state_.t;
+      task_t0_set_ = true;
+    }
+    reset_task();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  if (task_ready_) {
+    movers_now_ = movers_;
+    if (utime_ref_set_)
+      movers_advance(&movers_now_, seconds_since(movers_utime_, utime_ref_), state_.t,
+                     cfg_.max_mover_shift_s);
+    tdo_apf_input in{};
+    in.state = state_;
+    in.movers = movers_now_.empty() ? nullptr : movers_now_.data();
+    in.n_movers = static_cast<uint32_t>(movers_now_.size());
+    const tdo_status st = tdo_apf_run(apf_, &in, &last_out_);
+    counters_.last_step_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (st == TDO_OK || st == TDO_ERR_LOCAL_MINIMUM) {
+      if (st == TDO_OK)
+        ++counters_.steps_ok;
+      else
+        ++counters_.steps_failed;
+      if ((last_out_.events & TDO_APF_EVENT_GOAL_REACHED) != 0u) ++counters_.goal_reached;
+      if ((last_out_.events & TDO_APF_EVENT_LM_DETECTED) != 0u) ++counters_.lm_detections;
+      publish_setpoint(last_out_.setpoint, st, request_id_);
+      return true;
+    }
+    // Inputs are checked by the adapters, so this is unexpected: count it and hold.
+    ++counters_.steps_failed;
+    ++counters_.reasons[std::string("step.") + tdo_status_str(st)];
+  }
+  // No task: brake to a hover with the library's motion rule.
+  const tdo_vec3 a_des{-params_.k_d * state_.v.x, -params_.k_d * state_.v.y,
+                       -params_.k_d * state_.v.z};
+  tdo_setpoint sp{};
+  tdo_motion_limit(&state_, a_des, params_.v_max, params_.a_max, params_.j_max, params_.dt, &sp);
+  ++counters_.holds;
+  publish_setpoint(sp, TDO_OK, -1);
+  return true;
+}
+
+tdo::status_t AvoidNode::status_message() const {
+  tdo::status_t s{};
+  s.utime = wall_utime();
+  s.seq = status_seq_;
+  s.program = "tdo-avoid";
+  s.vehicle_id = cfg_.vehicle_id;
+  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  s.map_id = map_id();
+  s.received = counters_.received;
+  s.maps_loaded = counters_.maps_loaded;
+  s.answered = counters_.setpoints;
+  s.succeeded = counters_.steps_ok;
+  s.failed = counters_.steps_failed;
+  s.rejected = counters_.rejected;
+  s.ignored = counters_.ignored;
+  s.last_plan_ms = counters_.last_step_ms;
+  for (const auto& kv : counters_.reasons) {
+    s.reason.push_back(kv.first);
+    s.reason_count.push_back(kv.second);
+  }
+  s.n_reasons = static_cast<int32_t>(s.reason.size());
+  return s;
+}
+
+void AvoidNode::publish_status() {
+  const tdo::status_t s = status_message();
+  if (!check_counts(s).ok()) return;
+  bus_->publish(cfg_.status_channel, s);
+  ++status_seq_;
+}
+
+void AvoidNode::poll(std::chrono::steady_clock::time_point now) {
+  if (!cfg_.lockstep && now >= next_tick_) {
+    tick();
+    const auto period = seconds(1.0 / cfg_.rate_hz);
+    next_tick_ += period;
+    if (next_tick_ <= now) next_tick_ = now + period;  // fell behind: no burst of steps
+  }
+  if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
+  publish_status();
+  const auto period = seconds(cfg_.heartbeat_period_s);
+  next_status_ += period;
+  if (next_status_ <= now) next_status_ = now + period;
+}
+
+std::chrono::steady_clock::time_point AvoidNode::next_due() const {
+  auto t = std::chrono::steady_clock::time_point::max();
+  if (cfg_.heartbeat_period_s > 0.0) t = next_status_;
+  if (!cfg_.lockstep && next_tick_ < t) t = next_tick_;
+  return t;
+}
+
+}  // namespace tdo_lcm

@@ -1,0 +1,187 @@
+/**
+ * @file avoid_node.h
+ * @brief The tdo-avoid program minus its main(): the E-APF (or classical APF) follower of libtdo
+ *        (apf.h) on LCM. TDO_TRAJECTORY + TDO_OBSTACLES + TDO_UAV_STATE + TDO_MAP -> TDO_SETPOINT,
+ *        with TDO_STATUS heartbeats.
+ *
+ * Thin: decode (wire.h) -> adapter (adapters.h, vehicle.h) -> tdo_apf_run -> encode. Steps:
+ *  - timed (default): tick() at the configured rate (poll() calls it), each with the latest state;
+ *  - lock-step: one step per accepted vehicle state, at once (deterministic runs and tests).
+ * Each step publishes one setpoint for the latest state. Before any state: nothing to publish.
+ * Without a trajectory to follow (none yet, or the last one was refused by the library) the
+ * setpoint brakes to a hover (tdo_motion_limit with a damping command, request_id -1).
+ *
+ * Inputs, and what happens to bad ones (never fatal; counted in the heartbeat by
+ * "<what>.<reason>", what = trajectory, obstacles, state or map):
+ *  - undecodable bytes (wrong fingerprint, truncated, bad counts): rejected;
+ *  - a trajectory, state, obstacles or map for another vehicle: ignored (other_vehicle);
+ *  - a trajectory answer with an error status or fewer than 2 samples: ignored (no_plan), the
+ *    current task goes on;
+ *  - a trajectory with bad samples (count, non-finite, times not increasing) or more samples than
+ *    max_samples: rejected, the current task goes on; one the library refuses (tdo_apf_reset,
+ *    e.g. non-uniform times): rejected (library_error), the follower holds until the next one;
+ *  - a state with a non-finite number: rejected, the last good state stays;
+ *  - obstacles with bad counts, non-finite numbers, radius <= 0 or more than max_movers:
+ *    rejected, the last good obstacles stay;
+ *  - a map that fails its checks (map_check against the grid's capacity): rejected, the previous
+ *    map stays; a map the library refuses after the grid was reset: rejected, no static
+ *    repulsion until the next good map.
+ * A new map (new map_id) is loaded into the grid and the current task is restarted on it with its
+ * original time origin; the same map_id again is only counted as received.
+ * Time: the follower's clock is seconds since the first accepted state's utime; movers are moved
+ * on from their message's utime to the state's (at most max_mover_shift_s).
+ * Single-threaded: the handlers run inside Bus::handle_timeout. Declare the bus before the node.
+ */
+#ifndef TDO_AVOID_NODE_H
+#define TDO_AVOID_NODE_H
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tdo/tdo.h"
+#include "tdo_lcm/bus.h"
+#include "tdo_lcm/check.h"
+#include "tdo_lcm/grid_host.h"
+#include "tdo_lcm/types.h"
+
+namespace tdo_lcm {
+
+/** Configuration of a follower node (tdo-avoid's command line). */
+struct AvoidConfig {
+  int32_t vehicle_id = 0;                              /**< vehicle served */
+  std::string trajectory_channel = kChannelTrajectory; /**< trajectories in */
+  std::string obstacles_channel = kChannelObstacles;   /**< moving obstacles in */
+  std::string state_channel = kChannelVehicleState;    /**< vehicle states in */
+  std::string map_channel = kChannelMap;               /**< static maps in */
+  std::string setpoint_channel = kChannelSetpoint;     /**< setpoints out */
+  std::string status_channel = kChannelStatus;         /**< heartbeats out */
+  tdo_follower_kind kind = TDO_FOLLOWER_EAPF;          /**< E-APF or classical APF */
+  double rate_hz = 50.0;            /**< Hz, steps per second; the follower's dt = 1 / rate */
+  bool lockstep = false;            /**< one step per received state instead of the timer */
+  double v_max = 3.0;               /**< m/s, speed limit of the setpoints */
+  double a_max = 3.0;               /**< m/s^2 */
+  double j_max = 10.0;              /**< m/s^3 */
+  double vehicle_radius = 0.25;     /**< m */
+  int32_t max_nx = 128;             /**< voxels along x of the largest map (sizes the grid) */
+  int32_t max_ny = 128;             /**< voxels along y */
+  int32_t max_nz = 64;              /**< voxels along z */
+  uint32_t max_boxes = 4096;        /**< obstacle boxes of one map */
+  double max_clearance_ratio = 4.0; /**< largest map clearance / resolution */
+  uint32_t max_samples = 100000;    /**< trajectory samples (1000 s at 0.01 s) */
+  uint32_t max_movers = 256;        /**< moving obstacles per message */
+  uint32_t nearest_window = 200;    /**< samples searched each way per step for the nearest point
+                                         (2 s at the planner's default 0.01 s) */
+  double max_mover_shift_s = 1.0; /**< s, movers are moved on to the state's time by at most this */
+  double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
+};
+
+/** Message counters, also sent in each heartbeat (status_t). */
+struct AvoidCounters {
+  int64_t received = 0;      /**< messages on the four input channels */
+  int64_t maps_loaded = 0;   /**< maps loaded into the grid */
+  int64_t trajectories = 0;  /**< trajectories accepted (follower reset) */
+  int64_t setpoints = 0;     /**< setpoints published (heartbeat: answered) */
+  int64_t steps_ok = 0;      /**< follower steps with TDO_OK (heartbeat: succeeded) */
+  int64_t steps_failed = 0;  /**< follower steps with a failure, e.g. local_minimum (failed) */
+  int64_t holds = 0;         /**< hover setpoints without a task */
+  int64_t rejected = 0;      /**< messages refused by a check */
+  int64_t ignored = 0;       /**< messages not for this vehicle or without a plan */
+  int64_t goal_reached = 0;  /**< GOAL_REACHED events */
+  int64_t lm_detections = 0; /**< local minima detected (over every task) */
+  double last_step_ms = 0.0; /**< ms, wall time of the last follower call */
+  std::map<std::string, int64_t> reasons; /**< "trajectory.<reason>", "state.<reason>", ... */
+};
+
+class AvoidNode {
+ public:
+  AvoidNode(Bus* bus, AvoidConfig cfg);
+  AvoidNode(const AvoidNode&) = delete;
+  AvoidNode& operator=(const AvoidNode&) = delete;
+
+  /**
+   * @brief Allocate the grid and the follower arena (once), initialise, subscribe.
+   * @param[out] error why not (may be null)
+   */
+  bool start(std::string* error);
+
+  /** @brief Timed mode: step when a tick is due; both modes: heartbeat when due. */
+  void poll(std::chrono::steady_clock::time_point now);
+
+  /** @brief One step now with the latest state (nothing before any state). @return published. */
+  bool tick();
+
+  /** @return when poll() next has something to do (a tick or a heartbeat). */
+  std::chrono::steady_clock::time_point next_due() const;
+
+  /** @brief Publish a heartbeat now. */
+  void publish_status();
+
+  /** @return the heartbeat message as it would be sent now. */
+  tdo::status_t status_message() const;
+
+  const AvoidCounters& counters() const { return counters_; }
+  /** @return the trajectory followed (request_id), -1 when holding. */
+  int64_t following() const { return task_ready_ ? request_id_ : -1; }
+  int64_t map_id() const { return have_map_ ? map_id_ : -1; }
+  /** @return the last follower output (mode, terms, events). */
+  const tdo_apf_output& last_output() const { return last_out_; }
+  std::size_t arena_bytes() const { return arena_bytes_ + grid_.arena_bytes(); }
+  const tdo_apf_params& params() const { return params_; }
+
+  /** Handlers of the raw bytes of one message (what start() subscribes). */
+  void on_trajectory(const void* data, std::size_t size);
+  void on_obstacles(const void* data, std::size_t size);
+  void on_state(const void* data, std::size_t size);
+  void on_map(const void* data, std::size_t size);
+
+ private:
+  void refuse(const std::string& what, const Check& c);
+  void reset_task();
+  void publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id);
+
+  Bus* bus_;
+  AvoidConfig cfg_;
+  GridHost grid_;
+  std::unique_ptr<std::max_align_t[]> arena_;
+  std::size_t arena_bytes_ = 0;
+  tdo_apf* apf_ = nullptr;
+  tdo_apf_params params_{};
+
+  // map
+  bool have_map_ = false;
+  int64_t map_id_ = -1;
+  // task
+  std::vector<tdo_sample> samples_;
+  int64_t request_id_ = -1;
+  bool have_task_ = false;   /**< a trajectory was accepted */
+  bool task_ready_ = false;  /**< the follower was reset with it */
+  bool task_t0_set_ = false; /**< its time origin is fixed (the first state after it) */
+  double task_t0_ = 0.0;     /**< s, follower clock at trajectory t = 0 */
+  // state and movers
+  bool have_state_ = false;
+  bool utime_ref_set_ = false;
+  int64_t utime_ref_ = 0; /**< us, follower clock origin */
+  int64_t state_utime_ = 0;
+  tdo_vehicle_state state_{};
+  std::vector<tdo_mover> movers_;
+  int64_t movers_utime_ = 0; /**< us, time of movers_ */
+  std::vector<tdo_mover> movers_now_;
+  double yaw_ = 0.0;
+
+  tdo_apf_output last_out_{};
+  AvoidCounters counters_;
+  int64_t setpoint_seq_ = 0;
+  int64_t status_seq_ = 0;
+  std::chrono::steady_clock::time_point started_;
+  std::chrono::steady_clock::time_point next_status_;
+  std::chrono::steady_clock::time_point next_tick_;
+};
+
+}  // namespace tdo_lcm
+
+#endif  // TDO_AVOID_NODE_H

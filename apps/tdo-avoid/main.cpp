@@ -1,0 +1,155 @@
+// tdo-avoid: the E-APF follower on LCM (avoid_node.h). Runs until SIGINT or SIGTERM (or
+// --duration), then exits 0. Exit status 2: bad options or LCM could not start.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "avoid_node.h"
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_signal(int /*sig*/) { g_stop = 1; }
+
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a signal ends the wait inside lcm_handle_timeout at once
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  tdo_lcm::AvoidConfig cfg;
+  std::string url = tdo_lcm::kDefaultUrl;
+  std::vector<int> max_size = {cfg.max_nx, cfg.max_ny, cfg.max_nz};
+  double duration = 0.0;
+  bool quiet = false;
+  const std::map<std::string, tdo_follower_kind> kinds = {{"eapf", TDO_FOLLOWER_EAPF},
+                                                          {"apf", TDO_FOLLOWER_APF}};
+
+  CLI::App app{
+      "tdo-avoid: the E-APF follower. Follows the latest TDO_TRAJECTORY of its vehicle around the "
+      "TDO_OBSTACLES, with static repulsion from TDO_MAP, and sends a TDO_SETPOINT for the latest "
+      "TDO_UAV_STATE at a fixed rate, with TDO_STATUS heartbeats. Stops on SIGINT/SIGTERM."};
+  app.add_option("--lcm-url", url, "LCM URL (memq://, udpm://..., file://LOG?speed=0)")
+      ->capture_default_str();
+  app.add_option("--vehicle-id", cfg.vehicle_id, "vehicle served; other messages are ignored")
+      ->capture_default_str();
+  app.add_option("--follower", cfg.kind, "eapf (trajectory-guided) or apf (classical baseline)")
+      ->transform(CLI::CheckedTransformer(kinds, CLI::ignore_case))
+      ->default_str("eapf");
+  app.add_option("--rate", cfg.rate_hz, "Hz, setpoints per second (the follower's step)")
+      ->capture_default_str();
+  app.add_flag("--lockstep", cfg.lockstep,
+               "one setpoint per received state, at once, instead of the timer (with tdo-sim "
+               "--lockstep: deterministic runs)");
+  app.add_option("--trajectory-channel", cfg.trajectory_channel, "trajectories in")
+      ->capture_default_str();
+  app.add_option("--obstacles-channel", cfg.obstacles_channel, "moving obstacles in")
+      ->capture_default_str();
+  app.add_option("--state-channel", cfg.state_channel, "vehicle states in")->capture_default_str();
+  app.add_option("--map-channel", cfg.map_channel, "static maps in")->capture_default_str();
+  app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints out")
+      ->capture_default_str();
+  app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();
+  app.add_option("--heartbeat", cfg.heartbeat_period_s, "s between heartbeats (0 = none)")
+      ->capture_default_str();
+  app.add_option("--v-max", cfg.v_max, "m/s, speed limit")->capture_default_str();
+  app.add_option("--a-max", cfg.a_max, "m/s^2, acceleration limit")->capture_default_str();
+  app.add_option("--j-max", cfg.j_max, "m/s^3, jerk limit")->capture_default_str();
+  app.add_option("--vehicle-radius", cfg.vehicle_radius, "m")->capture_default_str();
+  app.add_option("--max-size", max_size, "capacity: voxels NX NY NZ of the largest map")
+      ->expected(3)
+      ->capture_default_str();
+  app.add_option("--max-boxes", cfg.max_boxes, "capacity: obstacle boxes per map")
+      ->capture_default_str();
+  app.add_option("--max-clearance-ratio", cfg.max_clearance_ratio,
+                 "capacity: largest map clearance / resolution")
+      ->capture_default_str();
+  app.add_option("--max-samples", cfg.max_samples, "capacity: trajectory samples")
+      ->capture_default_str();
+  app.add_option("--max-movers", cfg.max_movers, "capacity: moving obstacles per message")
+      ->capture_default_str();
+  app.add_option("--duration", duration, "s to run, then exit as on SIGTERM (0 = until a signal)")
+      ->capture_default_str();
+  app.add_flag("--quiet", quiet, "no start and stop lines on stderr");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  }
+  cfg.max_nx = max_size[0];
+  cfg.max_ny = max_size[1];
+  cfg.max_nz = max_size[2];
+
+  install_signal_handlers();
+  tdo_lcm::Bus bus(url);
+  if (!bus.good()) {
+    std::fprintf(stderr,
+                 "tdo-avoid: error: cannot start LCM on '%s' (for udpm on loopback a multicast "
+                 "route is needed: ip route add 224.0.0.0/4 dev lo)\n",
+                 url.c_str());
+    return 2;
+  }
+  tdo_lcm::AvoidNode node(&bus, cfg);
+  std::string error;
+  if (!node.start(&error)) {
+    std::fprintf(stderr, "tdo-avoid: error: %s\n", error.c_str());
+    return 2;
+  }
+  if (!quiet)
+    std::fprintf(stderr, "tdo-avoid: vehicle %d on %s, %s at %g Hz%s, arena %zu bytes\n",
+                 cfg.vehicle_id, url.c_str(), cfg.kind == TDO_FOLLOWER_APF ? "apf" : "eapf",
+                 cfg.rate_hz, cfg.lockstep ? " (lock-step)" : "", node.arena_bytes());
+
+  const auto t_end = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(duration));
+  // A file:// log ends with an error from lcm_handle: the end of the input, a clean stop.
+  const bool from_log = url.rfind("file://", 0) == 0;
+  int errors = 0;
+  while (g_stop == 0) {
+    // Wait for messages until the next tick or heartbeat is due (at most 100 ms).
+    const auto now0 = std::chrono::steady_clock::now();
+    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(node.next_due() - now0);
+    const int wait_ms = static_cast<int>(std::clamp<long long>(wait.count(), 0, 100));
+    const int rc = bus.handle_timeout(wait_ms);
+    if (rc < 0 && g_stop == 0 && from_log) {
+      if (!quiet) std::fprintf(stderr, "tdo-avoid: end of the log\n");
+      break;
+    }
+    if (rc < 0 && g_stop == 0 && ++errors > 100) {
+      std::fprintf(stderr, "tdo-avoid: error: LCM keeps failing, stopping\n");
+      break;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    node.poll(now);
+    if (duration > 0.0 && now >= t_end) break;
+  }
+  node.publish_status();  // a last heartbeat with the final counters
+  const tdo_lcm::AvoidCounters& c = node.counters();
+  if (!quiet)
+    std::fprintf(stderr,
+                 "tdo-avoid: stopped: %lld received, %lld setpoints (%lld followed, %lld failed, "
+                 "%lld hover), %lld rejected, %lld ignored\n",
+                 static_cast<long long>(c.received), static_cast<long long>(c.setpoints),
+                 static_cast<long long>(c.steps_ok), static_cast<long long>(c.steps_failed),
+                 static_cast<long long>(c.holds), static_cast<long long>(c.rejected),
+                 static_cast<long long>(c.ignored));
+  if (!quiet)
+    for (const auto& kv : c.reasons)
+      std::fprintf(stderr, "tdo-avoid:   %s %lld\n", kv.first.c_str(),
+                   static_cast<long long>(kv.second));
+  return errors > 100 ? 1 : 0;
+}

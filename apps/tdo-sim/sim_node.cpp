@@ -1,0 +1,354 @@
+// tdo-sim's node: decode -> adapter -> tdo_sim_run -> encode (sim_node.h).
+#include "sim_node.h"
+
+#include <algorithm>
+#include <cmath>
+#include <new>
+#include <utility>
+
+#include "tdo_io/map_io.h"
+#include "tdo_lcm/adapters.h"
+#include "tdo_lcm/vehicle.h"
+#include "tdo_lcm/wire.h"
+
+namespace tdo_lcm {
+namespace {
+
+int64_t wall_utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(s));
+}
+
+/** Occupancy (x-fastest) of a voxel map; empty when it has no voxels (boxes only). */
+std::vector<uint8_t> occupancy_of(const tdo_io::Map& map) {
+  std::vector<uint8_t> occ;
+  if (map.voxels.empty()) return occ;
+  const tdo_grid_desc& d = map.desc;
+  const uint64_t nx = static_cast<uint64_t>(d.nx);
+  const uint64_t nxy = nx * static_cast<uint64_t>(d.ny);
+  occ.assign(nxy * static_cast<uint64_t>(d.nz), 0u);
+  for (const tdo_voxel& v : map.voxels) {
+    if (v.i < 0 || v.j < 0 || v.k < 0 || v.i >= d.nx || v.j >= d.ny || v.k >= d.nz) continue;
+    occ[static_cast<uint64_t>(v.i) + nx * static_cast<uint64_t>(v.j) +
+        nxy * static_cast<uint64_t>(v.k)] = 1u;
+  }
+  return occ;
+}
+
+}  // namespace
+
+SimNode::SimNode(Bus* bus, SimConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
+  started_ = std::chrono::steady_clock::now();
+  next_status_ = started_;
+  next_tick_ = started_;
+  next_map_ = started_;
+  setpoint_wall_ = started_;
+}
+
+bool SimNode::start(std::string* error) {
+  auto fail_with = [&](const std::string& msg) {
+    if (error != nullptr) *error = msg;
+    return false;
+  };
+  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
+  if (sim_ != nullptr) return fail_with("already started");
+  if (!(cfg_.rate_hz > 0.0) || !std::isfinite(cfg_.rate_hz))
+    return fail_with("the rate must be finite and > 0");
+  if (!(cfg_.map_clearance >= 0.0) || !std::isfinite(cfg_.map_clearance))
+    return fail_with("the map clearance must be finite and >= 0");
+  if (cfg_.map_id < 0) return fail_with("the map id must be >= 0");
+  if (!(cfg_.brake_gain >= 0.0) || !std::isfinite(cfg_.brake_gain))
+    return fail_with("the brake gain must be finite and >= 0");
+  if (cfg_.has_goal) {
+    has_goal_ = true;
+    goal_ = cfg_.goal;
+  }
+
+  // The map file: geometry for the collision check and the message, movers, default start.
+  tdo_io::Map map;
+  std::vector<tdo_mover> movers;
+  if (!cfg_.map_file.empty()) {
+    tdo_io::LoadOptions lo;
+    lo.resolution = cfg_.map_resolution;
+    std::string why;
+    if (!tdo_io::load_map(cfg_.map_file, lo, &map, &why)) return fail_with(why);
+    const tdo_grid_desc& d = map.desc;
+    if (!grid_.start(d.nx, d.ny, d.nz, static_cast<uint32_t>(map.boxes.size()),
+                     cfg_.map_clearance / d.res, error))
+      return false;
+    const tdo_status st = tdo_io::load_into(map, grid_.grid(), cfg_.map_clearance);
+    if (st != TDO_OK)
+      return fail_with(cfg_.map_file + ": the library refuses the map: " + tdo_status_str(st));
+    const Check c =
+        map_from_occupancy(d, occupancy_of(map), map.boxes, cfg_.map_clearance, &map_msg_);
+    if (!c.ok()) return fail_with(cfg_.map_file + ": " + reason_str(c.reason) + ": " + c.detail);
+    map_msg_.map_id = cfg_.map_id;
+    map_msg_.vehicle_id = -1;
+    has_map_ = true;
+    if (!cfg_.has_goal) {
+      has_goal_ = map.has_goal;
+      goal_ = map.goal;
+    }
+    if (cfg_.movers)
+      for (const tdo_io::Mover& m : map.movers)
+        movers.push_back(tdo_mover{static_cast<uint32_t>(m.id), m.pos, m.vel, m.radius});
+  }
+  tdo_box bounds{{0.0, 0.0, 0.0}, {50.0, 50.0, 20.0}};
+  if (cfg_.has_bounds) {
+    bounds = cfg_.bounds;
+  } else if (has_map_) {
+    const tdo_grid_desc& d = map.desc;
+    bounds.min = d.origin;
+    bounds.max =
+        tdo_vec3{d.origin.x + d.nx * d.res, d.origin.y + d.ny * d.res, d.origin.z + d.nz * d.res};
+  }
+  tdo_vehicle_state s0{};
+  if (cfg_.has_start)
+    s0.p = cfg_.start;
+  else if (has_map_ && map.has_start)
+    s0.p = map.start;
+  else
+    s0.p = tdo_vec3{0.5 * (bounds.min.x + bounds.max.x), 0.5 * (bounds.min.y + bounds.max.y),
+                    0.5 * (bounds.min.z + bounds.max.z)};
+  if (movers.size() > cfg_.max_movers)
+    return fail_with(std::to_string(movers.size()) + " movers, more than --max-movers " +
+                     std::to_string(cfg_.max_movers));
+
+  tdo_sim_config scfg{};
+  scfg.max_movers = cfg_.max_movers;
+  arena_bytes_ = tdo_sim_footprint(&scfg);
+  if (arena_bytes_ == 0) return fail_with("invalid simulator capacity (movers >= 1)");
+  const std::size_t words =
+      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+  arena_.reset(new (std::nothrow) std::max_align_t[words]);
+  if (!arena_)
+    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+  tdo_arena arena;
+  tdo_arena_init(&arena, arena_.get(), words * sizeof(std::max_align_t));
+  tdo_status st = tdo_sim_init(&sim_, &arena, &scfg);
+  if (st != TDO_OK) {
+    sim_ = nullptr;
+    return fail_with(std::string("tdo_sim_init: ") + tdo_status_str(st));
+  }
+  tdo_sim_params sp;
+  tdo_sim_params_default(&sp);
+  sp.dt = 1.0 / cfg_.rate_hz;
+  sp.v_max = cfg_.v_max;
+  sp.a_max = cfg_.a_max;
+  sp.j_max = cfg_.j_max;
+  sp.bounds = bounds;
+  sp.vehicle_radius = cfg_.vehicle_radius;
+  sp.static_clearance = cfg_.static_clearance;
+  sp.grid = has_map_ ? grid_.grid() : nullptr;
+  sp.seed = cfg_.seed;
+  sp.accel_noise = cfg_.accel_noise;
+  st = tdo_sim_reset(sim_, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()));
+  if (st != TDO_OK)
+    return fail_with(std::string("the simulator refuses the set-up (rate, limits, bounds, start, "
+                                 "movers): ") +
+                     tdo_status_str(st));
+  utime0_ = cfg_.start_utime != 0 ? cfg_.start_utime : wall_utime();
+  const tdo_sim_output out = current();
+  counters_.min_mover_gap = out.mover_gap;
+  counters_.min_static_dist = out.static_dist;
+
+  const bool ok = bus_->subscribe(
+      cfg_.setpoint_channel,
+      [this](const void* d, std::size_t n, const std::string&) { on_setpoint(d, n); });
+  if (!ok) return fail_with("cannot subscribe");
+  if (cfg_.request_goal && !has_goal_)
+    return fail_with("a plan request needs a goal (--goal, or a map file with one)");
+  publish_map();
+  if (cfg_.request_goal && cfg_.lockstep) publish_request();
+  publish_state();
+  const auto now = std::chrono::steady_clock::now();
+  next_tick_ = now + seconds(1.0 / cfg_.rate_hz);
+  next_map_ = now + seconds(cfg_.map_period_s > 0.0 ? cfg_.map_period_s : 0.0);
+  request_at_ = now + seconds(cfg_.request_delay_s > 0.0 ? cfg_.request_delay_s : 0.0);
+  return true;
+}
+
+tdo_sim_output SimNode::current() const {
+  tdo_sim_output out{};
+  if (sim_ != nullptr) tdo_sim_get(sim_, &out);
+  return out;
+}
+
+bool SimNode::goal(tdo_vec3* out) const {
+  if (!has_goal_) return false;
+  *out = goal_;
+  return true;
+}
+
+void SimNode::refuse(const std::string& what, const Check& c) {
+  if (c.reason == Reason::other_vehicle)
+    ++counters_.ignored;
+  else
+    ++counters_.rejected;
+  ++counters_.reasons[what + "." + reason_str(c.reason)];
+}
+
+void SimNode::on_setpoint(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::setpoint_t m{};
+  Check c = decode(data, size, &m);
+  tdo_setpoint sp{};
+  if (c.ok()) c = setpoint_from_msg(m, cfg_.vehicle_id, utime0_, &sp);
+  if (!c.ok()) {
+    refuse("setpoint", c);
+    return;
+  }
+  setpoint_ = sp;
+  yaw_ = m.yaw;
+  have_setpoint_ = true;
+  setpoint_wall_ = std::chrono::steady_clock::now();
+  ++counters_.setpoints;
+  if (cfg_.lockstep) step();
+}
+
+void SimNode::step() { step_at(std::chrono::steady_clock::now()); }
+
+void SimNode::step_at(std::chrono::steady_clock::time_point now) {
+  if (sim_ == nullptr) return;
+  const tdo_sim_output before = current();
+  tdo_sim_input in{};
+  const bool fresh =
+      have_setpoint_ && (cfg_.lockstep || now - setpoint_wall_ <= seconds(cfg_.setpoint_timeout_s));
+  if (fresh) {
+    in.setpoint = setpoint_;
+  } else {  // no command: brake through the simulator's limits
+    const tdo_vec3 v = before.state.v;
+    in.setpoint.t = before.state.t;
+    in.setpoint.p = before.state.p;
+    in.setpoint.a =
+        tdo_vec3{-cfg_.brake_gain * v.x, -cfg_.brake_gain * v.y, -cfg_.brake_gain * v.z};
+    ++counters_.brakes;
+  }
+  tdo_sim_output out{};
+  const auto t0 = std::chrono::steady_clock::now();
+  const tdo_status st = tdo_sim_run(sim_, &in, &out);
+  counters_.last_step_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (st != TDO_OK) {  // cannot happen after a good reset; count it, keep serving
+    ++counters_.reasons[std::string("step.") + tdo_status_str(st)];
+    return;
+  }
+  ++counters_.steps;
+  if (out.collision_mover != 0) ++counters_.mover_collisions;
+  if (out.collision_static != 0) ++counters_.static_collisions;
+  if (out.collision_mover != 0 || out.collision_static != 0) ++counters_.collision_steps;
+  counters_.min_mover_gap = std::min(counters_.min_mover_gap, out.mover_gap);
+  counters_.min_static_dist = std::min(counters_.min_static_dist, out.static_dist);
+  publish_state();
+}
+
+void SimNode::publish_state() {
+  if (sim_ == nullptr) return;
+  const tdo_sim_output out = current();
+  const double yaw = have_setpoint_ ? yaw_ : heading_of(out.state.v, 0.0);
+  tdo::vehicle_state_t s{};
+  Check c = vehicle_state_to_msg(out.state, utime0_, cfg_.vehicle_id, state_seq_, yaw, &s);
+  tdo::obstacles_t o{};
+  if (c.ok()) c = movers_to_msg(out.movers, out.n_movers, s.utime, -1, obstacles_seq_, &o);
+  if (!c.ok()) {
+    ++counters_.reasons[std::string("state.") + reason_str(c.reason)];
+    return;
+  }
+  // Movers first: a lock-step follower steps as soon as the state arrives.
+  bus_->publish(cfg_.obstacles_channel, o);
+  bus_->publish(cfg_.state_channel, s);
+  ++obstacles_seq_;
+  ++state_seq_;
+}
+
+void SimNode::publish_map() {
+  if (!has_map_) return;
+  map_msg_.utime = wall_utime();
+  if (!check_counts(map_msg_).ok()) return;
+  bus_->publish(cfg_.map_channel, map_msg_);
+  ++counters_.maps_published;
+}
+
+bool SimNode::publish_request() {
+  if (sim_ == nullptr || !has_goal_) return false;
+  tdo_plan_request req{};
+  tdo_plan_params_default(&req.params);
+  req.start = current().state.p;
+  req.goal = goal_;
+  tdo::plan_request_t m{};
+  plan_request_to_msg(req, -1.0, &m);  // clearance: the map's hint
+  m.utime = wall_utime();
+  m.request_id = 1;
+  m.vehicle_id = cfg_.vehicle_id;
+  m.map_id = has_map_ ? cfg_.map_id : -1;
+  bus_->publish(cfg_.request_channel, m);
+  requested_ = true;
+  return true;
+}
+
+tdo::status_t SimNode::status_message() const {
+  tdo::status_t s{};
+  s.utime = wall_utime();
+  s.seq = status_seq_;
+  s.program = "tdo-sim";
+  s.vehicle_id = cfg_.vehicle_id;
+  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  s.map_id = has_map_ ? cfg_.map_id : -1;
+  s.received = counters_.received;
+  s.maps_loaded = has_map_ ? 1 : 0;
+  s.answered = counters_.steps;
+  s.succeeded = counters_.steps - counters_.collision_steps;
+  s.failed = counters_.collision_steps;
+  s.rejected = counters_.rejected;
+  s.ignored = counters_.ignored;
+  s.last_plan_ms = counters_.last_step_ms;
+  for (const auto& kv : counters_.reasons) {
+    s.reason.push_back(kv.first);
+    s.reason_count.push_back(kv.second);
+  }
+  s.n_reasons = static_cast<int32_t>(s.reason.size());
+  return s;
+}
+
+void SimNode::publish_status() {
+  const tdo::status_t s = status_message();
+  if (!check_counts(s).ok()) return;
+  bus_->publish(cfg_.status_channel, s);
+  ++status_seq_;
+}
+
+void SimNode::poll(std::chrono::steady_clock::time_point now) {
+  if (!cfg_.lockstep && now >= next_tick_) {
+    step_at(now);
+    const auto period = seconds(1.0 / cfg_.rate_hz);
+    next_tick_ += period;
+    if (next_tick_ <= now) next_tick_ = now + period;  // fell behind: no burst of steps
+  }
+  if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0 && now >= next_map_) {
+    publish_map();
+    next_map_ = now + seconds(cfg_.map_period_s);
+  }
+  if (cfg_.request_goal && !requested_ && now >= request_at_) publish_request();
+  if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
+  publish_status();
+  const auto period = seconds(cfg_.heartbeat_period_s);
+  next_status_ += period;
+  if (next_status_ <= now) next_status_ = now + period;
+}
+
+std::chrono::steady_clock::time_point SimNode::next_due() const {
+  auto t = std::chrono::steady_clock::time_point::max();
+  if (cfg_.heartbeat_period_s > 0.0) t = next_status_;
+  if (!cfg_.lockstep) t = std::min(t, next_tick_);
+  if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0) t = std::min(t, next_map_);
+  if (cfg_.request_goal && !requested_) t = std::min(t, request_at_);
+  return t;
+}
+
+}  // namespace tdo_lcm

@@ -1,0 +1,188 @@
+/**
+ * @file sim_node.h
+ * @brief The tdo-sim program minus its main(): libtdo's deterministic simulator (sim.h) on LCM.
+ *        TDO_SETPOINT -> TDO_UAV_STATE + TDO_OBSTACLES at a fixed rate; optionally a map file
+ *        (.tdomap, .3dmap, .bt, .ot, read by tools/io) published on TDO_MAP, whose moving spheres
+ *        are the simulated movers and whose geometry is the static collision check.
+ *
+ * Thin: decode (wire.h) -> adapter (vehicle.h) -> tdo_sim_run -> encode. Steps:
+ *  - timed (default): one step per tick at the configured rate (poll() calls it) with the latest
+ *    setpoint; when no setpoint came for setpoint_timeout_s the vehicle brakes (command
+ *    a = -brake_gain v, through the simulator's motion limits);
+ *  - lock-step: one step per accepted setpoint, at once, and nothing else (deterministic runs).
+ * Every step publishes the state and the movers, both stamped with the simulated clock:
+ * utime = the start utime + steps * dt. start() publishes the map and the initial state and movers.
+ * The map is published again every map_period_s (timed mode) for programs that start later.
+ * For demos, request_goal sends one TDO_PLAN_REQUEST (request_id 1) from the vehicle's position to
+ * the goal request_delay_s after start (timed mode; lock-step: in start()).
+ *
+ * Bad input is never fatal; counted in the heartbeat by "setpoint.<reason>":
+ *  - undecodable bytes: rejected; a setpoint for another vehicle: ignored (other_vehicle);
+ *  - a setpoint with a non-finite number: rejected, the last good one stays (no step in lock-step).
+ * Single-threaded: the handlers run inside Bus::handle_timeout. Declare the bus before the node.
+ */
+#ifndef TDO_SIM_NODE_H
+#define TDO_SIM_NODE_H
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tdo/tdo.h"
+#include "tdo_lcm/bus.h"
+#include "tdo_lcm/check.h"
+#include "tdo_lcm/grid_host.h"
+#include "tdo_lcm/types.h"
+
+namespace tdo_lcm {
+
+/** Configuration of a simulator node (tdo-sim's command line). */
+struct SimConfig {
+  int32_t vehicle_id = 0;                            /**< vehicle simulated */
+  std::string setpoint_channel = kChannelSetpoint;   /**< setpoints in */
+  std::string state_channel = kChannelVehicleState;  /**< states out */
+  std::string obstacles_channel = kChannelObstacles; /**< movers out */
+  std::string map_channel = kChannelMap;             /**< the map file out */
+  std::string status_channel = kChannelStatus;       /**< heartbeats out */
+  std::string request_channel = kChannelPlanRequest; /**< the demo request out (request_goal) */
+  double rate_hz = 50.0;        /**< Hz, steps per second; the simulator's dt = 1 / rate */
+  bool lockstep = false;        /**< one step per received setpoint instead of the timer */
+  std::string map_file;         /**< map to publish and simulate in; empty: none */
+  double map_resolution = 0.0;  /**< m, voxel edge for OcTrees (0 = the tree's) */
+  double map_clearance = 0.5;   /**< m, clearance hint sent with the map (the planner's) */
+  int64_t map_id = 1;           /**< map_id of the published map (>= 0) */
+  double map_period_s = 1.0;    /**< s between re-publications of the map; <= 0: only at start */
+  bool movers = true;           /**< simulate the map file's moving spheres */
+  bool has_start = false;       /**< start given (else the map's start, else the bounds' centre) */
+  tdo_vec3 start{};             /**< m, world frame, initial position (at rest) */
+  bool has_bounds = false;      /**< bounds given (else the map's, else 0..50 x 0..50 x 0..20) */
+  tdo_box bounds{};             /**< m, movers are reflected at these */
+  double v_max = 3.0;           /**< m/s */
+  double a_max = 3.0;           /**< m/s^2 */
+  double j_max = 10.0;          /**< m/s^3 */
+  double vehicle_radius = 0.25; /**< m, for the mover collision flag */
+  double static_clearance = 0.25;  /**< m, static collision when the centre comes closer */
+  uint64_t seed = 1;               /**< seed of the disturbance generator */
+  double accel_noise = 0.0;        /**< m/s^2, standard deviation of the disturbance */
+  double setpoint_timeout_s = 0.5; /**< s, timed mode: brake when no setpoint came for this long */
+  double brake_gain = 2.0;         /**< 1/s, braking command a = -gain v */
+  int64_t start_utime = 0;         /**< us, utime of the initial state; 0 = the wall clock */
+  uint32_t max_movers = 256;       /**< capacity: movers simulated */
+  bool request_goal = false;       /**< demo: send one plan request, start -> goal, with libtdo's
+                                        default parameters (as a ground station would) */
+  bool has_goal = false;           /**< goal given (else the map's goal) */
+  tdo_vec3 goal{};                 /**< m, world frame */
+  double request_delay_s = 1.0;    /**< s after start (timed mode) before the request goes out */
+  double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
+};
+
+/** Counters, also sent in each heartbeat (status_t). */
+struct SimCounters {
+  int64_t received = 0;          /**< messages on the setpoint channel */
+  int64_t setpoints = 0;         /**< setpoints accepted */
+  int64_t steps = 0;             /**< simulator steps (heartbeat: answered) */
+  int64_t brakes = 0;            /**< steps without a fresh setpoint (braking) */
+  int64_t collision_steps = 0;   /**< steps ending in a collision (heartbeat: failed) */
+  int64_t mover_collisions = 0;  /**< steps with a mover gap below 0 */
+  int64_t static_collisions = 0; /**< steps closer than static_clearance to the map */
+  double min_mover_gap = 0.0;    /**< m, smallest mover gap over the run (HUGE_VAL: none) */
+  double min_static_dist = 0.0;  /**< m, smallest static distance over the run (capped at 10 m) */
+  int64_t maps_published = 0;    /**< map messages sent */
+  int64_t rejected = 0;          /**< messages refused by a check */
+  int64_t ignored = 0;           /**< messages for another vehicle */
+  double last_step_ms = 0.0;     /**< ms, wall time of the last simulator call */
+  std::map<std::string, int64_t> reasons; /**< "setpoint.<reason>" */
+};
+
+class SimNode {
+ public:
+  SimNode(Bus* bus, SimConfig cfg);
+  SimNode(const SimNode&) = delete;
+  SimNode& operator=(const SimNode&) = delete;
+
+  /**
+   * @brief Read the map file, allocate (once), reset the simulator, subscribe, and publish the map
+   *        and the initial state and movers.
+   * @param[out] error why not (may be null)
+   */
+  bool start(std::string* error);
+
+  /** @brief Timed mode: step when a tick is due, map when due; both modes: heartbeat when due. */
+  void poll(std::chrono::steady_clock::time_point now);
+
+  /** @return when poll() next has something to do. */
+  std::chrono::steady_clock::time_point next_due() const;
+
+  /** @brief One step now with the latest setpoint (or braking), then publish. */
+  void step();
+
+  /** @brief Publish the current state and movers (again). */
+  void publish_state();
+
+  /** @brief Publish the map (when there is one). */
+  void publish_map();
+
+  /** @brief Publish the demo plan request (request_goal) now. @return false without a goal. */
+  bool publish_request();
+
+  /** @brief Publish a heartbeat now. */
+  void publish_status();
+
+  /** @return the heartbeat message as it would be sent now. */
+  tdo::status_t status_message() const;
+
+  const SimCounters& counters() const { return counters_; }
+  /** @return the simulator's current output (state, movers, distances). */
+  tdo_sim_output current() const;
+  /** @return the map's default goal, when the map file gave one. */
+  bool goal(tdo_vec3* out) const;
+  /** @return the map message (empty when no map file). */
+  const tdo::map_t& map_message() const { return map_msg_; }
+  bool has_map() const { return has_map_; }
+  int64_t start_utime() const { return utime0_; }
+  std::size_t arena_bytes() const { return arena_bytes_ + grid_.arena_bytes(); }
+
+  /** Handler of the raw bytes of one setpoint (what start() subscribes). */
+  void on_setpoint(const void* data, std::size_t size);
+
+ private:
+  void refuse(const std::string& what, const Check& c);
+  void step_at(std::chrono::steady_clock::time_point now);
+
+  Bus* bus_;
+  SimConfig cfg_;
+  GridHost grid_;
+  std::unique_ptr<std::max_align_t[]> arena_;
+  std::size_t arena_bytes_ = 0;
+  tdo_sim* sim_ = nullptr;
+
+  bool has_map_ = false;
+  tdo::map_t map_msg_{};
+  bool has_goal_ = false;
+  tdo_vec3 goal_{};
+
+  int64_t utime0_ = 0; /**< us, utime of simulated t = 0 */
+  bool have_setpoint_ = false;
+  tdo_setpoint setpoint_{};
+  double yaw_ = 0.0;
+  std::chrono::steady_clock::time_point setpoint_wall_;
+
+  SimCounters counters_;
+  int64_t state_seq_ = 0;
+  int64_t obstacles_seq_ = 0;
+  int64_t status_seq_ = 0;
+  std::chrono::steady_clock::time_point started_;
+  std::chrono::steady_clock::time_point next_status_;
+  std::chrono::steady_clock::time_point next_tick_;
+  std::chrono::steady_clock::time_point next_map_;
+  std::chrono::steady_clock::time_point request_at_;
+  bool requested_ = false;
+};
+
+}  // namespace tdo_lcm
+
+#endif  // TDO_SIM_NODE_H

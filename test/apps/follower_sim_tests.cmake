@@ -1,0 +1,66 @@
+# Tests of tdo-avoid and tdo-sim (included from CMakeLists.txt): their nodes in-process over
+# memq://, the whole chain planner + follower + simulator on Map6, and the programs themselves.
+if(TARGET tdo::avoid_node)
+  add_executable(tdo_avoid_node_tests test_avoid_node.cpp)
+  target_link_libraries(tdo_avoid_node_tests PRIVATE tdo::avoid_node GTest::gtest_main)
+  tdo_set_warnings(tdo_avoid_node_tests)
+  gtest_discover_tests(tdo_avoid_node_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                       PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
+endif()
+if(TARGET tdo::sim_node)
+  add_executable(tdo_sim_node_tests test_sim_node.cpp)
+  target_link_libraries(tdo_sim_node_tests PRIVATE tdo::sim_node GTest::gtest_main)
+  target_compile_definitions(tdo_sim_node_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
+  tdo_set_warnings(tdo_sim_node_tests)
+  gtest_discover_tests(tdo_sim_node_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                       PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
+endif()
+if(TARGET tdo::avoid_node AND TARGET tdo::sim_node AND TARGET tdo::planner_node)
+  add_executable(tdo_chain_tests test_chain.cpp)
+  target_link_libraries(tdo_chain_tests PRIVATE tdo::planner_node tdo::avoid_node tdo::sim_node
+                                                GTest::gtest_main)
+  target_compile_definitions(tdo_chain_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
+  tdo_set_warnings(tdo_chain_tests)
+  gtest_discover_tests(tdo_chain_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                       PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
+endif()
+
+# The programs: --help, a bad option, a bounded memq:// run, a bad URL, SIGINT/SIGTERM.
+function(tdo_app_run_test app name code regex)
+  string(JOIN "|" args ${ARGN})
+  string(REPLACE "-" "_" id ${app})
+  add_test(NAME apps.${id}_${name}
+           COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:${app}> "-DARGS=${args}" -DCODE=${code}
+                   "-DOUTPUT_REGEX=${regex}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_expect.cmake)
+  set_tests_properties(apps.${id}_${name} PROPERTIES LABELS "apps" TIMEOUT 60)
+endfunction()
+function(tdo_app_signal_tests app)
+  string(REPLACE "-" "_" id ${app})
+  foreach(sig INT TERM)
+    add_test(NAME apps.${id}_stops_on_sig${sig}
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/signal_stop_app.sh ${app}
+                     $<TARGET_FILE:${app}> ${sig} ${ARGN})
+    set_tests_properties(apps.${id}_stops_on_sig${sig} PROPERTIES LABELS "apps" TIMEOUT 60)
+  endforeach()
+endfunction()
+if(TARGET tdo-avoid)
+  tdo_app_run_test(tdo-avoid help 0 "--follower" --help)
+  tdo_app_run_test(tdo-avoid bad_option 2 "frobnicate" --frobnicate)
+  tdo_app_run_test(tdo-avoid bad_follower 2 "--follower" --follower potential)
+  tdo_app_run_test(tdo-avoid bad_rate 2 "rate" --lcm-url memq:// --rate 0)
+  tdo_app_run_test(tdo-avoid bad_url 2 "cannot start LCM" --lcm-url nonsense://x)
+  tdo_app_run_test(tdo-avoid memq_run 0 "stopped: 0 received, 0 setpoints"
+                   --lcm-url memq:// --duration 0.3 --max-size 16 16 8 --follower apf)
+  tdo_app_signal_tests(tdo-avoid --lcm-url memq:// --max-size 16 16 8)
+endif()
+if(TARGET tdo-sim)
+  tdo_app_run_test(tdo-sim help 0 "--lockstep" --help)
+  tdo_app_run_test(tdo-sim bad_option 2 "frobnicate" --frobnicate)
+  tdo_app_run_test(tdo-sim bad_url 2 "cannot start LCM" --lcm-url nonsense://x)
+  tdo_app_run_test(tdo-sim missing_map 2 "map" --lcm-url memq:// --map ${CMAKE_CURRENT_BINARY_DIR}/none.tdomap)
+  tdo_app_run_test(tdo-sim bad_map 2 "error" --lcm-url memq:// --map ${CMAKE_CURRENT_SOURCE_DIR}/run_expect.cmake)
+  # No setpoints for 0.3 s: the vehicle stays at Map6's start, no collision, 12 movers.
+  tdo_app_run_test(tdo-sim memq_run 0 "12 movers.*stopped: 0 received, [0-9]+ steps .[0-9]+ braking, 0 in collision.*at .2.000, 2.000, 3.000."
+                   --lcm-url memq:// --duration 0.3 --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
+  tdo_app_signal_tests(tdo-sim --lcm-url memq:// --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
+endif()
