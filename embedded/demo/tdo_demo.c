@@ -241,7 +241,9 @@ static void print_result(const tdo_plan_request* req, const tdo_plan_result* r) 
     emit_u32("feasible", (uint32_t)fe->ok);
     emit_fixed("max_speed_mps", fe->max_speed, 9);
     emit_fixed("max_acc_mps2", fe->max_acc, 9);
-    emit_fixed("max_jerk_mps3", fe->max_jerk, 9);
+    /* Jerk is a third difference of positions over dt = 0.01 s: a last-bit difference of libm
+     * (see docs/embedded.md) grows by 1/dt^3 = 1e6 to about 1e-9 m/s^3, so 6 decimals. */
+    emit_fixed("max_jerk_mps3", fe->max_jerk, 6);
     emit_fixed("min_turn_radius_m", fe->min_turn_radius, 9);
     emit_fixed("min_sample_clearance_m", fe->min_clearance, 9);
     emit_u32("violations", fe->n_violations_total);

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <string.h>
 
+#include <type_traits>
+
 #include "tdo/collision.h"
 #include "tdo/sim.h"
 #include "vec3.h"
@@ -74,10 +76,12 @@ bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
 
 bool params_ok(const tdo_apf_params* p) {
   // Read the enum's bytes as an int: a C caller may have stored any value there.
-  int kind = 0;
+  // The underlying type has the enum's size on every ABI (short enums on arm-none-eabi).
+  using Kind = std::underlying_type<tdo_follower_kind>::type;
+  Kind kind = 0;
   static_assert(sizeof(kind) == sizeof(p->kind), "enum size");
   memcpy(&kind, &p->kind, sizeof kind);
-  if (kind != static_cast<int>(TDO_FOLLOWER_EAPF) && kind != static_cast<int>(TDO_FOLLOWER_APF))
+  if (kind != static_cast<Kind>(TDO_FOLLOWER_EAPF) && kind != static_cast<Kind>(TDO_FOLLOWER_APF))
     return false;
   return pos(p->dt) && pos(p->k_a) && pos(p->att_dist) && nonneg(p->k_r) && pos(p->d_0) &&
          pos(p->d_0_static) && pos(p->d_min) && nonneg(p->k_g) && pos(p->k_d) &&

@@ -135,7 +135,18 @@ TEST_P(Conformance, EndpointsClearanceDeterminism) {
     EXPECT_TRUE(same(r.curve.front(), start));
     EXPECT_TRUE(same(r.curve.back(), goal));
     EXPECT_GE(r.metrics.min_clearance_m, kClearance - 1e-9);
-    EXPECT_GE(min_clearance(map, r.curve, 0.02), kClearance - 1e-6) << GetParam();
+    // A raw path's curve is its polyline: every chord is flown, check it densely. A smoothed
+    // path's curve is a 0.1 m sampling of lines and corner curves, whose chords cut inside a bend
+    // by up to step^2 / (8 r) (about 0.7 mm at r = 1.8 m): there only the sampled points lie on
+    // the path, and they must keep the clearance to the 1e-9 m of the library's own check. The
+    // continuous certification of curves is test_pipeline_property.cpp's.
+    if (r.curve.size() == r.path.size()) {
+      EXPECT_GE(min_clearance(map, r.curve, 0.02), kClearance - 1e-6) << GetParam();
+    } else {
+      double worst = 1e9;
+      for (const tdo_vec3& p : r.curve) worst = std::min(worst, min_clearance(map, {p}, 0.02));
+      EXPECT_GE(worst, kClearance - 1e-9) << GetParam();
+    }
     // The counted polyline of a raw-path planner is its flown path: check it as well.
     if (r.curve.size() == r.path.size()) {
       EXPECT_GE(min_clearance(map, r.path, 0.02), kClearance - 1e-6);
