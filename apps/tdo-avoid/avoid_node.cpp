@@ -6,25 +6,11 @@
 #include <utility>
 
 #include "tdo_lcm/adapters.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/vehicle.h"
 #include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
-namespace {
-
-int64_t wall_utime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::chrono::steady_clock::duration seconds(double s) {
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(s));
-}
-
-}  // namespace
-
 AvoidNode::AvoidNode(Bus* bus, AvoidConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
   started_ = std::chrono::steady_clock::now();
   next_status_ = started_;
@@ -277,11 +263,7 @@ bool AvoidNode::tick() {
 
 tdo::status_t AvoidNode::status_message() const {
   tdo::status_t s{};
-  s.utime = wall_utime();
-  s.seq = status_seq_;
-  s.program = "tdo-avoid";
-  s.vehicle_id = cfg_.vehicle_id;
-  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  fill_status(&s, "tdo-avoid", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
   s.map_id = map_id();
   s.received = counters_.received;
   s.maps_loaded = counters_.maps_loaded;
@@ -291,33 +273,21 @@ tdo::status_t AvoidNode::status_message() const {
   s.rejected = counters_.rejected;
   s.ignored = counters_.ignored;
   s.last_plan_ms = counters_.last_step_ms;
-  for (const auto& kv : counters_.reasons) {
-    s.reason.push_back(kv.first);
-    s.reason_count.push_back(kv.second);
-  }
-  s.n_reasons = static_cast<int32_t>(s.reason.size());
   return s;
 }
 
 void AvoidNode::publish_status() {
-  const tdo::status_t s = status_message();
-  if (!check_counts(s).ok()) return;
-  bus_->publish(cfg_.status_channel, s);
-  ++status_seq_;
+  send_status(bus_, cfg_.status_channel, status_message(), &status_seq_);
 }
 
 void AvoidNode::poll(std::chrono::steady_clock::time_point now) {
   if (!cfg_.lockstep && now >= next_tick_) {
     tick();
-    const auto period = seconds(1.0 / cfg_.rate_hz);
-    next_tick_ += period;
-    if (next_tick_ <= now) next_tick_ = now + period;  // fell behind: no burst of steps
+    advance_deadline(&next_tick_, now, steady_seconds(1.0 / cfg_.rate_hz));
   }
   if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
   publish_status();
-  const auto period = seconds(cfg_.heartbeat_period_s);
-  next_status_ += period;
-  if (next_status_ <= now) next_status_ = now + period;
+  advance_deadline(&next_status_, now, steady_seconds(cfg_.heartbeat_period_s));
 }
 
 std::chrono::steady_clock::time_point AvoidNode::next_due() const {

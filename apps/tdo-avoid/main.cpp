@@ -1,39 +1,20 @@
 // tdo-avoid: the E-APF follower on LCM (avoid_node.h). Runs until SIGINT or SIGTERM (or
 // --duration), then exits 0. Exit status 2: bad options or LCM could not start.
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "avoid_node.h"
-
-namespace {
-
-volatile std::sig_atomic_t g_stop = 0;
-
-extern "C" void on_signal(int /*sig*/) { g_stop = 1; }
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: a signal ends the wait inside lcm_handle_timeout at once
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
-}  // namespace
+#include "tdo_lcm/app_cli.h"
+#include "tdo_lcm/run_loop.h"
 
 int main(int argc, char** argv) {
   tdo_lcm::AvoidConfig cfg;
-  std::string url = tdo_lcm::kDefaultUrl;
+  tdo_lcm::RunOptions opt;
+  opt.url = tdo_lcm::kDefaultUrl;
   std::vector<int> max_size = {cfg.max_nx, cfg.max_ny, cfg.max_nz};
-  double duration = 0.0;
-  bool quiet = false;
   const std::map<std::string, tdo_follower_kind> kinds = {{"eapf", TDO_FOLLOWER_EAPF},
                                                           {"apf", TDO_FOLLOWER_APF}};
 
@@ -41,8 +22,7 @@ int main(int argc, char** argv) {
       "tdo-avoid: the E-APF follower. Follows the latest TDO_TRAJECTORY of its vehicle around the "
       "TDO_OBSTACLES, with static repulsion from TDO_MAP, and sends a TDO_SETPOINT for the latest "
       "TDO_UAV_STATE at a fixed rate, with TDO_STATUS heartbeats. Stops on SIGINT/SIGTERM."};
-  app.add_option("--lcm-url", url, "LCM URL (memq://, udpm://..., file://LOG?speed=0)")
-      ->capture_default_str();
+  tdo_lcm::add_url_option(app, &opt);
   app.add_option("--vehicle-id", cfg.vehicle_id, "vehicle served; other messages are ignored")
       ->capture_default_str();
   app.add_option("--follower", cfg.kind, "eapf (trajectory-guided) or apf (classical baseline)")
@@ -80,66 +60,32 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-movers", cfg.max_movers, "capacity: moving obstacles per message")
       ->capture_default_str();
-  app.add_option("--duration", duration, "s to run, then exit as on SIGTERM (0 = until a signal)")
-      ->capture_default_str();
-  app.add_flag("--quiet", quiet, "no start and stop lines on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  tdo_lcm::add_run_options(app, &opt);
+  if (int rc = 0; !tdo_lcm::parse_options(app, argc, argv, &rc)) return rc;
   cfg.max_nx = max_size[0];
   cfg.max_ny = max_size[1];
   cfg.max_nz = max_size[2];
 
-  install_signal_handlers();
-  tdo_lcm::Bus bus(url);
-  if (!bus.good()) {
-    std::fprintf(stderr,
-                 "tdo-avoid: error: cannot start LCM on '%s' (for udpm on loopback a multicast "
-                 "route is needed: ip route add 224.0.0.0/4 dev lo)\n",
-                 url.c_str());
-    return 2;
-  }
+  tdo_lcm::install_stop_handlers();
+  tdo_lcm::Bus bus(opt.url);
+  if (!tdo_lcm::report_bus_start("tdo-avoid", bus, opt.url)) return 2;
   tdo_lcm::AvoidNode node(&bus, cfg);
   std::string error;
   if (!node.start(&error)) {
     std::fprintf(stderr, "tdo-avoid: error: %s\n", error.c_str());
     return 2;
   }
-  if (!quiet)
+  if (!opt.quiet)
     std::fprintf(stderr, "tdo-avoid: vehicle %d on %s, %s at %g Hz%s, arena %zu bytes\n",
-                 cfg.vehicle_id, url.c_str(), cfg.kind == TDO_FOLLOWER_APF ? "apf" : "eapf",
+                 cfg.vehicle_id, opt.url.c_str(), cfg.kind == TDO_FOLLOWER_APF ? "apf" : "eapf",
                  cfg.rate_hz, cfg.lockstep ? " (lock-step)" : "", node.arena_bytes());
 
-  const auto t_end = std::chrono::steady_clock::now() +
-                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                         std::chrono::duration<double>(duration));
-  // A file:// log ends with an error from lcm_handle: the end of the input, a clean stop.
-  const bool from_log = url.rfind("file://", 0) == 0;
-  int errors = 0;
-  while (g_stop == 0) {
-    // Wait for messages until the next tick or heartbeat is due (at most 100 ms).
-    const auto now0 = std::chrono::steady_clock::now();
-    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(node.next_due() - now0);
-    const int wait_ms = static_cast<int>(std::clamp<long long>(wait.count(), 0, 100));
-    const int rc = bus.handle_timeout(wait_ms);
-    if (rc < 0 && g_stop == 0 && from_log) {
-      if (!quiet) std::fprintf(stderr, "tdo-avoid: end of the log\n");
-      break;
-    }
-    if (rc < 0 && g_stop == 0 && ++errors > 100) {
-      std::fprintf(stderr, "tdo-avoid: error: LCM keeps failing, stopping\n");
-      break;
-    }
-    const auto now = std::chrono::steady_clock::now();
-    node.poll(now);
-    if (duration > 0.0 && now >= t_end) break;
-  }
+  const int exit_status = tdo_lcm::run_loop(
+      "tdo-avoid", bus, opt, [&] { return node.next_due(); },
+      [&](tdo_lcm::SteadyTime now) { node.poll(now); });
   node.publish_status();  // a last heartbeat with the final counters
   const tdo_lcm::AvoidCounters& c = node.counters();
-  if (!quiet)
+  if (!opt.quiet)
     std::fprintf(stderr,
                  "tdo-avoid: stopped: %lld received, %lld setpoints (%lld followed, %lld failed, "
                  "%lld hover), %lld rejected, %lld ignored\n",
@@ -147,9 +93,9 @@ int main(int argc, char** argv) {
                  static_cast<long long>(c.steps_ok), static_cast<long long>(c.steps_failed),
                  static_cast<long long>(c.holds), static_cast<long long>(c.rejected),
                  static_cast<long long>(c.ignored));
-  if (!quiet)
+  if (!opt.quiet)
     for (const auto& kv : c.reasons)
       std::fprintf(stderr, "tdo-avoid:   %s %lld\n", kv.first.c_str(),
                    static_cast<long long>(kv.second));
-  return errors > 100 ? 1 : 0;
+  return exit_status;
 }

@@ -6,18 +6,13 @@
 #include <utility>
 
 #include "tdo/pipeline.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/wire.h"
 #if TDO_LCM_HAVE_OCTOMAP
 #include "tdo_lcm/map_file.h"
 #endif
 
 namespace tdo_lcm {
-
-int64_t now_utime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 PlannerNode::PlannerNode(Bus* bus, PlannerConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
   started_ = std::chrono::steady_clock::now();
@@ -139,7 +134,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
     return;
   }
   AnswerIds ids;
-  ids.utime = now_utime();
+  ids.utime = wall_utime();
   ids.request_id = m.request_id;
   ids.vehicle_id = m.vehicle_id;
   ids.map_id = map_id();
@@ -174,7 +169,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
 
   tdo::trajectory_t traj{};
   tdo::feasibility_t feas{};
-  ids.utime = now_utime();
+  ids.utime = wall_utime();
   c = trajectory_to_msg(result, req, ids, plan_ms, &traj);
   if (c.ok()) c = feasibility_to_msg(result, req, clearance, ids, &feas);
   if (!c.ok()) {
@@ -190,11 +185,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
 
 tdo::status_t PlannerNode::status_message() const {
   tdo::status_t s{};
-  s.utime = now_utime();
-  s.seq = status_seq_;
-  s.program = "tdo-planner";
-  s.vehicle_id = cfg_.vehicle_id;
-  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  fill_status(&s, "tdo-planner", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
   s.map_id = map_id();
   s.received = counters_.received;
   s.maps_loaded = counters_.maps_loaded;
@@ -204,28 +195,17 @@ tdo::status_t PlannerNode::status_message() const {
   s.rejected = counters_.rejected;
   s.ignored = counters_.ignored;
   s.last_plan_ms = counters_.last_plan_ms;
-  for (const auto& kv : counters_.reasons) {
-    s.reason.push_back(kv.first);
-    s.reason_count.push_back(kv.second);
-  }
-  s.n_reasons = static_cast<int32_t>(s.reason.size());
   return s;
 }
 
 void PlannerNode::publish_status() {
-  const tdo::status_t s = status_message();
-  if (!check_counts(s).ok()) return;
-  bus_->publish(cfg_.status_channel, s);
-  ++status_seq_;
+  send_status(bus_, cfg_.status_channel, status_message(), &status_seq_);
 }
 
 void PlannerNode::poll(std::chrono::steady_clock::time_point now) {
   if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
   publish_status();
-  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(cfg_.heartbeat_period_s));
-  next_status_ += period;
-  if (next_status_ <= now) next_status_ = now + period;  // fell behind: no burst of heartbeats
+  advance_deadline(&next_status_, now, steady_seconds(cfg_.heartbeat_period_s));
 }
 
 }  // namespace tdo_lcm

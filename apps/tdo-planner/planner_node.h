@@ -122,9 +122,6 @@ class PlannerNode {
   std::chrono::steady_clock::time_point next_status_;
 };
 
-/** @return microseconds since the epoch (wall clock), for utime fields. */
-int64_t now_utime();
-
 }  // namespace tdo_lcm
 
 #endif  // TDO_PLANNER_NODE_H

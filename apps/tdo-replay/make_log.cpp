@@ -20,6 +20,7 @@
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/map_file.h"
+#include "tdo_lcm/node_status.h"
 
 namespace {
 
@@ -31,7 +32,7 @@ tdo::plan_request_t make_request(int64_t id, int32_t vehicle, const tdo_vec3& st
   r.goal = goal;
   tdo::plan_request_t m{};
   tdo_lcm::plan_request_to_msg(r, -1.0, &m);  // clearance: the map's hint
-  m.utime = tdo_lcm::now_utime();
+  m.utime = tdo_lcm::wall_utime();
   m.request_id = id;
   m.vehicle_id = vehicle;
   m.map_id = -1;
@@ -90,7 +91,7 @@ int main(int argc, char** argv) {
                                 cfg.feasibility_channel, cfg.status_channel}) {
     bus.subscribe(ch, [&](const void* data, std::size_t size, const std::string& channel) {
       lcm::LogEvent ev{};
-      ev.timestamp = tdo_lcm::now_utime();
+      ev.timestamp = tdo_lcm::wall_utime();
       ev.channel = channel;
       ev.datalen = static_cast<int32_t>(size);
       ev.data = const_cast<void*>(data);
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
   };
 
   send(cfg.request_channel, make_request(1, cfg.vehicle_id, info1.start, info1.goal));  // no_map
-  map1.utime = tdo_lcm::now_utime();
+  map1.utime = tdo_lcm::wall_utime();
   send(cfg.map_channel, map1);
   send(cfg.request_channel, make_request(2, cfg.vehicle_id, info1.start, info1.goal));
   send(cfg.request_channel, make_request(3, cfg.vehicle_id + 1, info1.start, info1.goal));
@@ -121,7 +122,7 @@ int main(int argc, char** argv) {
     bus.publish_raw(cfg.request_channel, b.data(), b.size() - 9);  // truncated
     pump();
   }
-  map6.utime = tdo_lcm::now_utime();
+  map6.utime = tdo_lcm::wall_utime();
   send(cfg.map_channel, map6);
   send(cfg.request_channel, make_request(6, cfg.vehicle_id, info6.start, info6.goal));
   tdo::plan_request_t astar = make_request(7, cfg.vehicle_id, info6.start, info6.goal);

@@ -2,48 +2,28 @@
 // SIGTERM (or
 // --duration), then exits 0. Exit status 2: bad options or LCM could not start.
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "sim_node.h"
-
-namespace {
-
-volatile std::sig_atomic_t g_stop = 0;
-
-extern "C" void on_signal(int /*sig*/) { g_stop = 1; }
-
-void install_signal_handlers() {
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;  // no SA_RESTART: a signal ends the wait inside lcm_handle_timeout at once
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
-}  // namespace
+#include "tdo_lcm/app_cli.h"
+#include "tdo_lcm/run_loop.h"
 
 int main(int argc, char** argv) {
   tdo_lcm::SimConfig cfg;
-  std::string url = tdo_lcm::kDefaultUrl;
+  tdo_lcm::RunOptions opt;
+  opt.url = tdo_lcm::kDefaultUrl;
   std::vector<double> start;
   std::vector<double> bounds;
   std::vector<double> goal;
   bool no_movers = false;
-  double duration = 0.0;
-  bool quiet = false;
 
   CLI::App app{
       "tdo-sim: libtdo's deterministic simulator. A vehicle follows TDO_SETPOINT and reports "
       "TDO_UAV_STATE; moving spheres go out on TDO_OBSTACLES; a map file goes out on TDO_MAP. "
       "TDO_STATUS heartbeats. Stops on SIGINT/SIGTERM."};
-  app.add_option("--lcm-url", url, "LCM URL (memq://, udpm://..., file://LOG?speed=0)")
-      ->capture_default_str();
+  tdo_lcm::add_url_option(app, &opt);
   app.add_option("--vehicle-id", cfg.vehicle_id, "vehicle simulated; other setpoints are ignored")
       ->capture_default_str();
   app.add_option("--map", cfg.map_file,
@@ -106,15 +86,8 @@ int main(int argc, char** argv) {
   app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();
   app.add_option("--heartbeat", cfg.heartbeat_period_s, "s between heartbeats (0 = none)")
       ->capture_default_str();
-  app.add_option("--duration", duration, "s to run, then exit as on SIGTERM (0 = until a signal)")
-      ->capture_default_str();
-  app.add_flag("--quiet", quiet, "no start and stop lines on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  tdo_lcm::add_run_options(app, &opt);
+  if (int rc = 0; !tdo_lcm::parse_options(app, argc, argv, &rc)) return rc;
   cfg.movers = !no_movers;
   if (start.size() == 3) {
     cfg.has_start = true;
@@ -129,57 +102,30 @@ int main(int argc, char** argv) {
     cfg.bounds = tdo_box{{bounds[0], bounds[1], bounds[2]}, {bounds[3], bounds[4], bounds[5]}};
   }
 
-  install_signal_handlers();
-  tdo_lcm::Bus bus(url);
-  if (!bus.good()) {
-    std::fprintf(stderr,
-                 "tdo-sim: error: cannot start LCM on '%s' (for udpm on loopback a multicast "
-                 "route is needed: ip route add 224.0.0.0/4 dev lo)\n",
-                 url.c_str());
-    return 2;
-  }
+  tdo_lcm::install_stop_handlers();
+  tdo_lcm::Bus bus(opt.url);
+  if (!tdo_lcm::report_bus_start("tdo-sim", bus, opt.url)) return 2;
   tdo_lcm::SimNode node(&bus, cfg);
   std::string error;
   if (!node.start(&error)) {
     std::fprintf(stderr, "tdo-sim: error: %s\n", error.c_str());
     return 2;
   }
-  if (!quiet) {
+  if (!opt.quiet) {
     const tdo_sim_output s = node.current();
     std::fprintf(stderr,
                  "tdo-sim: vehicle %d on %s at %g Hz%s, start (%g, %g, %g), %u movers%s%s\n",
-                 cfg.vehicle_id, url.c_str(), cfg.rate_hz, cfg.lockstep ? " (lock-step)" : "",
+                 cfg.vehicle_id, opt.url.c_str(), cfg.rate_hz, cfg.lockstep ? " (lock-step)" : "",
                  s.state.p.x, s.state.p.y, s.state.p.z, s.n_movers, node.has_map() ? ", map " : "",
                  node.has_map() ? cfg.map_file.c_str() : "");
   }
 
-  const auto t_end = std::chrono::steady_clock::now() +
-                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                         std::chrono::duration<double>(duration));
-  // A file:// log ends with an error from lcm_handle: the end of the input, a clean stop.
-  const bool from_log = url.rfind("file://", 0) == 0;
-  int errors = 0;
-  while (g_stop == 0) {
-    // Wait for messages until the next step, map or heartbeat is due (at most 100 ms).
-    const auto now0 = std::chrono::steady_clock::now();
-    const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(node.next_due() - now0);
-    const int wait_ms = static_cast<int>(std::clamp<long long>(wait.count(), 0, 100));
-    const int rc = bus.handle_timeout(wait_ms);
-    if (rc < 0 && g_stop == 0 && from_log) {
-      if (!quiet) std::fprintf(stderr, "tdo-sim: end of the log\n");
-      break;
-    }
-    if (rc < 0 && g_stop == 0 && ++errors > 100) {
-      std::fprintf(stderr, "tdo-sim: error: LCM keeps failing, stopping\n");
-      break;
-    }
-    const auto now = std::chrono::steady_clock::now();
-    node.poll(now);
-    if (duration > 0.0 && now >= t_end) break;
-  }
+  const int exit_status = tdo_lcm::run_loop(
+      "tdo-sim", bus, opt, [&] { return node.next_due(); },
+      [&](tdo_lcm::SteadyTime now) { node.poll(now); });
   node.publish_status();  // a last heartbeat with the final counters
   const tdo_lcm::SimCounters& c = node.counters();
-  if (!quiet) {
+  if (!opt.quiet) {
     const tdo_sim_output s = node.current();
     std::fprintf(stderr,
                  "tdo-sim: stopped: %lld received, %lld steps (%lld braking, %lld in collision), "
@@ -192,5 +138,5 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tdo-sim:   %s %lld\n", kv.first.c_str(),
                    static_cast<long long>(kv.second));
   }
-  return errors > 100 ? 1 : 0;
+  return exit_status;
 }

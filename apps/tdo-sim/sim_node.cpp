@@ -8,41 +8,12 @@
 
 #include "tdo_io/map_io.h"
 #include "tdo_lcm/adapters.h"
+#include "tdo_lcm/map_file.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/vehicle.h"
 #include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
-namespace {
-
-int64_t wall_utime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::chrono::steady_clock::duration seconds(double s) {
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(s));
-}
-
-/** Occupancy (x-fastest) of a voxel map; empty when it has no voxels (boxes only). */
-std::vector<uint8_t> occupancy_of(const tdo_io::Map& map) {
-  std::vector<uint8_t> occ;
-  if (map.voxels.empty()) return occ;
-  const tdo_grid_desc& d = map.desc;
-  const uint64_t nx = static_cast<uint64_t>(d.nx);
-  const uint64_t nxy = nx * static_cast<uint64_t>(d.ny);
-  occ.assign(nxy * static_cast<uint64_t>(d.nz), 0u);
-  for (const tdo_voxel& v : map.voxels) {
-    if (v.i < 0 || v.j < 0 || v.k < 0 || v.i >= d.nx || v.j >= d.ny || v.k >= d.nz) continue;
-    occ[static_cast<uint64_t>(v.i) + nx * static_cast<uint64_t>(v.j) +
-        nxy * static_cast<uint64_t>(v.k)] = 1u;
-  }
-  return occ;
-}
-
-}  // namespace
-
 SimNode::SimNode(Bus* bus, SimConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
   started_ = std::chrono::steady_clock::now();
   next_status_ = started_;
@@ -85,8 +56,7 @@ bool SimNode::start(std::string* error) {
     const tdo_status st = tdo_io::load_into(map, grid_.grid(), cfg_.map_clearance);
     if (st != TDO_OK)
       return fail_with(cfg_.map_file + ": the library refuses the map: " + tdo_status_str(st));
-    const Check c =
-        map_from_occupancy(d, occupancy_of(map), map.boxes, cfg_.map_clearance, &map_msg_);
+    const Check c = map_msg_from_map(map, cfg_.map_clearance, &map_msg_);
     if (!c.ok()) return fail_with(cfg_.map_file + ": " + reason_str(c.reason) + ": " + c.detail);
     map_msg_.map_id = cfg_.map_id;
     map_msg_.vehicle_id = -1;
@@ -168,9 +138,9 @@ bool SimNode::start(std::string* error) {
   if (cfg_.request_goal && cfg_.lockstep) publish_request();
   publish_state();
   const auto now = std::chrono::steady_clock::now();
-  next_tick_ = now + seconds(1.0 / cfg_.rate_hz);
-  next_map_ = now + seconds(cfg_.map_period_s > 0.0 ? cfg_.map_period_s : 0.0);
-  request_at_ = now + seconds(cfg_.request_delay_s > 0.0 ? cfg_.request_delay_s : 0.0);
+  next_tick_ = now + steady_seconds(1.0 / cfg_.rate_hz);
+  next_map_ = now + steady_seconds(cfg_.map_period_s > 0.0 ? cfg_.map_period_s : 0.0);
+  request_at_ = now + steady_seconds(cfg_.request_delay_s > 0.0 ? cfg_.request_delay_s : 0.0);
   return true;
 }
 
@@ -219,7 +189,8 @@ void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   const tdo_sim_output before = current();
   tdo_sim_input in{};
   const bool fresh =
-      have_setpoint_ && (cfg_.lockstep || now - setpoint_wall_ <= seconds(cfg_.setpoint_timeout_s));
+      have_setpoint_ &&
+      (cfg_.lockstep || now - setpoint_wall_ <= steady_seconds(cfg_.setpoint_timeout_s));
   if (fresh) {
     in.setpoint = setpoint_;
   } else {  // no command: brake through the simulator's limits
@@ -294,11 +265,7 @@ bool SimNode::publish_request() {
 
 tdo::status_t SimNode::status_message() const {
   tdo::status_t s{};
-  s.utime = wall_utime();
-  s.seq = status_seq_;
-  s.program = "tdo-sim";
-  s.vehicle_id = cfg_.vehicle_id;
-  s.uptime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  fill_status(&s, "tdo-sim", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
   s.map_id = has_map_ ? cfg_.map_id : -1;
   s.received = counters_.received;
   s.maps_loaded = has_map_ ? 1 : 0;
@@ -308,38 +275,26 @@ tdo::status_t SimNode::status_message() const {
   s.rejected = counters_.rejected;
   s.ignored = counters_.ignored;
   s.last_plan_ms = counters_.last_step_ms;
-  for (const auto& kv : counters_.reasons) {
-    s.reason.push_back(kv.first);
-    s.reason_count.push_back(kv.second);
-  }
-  s.n_reasons = static_cast<int32_t>(s.reason.size());
   return s;
 }
 
 void SimNode::publish_status() {
-  const tdo::status_t s = status_message();
-  if (!check_counts(s).ok()) return;
-  bus_->publish(cfg_.status_channel, s);
-  ++status_seq_;
+  send_status(bus_, cfg_.status_channel, status_message(), &status_seq_);
 }
 
 void SimNode::poll(std::chrono::steady_clock::time_point now) {
   if (!cfg_.lockstep && now >= next_tick_) {
     step_at(now);
-    const auto period = seconds(1.0 / cfg_.rate_hz);
-    next_tick_ += period;
-    if (next_tick_ <= now) next_tick_ = now + period;  // fell behind: no burst of steps
+    advance_deadline(&next_tick_, now, steady_seconds(1.0 / cfg_.rate_hz));
   }
   if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0 && now >= next_map_) {
     publish_map();
-    next_map_ = now + seconds(cfg_.map_period_s);
+    next_map_ = now + steady_seconds(cfg_.map_period_s);
   }
   if (cfg_.request_goal && !requested_ && now >= request_at_) publish_request();
   if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
   publish_status();
-  const auto period = seconds(cfg_.heartbeat_period_s);
-  next_status_ += period;
-  if (next_status_ <= now) next_status_ = now + period;
+  advance_deadline(&next_status_, now, steady_seconds(cfg_.heartbeat_period_s));
 }
 
 std::chrono::steady_clock::time_point SimNode::next_due() const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "avoid_node.h"
+#include "node_test_util.h"
 #include "tdo/tdo.h"
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
@@ -20,27 +21,13 @@
 
 namespace {
 
+using tdo_test::bytes_of;
+using tdo_test::collect;
+
 constexpr int32_t kVehicle = 2;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
 constexpr int64_t kStepUs = 20000;         // 50 Hz
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-template <class Msg>
-tdo_lcm::Bus::Handler collect(std::vector<Msg>* out) {
-  return [out](const void* data, std::size_t size, const std::string&) {
-    Msg m{};
-    const tdo_lcm::Check c = tdo_lcm::decode(data, size, &m);
-    EXPECT_TRUE(c.ok()) << tdo_lcm::reason_str(c.reason) << ": " << c.detail;
-    if (c.ok()) out->push_back(m);
-  };
-}
-
-template <class Msg>
-std::vector<uint8_t> bytes_of(const Msg& m) {
-  std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
-  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
-  return buf;
-}
 
 tdo::vehicle_state_t state_at(int64_t utime, tdo_vec3 p, tdo_vec3 v = {0, 0, 0},
                               tdo_vec3 a = {0, 0, 0}) {
@@ -104,7 +91,7 @@ tdo::map_t wall_map(int64_t map_id) {
 
 double norm(tdo_vec3 a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
 
-class AvoidNodeTest : public ::testing::Test {
+class AvoidNodeTest : public tdo_test::NodeTest<tdo_lcm::AvoidNode, tdo_lcm::AvoidConfig, 10000> {
  protected:
   virtual bool lockstep() const { return true; }
   void SetUp() override { make(lockstep()); }
@@ -126,24 +113,6 @@ class AvoidNodeTest : public ::testing::Test {
     ASSERT_TRUE(bus_.subscribe(cfg_.status_channel, collect(&status_)));
   }
 
-  void pump() {
-    for (int i = 0; i < 10000 && bus_.handle_timeout(0) > 0; ++i) {
-    }
-  }
-  template <class Msg>
-  void send(const std::string& channel, const Msg& m) {
-    ASSERT_TRUE(bus_.publish(channel, m));
-    pump();
-  }
-  void send_raw(const std::string& channel, const std::vector<uint8_t>& b) {
-    ASSERT_TRUE(bus_.publish_raw(channel, b.data(), b.size()));
-    pump();
-  }
-  int64_t reason(const std::string& key) const {
-    const auto& r = node_->counters().reasons;
-    const auto it = r.find(key);
-    return it == r.end() ? 0 : it->second;
-  }
   /** A valid state must still give one setpoint for it. */
   void expect_served(int64_t utime) {
     const std::size_t before = setpoints_.size();
@@ -152,9 +121,6 @@ class AvoidNodeTest : public ::testing::Test {
     EXPECT_EQ(setpoints_.back().utime, utime);
   }
 
-  tdo_lcm::Bus bus_{"memq://"};  // first: outlives the node
-  tdo_lcm::AvoidConfig cfg_;
-  std::unique_ptr<tdo_lcm::AvoidNode> node_;
   std::vector<tdo::setpoint_t> setpoints_;
   std::vector<tdo::status_t> status_;
 };

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "avoid_node.h"
+#include "node_test_util.h"
 #include "planner_node.h"
 #include "sim_node.h"
 #include "tdo/tdo.h"
@@ -27,15 +28,7 @@ namespace {
 constexpr int32_t kVehicle = 0;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
 
-template <class Msg>
-tdo_lcm::Bus::Handler collect(std::vector<Msg>* out) {
-  return [out](const void* data, std::size_t size, const std::string&) {
-    Msg m{};
-    const tdo_lcm::Check c = tdo_lcm::decode(data, size, &m);
-    EXPECT_TRUE(c.ok()) << tdo_lcm::reason_str(c.reason) << ": " << c.detail;
-    if (c.ok()) out->push_back(m);
-  };
-}
+using tdo_test::collect;
 
 /** Euclidean distance from p to an axis-aligned box (0 inside). */
 double box_distance(const double* p, const std::vector<double>& b) {

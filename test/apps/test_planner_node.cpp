@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "node_test_util.h"
 #include "planner_node.h"
 #include "tdo/tdo.h"
 #include "tdo_lcm/adapters.h"
@@ -23,6 +24,9 @@
 
 namespace {
 
+using tdo_test::bytes_of;
+using tdo_test::collect;
+
 constexpr int32_t kVehicle = 3;
 
 /** Collects what the node publishes. */
@@ -30,16 +34,6 @@ struct Inbox {
   std::vector<tdo::trajectory_t> traj;
   std::vector<tdo::feasibility_t> feas;
   std::vector<tdo::status_t> status;
-
-  template <class Msg>
-  static tdo_lcm::Bus::Handler into(std::vector<Msg>* out) {
-    return [out](const void* data, std::size_t size, const std::string&) {
-      Msg m{};
-      const tdo_lcm::Check c = tdo_lcm::decode(data, size, &m);
-      EXPECT_TRUE(c.ok()) << tdo_lcm::reason_str(c.reason) << ": " << c.detail;
-      if (c.ok()) out->push_back(m);
-    };
-  }
 };
 
 /** 10 x 10 x 5 m at 0.5 m with a wall at x = 4.5..5.5 m, open above y = 7 m. */
@@ -68,14 +62,8 @@ tdo::plan_request_t request(int64_t id) {
   return m;
 }
 
-template <class Msg>
-std::vector<uint8_t> bytes_of(const Msg& m) {
-  std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
-  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
-  return buf;
-}
-
-class PlannerNodeTest : public ::testing::Test {
+class PlannerNodeTest
+    : public tdo_test::NodeTest<tdo_lcm::PlannerNode, tdo_lcm::PlannerConfig, 1000> {
  protected:
   void SetUp() override {
     ASSERT_TRUE(bus_.good());
@@ -90,30 +78,11 @@ class PlannerNodeTest : public ::testing::Test {
     node_ = std::make_unique<tdo_lcm::PlannerNode>(&bus_, cfg_);
     std::string error;
     ASSERT_TRUE(node_->start(&error)) << error;
-    ASSERT_TRUE(bus_.subscribe(cfg_.trajectory_channel, Inbox::into(&inbox_.traj)));
-    ASSERT_TRUE(bus_.subscribe(cfg_.feasibility_channel, Inbox::into(&inbox_.feas)));
-    ASSERT_TRUE(bus_.subscribe(cfg_.status_channel, Inbox::into(&inbox_.status)));
+    ASSERT_TRUE(bus_.subscribe(cfg_.trajectory_channel, collect(&inbox_.traj)));
+    ASSERT_TRUE(bus_.subscribe(cfg_.feasibility_channel, collect(&inbox_.feas)));
+    ASSERT_TRUE(bus_.subscribe(cfg_.status_channel, collect(&inbox_.status)));
   }
 
-  /** Deliver everything queued, including what the handlers publish meanwhile. */
-  void pump() {
-    for (int i = 0; i < 1000 && bus_.handle_timeout(0) > 0; ++i) {
-    }
-  }
-  template <class Msg>
-  void send(const std::string& channel, const Msg& m) {
-    ASSERT_TRUE(bus_.publish(channel, m));
-    pump();
-  }
-  void send_raw(const std::string& channel, const std::vector<uint8_t>& b) {
-    ASSERT_TRUE(bus_.publish_raw(channel, b.data(), b.size()));
-    pump();
-  }
-  int64_t reason(const std::string& key) const {
-    const auto& r = node_->counters().reasons;
-    const auto it = r.find(key);
-    return it == r.end() ? 0 : it->second;
-  }
   /** @return the count of `key` in the heartbeat the node would send now (0 when absent). */
   int64_t heartbeat_reason(const std::string& key) const {
     const tdo::status_t s = node_->status_message();
@@ -137,9 +106,6 @@ class PlannerNodeTest : public ::testing::Test {
     EXPECT_TRUE(inbox_.feas.back().ok);
   }
 
-  tdo_lcm::Bus bus_{"memq://"};  // first: outlives the node and the inbox
-  tdo_lcm::PlannerConfig cfg_;
-  std::unique_ptr<tdo_lcm::PlannerNode> node_;
   Inbox inbox_;
 };
 
@@ -511,7 +477,7 @@ TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
   tdo_lcm::PlannerNode node(&bus, cfg);
   ASSERT_TRUE(node.start(&error)) << error;
   std::vector<tdo::trajectory_t> traj;
-  bus.subscribe(cfg.trajectory_channel, Inbox::into(&traj));
+  bus.subscribe(cfg.trajectory_channel, collect(&traj));
   auto pump = [&]() {
     for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
     }

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "node_test_util.h"
 #include "sim_node.h"
 #include "tdo/tdo.h"
 #include "tdo_lcm/adapters.h"
@@ -22,26 +23,12 @@
 
 namespace {
 
+using tdo_test::bytes_of;
+using tdo_test::collect;
+
 constexpr int32_t kVehicle = 1;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
 const std::string kMap6 = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
-
-template <class Msg>
-tdo_lcm::Bus::Handler collect(std::vector<Msg>* out) {
-  return [out](const void* data, std::size_t size, const std::string&) {
-    Msg m{};
-    const tdo_lcm::Check c = tdo_lcm::decode(data, size, &m);
-    EXPECT_TRUE(c.ok()) << tdo_lcm::reason_str(c.reason) << ": " << c.detail;
-    if (c.ok()) out->push_back(m);
-  };
-}
-
-template <class Msg>
-std::vector<uint8_t> bytes_of(const Msg& m) {
-  std::vector<uint8_t> buf(static_cast<std::size_t>(m.getEncodedSize()));
-  m.encode(buf.data(), 0, static_cast<int>(buf.size()));
-  return buf;
-}
 
 /** The `mover` lines of a .tdomap file, read here independently of tools/io. */
 struct FileMover {
@@ -78,7 +65,7 @@ tdo::setpoint_t setpoint(int64_t seq, double ax, double ay, double az) {
   return m;
 }
 
-class SimNodeTest : public ::testing::Test {
+class SimNodeTest : public tdo_test::NodeTest<tdo_lcm::SimNode, tdo_lcm::SimConfig, 10000> {
  protected:
   virtual bool lockstep() const { return true; }
   void SetUp() override {
@@ -96,28 +83,7 @@ class SimNodeTest : public ::testing::Test {
     ASSERT_TRUE(node_->start(&error)) << error;
     pump();
   }
-  void pump() {
-    for (int i = 0; i < 10000 && bus_.handle_timeout(0) > 0; ++i) {
-    }
-  }
-  template <class Msg>
-  void send(const std::string& channel, const Msg& m) {
-    ASSERT_TRUE(bus_.publish(channel, m));
-    pump();
-  }
-  void send_raw(const std::string& channel, const std::vector<uint8_t>& b) {
-    ASSERT_TRUE(bus_.publish_raw(channel, b.data(), b.size()));
-    pump();
-  }
-  int64_t reason(const std::string& key) const {
-    const auto& r = node_->counters().reasons;
-    const auto it = r.find(key);
-    return it == r.end() ? 0 : it->second;
-  }
 
-  tdo_lcm::Bus bus_{"memq://"};  // first: outlives the node
-  tdo_lcm::SimConfig cfg_;
-  std::unique_ptr<tdo_lcm::SimNode> node_;
   std::vector<tdo::vehicle_state_t> states_;
   std::vector<tdo::obstacles_t> obstacles_;
   std::vector<tdo::map_t> maps_;

@@ -17,10 +17,7 @@
 
 namespace tdo_lcm {
 
-bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* out,
-                       MapFileInfo* info, std::string* error) {
-  tdo_io::Map map;
-  if (!tdo_io::load_map(path, &map, error)) return false;
+Check map_msg_from_map(const tdo_io::Map& map, double clearance, tdo::map_t* out) {
   const tdo_grid_desc& d = map.desc;
   std::vector<uint8_t> occupancy;
   if (!map.voxels.empty()) {
@@ -36,8 +33,15 @@ bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* ou
       occupancy[idx] = 1u;
     }
   }
+  return map_from_occupancy(d, occupancy, map.boxes, clearance, out);
+}
+
+bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* out,
+                       MapFileInfo* info, std::string* error) {
+  tdo_io::Map map;
+  if (!tdo_io::load_map(path, &map, error)) return false;
   tdo::map_t m{};
-  const Check c = map_from_occupancy(d, occupancy, map.boxes, clearance, &m);
+  const Check c = map_msg_from_map(map, clearance, &m);
   if (!c.ok()) {
     if (error != nullptr) *error = path + ": " + reason_str(c.reason) + ": " + c.detail;
     return false;

@@ -2,7 +2,8 @@
  * @file map_file.h
  * @brief A map file (.tdomap, MovingAI .3dmap, OctoMap .bt/.ot, read by tools/io) -> a map_t
  *        message: the boxes of a .tdomap as boxes, the occupied voxels of the others run-length
- *        encoded. Host code for the apps that publish maps (tdo-publish-map, the log generator).
+ *        encoded. Host code for the apps that publish maps (tdo-publish-map, tdo-sim, the log
+ *        generator).
  */
 #ifndef TDO_LCM_MAP_FILE_H
 #define TDO_LCM_MAP_FILE_H
@@ -13,7 +14,19 @@
 #include "tdo_lcm/check.h"
 #include "tdo_lcm/types.h"
 
+namespace tdo_io {
+struct Map;
+}
+
 namespace tdo_lcm {
+
+/**
+ * @brief A map read by tools/io -> a run-length map message: the occupied voxels (x fastest; the
+ *        ones outside the grid skipped) and the boxes (map_id, vehicle_id and utime left 0).
+ * @param clearance m, the clearance hint sent with the map (>= 0)
+ * @return map_from_occupancy's check.
+ */
+Check map_msg_from_map(const tdo_io::Map& map, double clearance, tdo::map_t* out);
 
 /** What map_msg_from_file read besides the message: the file's default query, if any. */
 struct MapFileInfo {
