@@ -73,6 +73,10 @@ typedef struct tdo_search_output {
   uint32_t pivots;       /**< pivots (sharp turns in place) on the returned path */
   uint32_t n_path;       /**< voxels in path, start voxel first, goal voxel last */
   const tdo_voxel* path; /**< the voxel path */
+  uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
+                              1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
+                              or 10 (the try before flooded: more than max(20000, voxels / 16)
+                              expansions, or a full node pool). expansions counts every try */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */
