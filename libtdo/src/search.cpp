@@ -821,7 +821,9 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
 
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
-         tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double)) +  // hdist
+         (cfg.exact_heuristic
+              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
+              : 0u) +
          tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(OpenItem));
@@ -837,7 +839,9 @@ using namespace tdo_internal;
 extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
   if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
   return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
-         2u * tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * sizeof(uint32_t)) +
+         (cfg->exact_heuristic
+              ? 2u * tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * sizeof(uint32_t))
+              : 0u) +
          tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
 }
 
@@ -897,12 +901,22 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
       return TDO_ERR_ARENA_TOO_SMALL;
     memset(s.slot, 0, cfg->max_voxels * sizeof(uint64_t));
     s.hx = nullptr;
-    ctx->hdist[k] = static_cast<double*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(double)));
-    if (ctx->hdist[k] == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->hdist[k] = nullptr;
+    if (cfg->exact_heuristic) {
+      ctx->hdist[k] =
+          static_cast<double*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(double)));
+      if (ctx->hdist[k] == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    }
   }
-  ctx->dj_heap = static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-  ctx->dj_pos = static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-  if (ctx->dj_heap == nullptr || ctx->dj_pos == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  ctx->dj_heap = nullptr;
+  ctx->dj_pos = nullptr;
+  if (cfg->exact_heuristic) {
+    ctx->dj_heap =
+        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
+    ctx->dj_pos =
+        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
+    if (ctx->dj_heap == nullptr || ctx->dj_pos == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  }
   ctx->path = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cfg->max_path * sizeof(tdo_voxel)));
   if (ctx->path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = ctx;
@@ -975,13 +989,14 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
   // the free space. The tries share the expansion budget; the last one gets all that is left.
   const uint32_t budget = q.budget;
+  const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
   const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
   tdo_status st = TDO_OK;
-  for (int t = 0; t <= kRetries; ++t) {  // bounded: kRetries + 1 tries
+  for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
-    q.budget = t < kRetries && cut < budget ? static_cast<uint32_t>(cut) : budget;
+    q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
     st = search_loop<true>(ctx, q);
-    const bool retry = t < kRetries && q.expansions < budget &&
+    const bool retry = t < retries && q.expansions < budget &&
                        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY);
     if (!retry) break;
     if (t == 0) {

@@ -486,6 +486,7 @@ class Planner {
  public:
   Planner(const tdo_io::Map& map, double clearance, uint32_t node_cap) {
     cfg_.cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
+    cfg_.cap.exact_heuristic = 1u;  // the obstacle-aware retry: geb079 G4 and G5 need it
     bytes_ = tdo_planner_footprint(&cfg_);
     mem_.reset(new unsigned char[bytes_]);
     status_ = tdo_planner_init(&planner_, mem_.get(), bytes_, &cfg_);
