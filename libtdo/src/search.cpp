@@ -74,6 +74,9 @@ struct Side {
   uint32_t n_open;
   int32_t tx, ty, tz;          // target voxel of this side's heuristic
   StackItem stack[kStackCap];  // A* fast path (forward side only)
+  // Turn-penalised searches: per voxel a lower bound (m) of the grid distance to this side's target
+  // (exact_lower_bounds); nullptr = the octile distance alone.
+  const double* hx;
   uint32_t n_stack;
   double f_cur;   // f of the state being expanded
   int use_stack;  // 1 for unidirectional A*
@@ -98,6 +101,11 @@ struct tdo_search {
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
+  // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
+  // distances (m) to the side's target; a Dijkstra's heap and heap positions, max_voxels each.
+  double* hdist[2];
+  uint32_t* dj_heap;
+  uint32_t* dj_pos;
 };
 
 namespace tdo_internal {
@@ -114,6 +122,7 @@ struct Query {
   double d_th;        // deviation threshold, 0 = off
   double pivot_cost;  // m, surcharge of a pivot
   int constrained;    // theta_max active
+  int dev_terms;      // 1: f has the deviation term and the turn lower bound (0 in the retry)
   uint32_t budget;
   // results
   double best;
@@ -265,13 +274,23 @@ inline double turn_bound(const tdo_search* ctx, double dev) {
   return ctx->turn_lambda * dev * dev / k;
 }
 
+// Heuristic of a state at voxel v = (x, y, z): the octile distance, or with an exact table the
+// larger of it and the table's bound (both are consistent lower bounds of the remaining length).
+inline double heuristic(const Side& s, uint32_t v, int32_t x, int32_t y, int32_t z, double res) {
+  const double o = octile(s, x, y, z, res);
+  if (s.hx == nullptr) return o;
+  const double e = s.hx[v];
+  return e > o ? e : o;
+}
+
 template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
-  const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
+  const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
+                           : octile(s, n.x, n.y, n.z, q.grid->desc.res);
   *h_out = static_cast<float>(h);
   if (!kHeaded) return n.g + h;
-  if (n.heading >= kNumDirs) return n.g + q.h_weight * h;
+  if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
   const int travel = back ? dir_opposite(n.heading) : n.heading;
   const double dev = deviation(ctx, s, travel, n.x, n.y, n.z);
   return n.g + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
@@ -423,7 +442,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
                            uint32_t sharp) {
   Side& s = ctx->side[back];
   if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-  const double h = octile(s, u.x, u.y, u.z, q.grid->desc.res);
+  const double h = heuristic(s, u.voxel, u.x, u.y, u.z, q.grid->desc.res);
   OpenItem it;
   it.f = HUGE_VAL;
   // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
@@ -441,7 +460,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
     const double lb = pg + q.h_weight * h;
     if (lb > it.f + 1e-9) break;
     if (!(lb < it.f)) continue;
-    const double dev = n > 0.0 ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
+    const double dev = n > 0.0 && q.dev_terms ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
     const double f = pg + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
   }
@@ -507,6 +526,116 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
+}
+
+// Dijkstra heap of voxels keyed by dist[] (ties: smaller voxel index), positions in ctx->dj_pos.
+inline bool dj_before(const double* dist, uint32_t a, uint32_t b) {
+  return dist[a] < dist[b] || (!(dist[b] < dist[a]) && a < b);
+}
+
+void dj_sift_up(tdo_search* ctx, const double* dist, uint32_t i) {
+  uint32_t* heap = ctx->dj_heap;
+  const uint32_t v = heap[i];
+  while (i > 0) {
+    const uint32_t p = (i - 1u) / kArity;
+    if (!dj_before(dist, v, heap[p])) break;
+    heap[i] = heap[p];
+    ctx->dj_pos[heap[i]] = i;
+    i = p;
+  }
+  heap[i] = v;
+  ctx->dj_pos[v] = i;
+}
+
+void dj_sift_down(tdo_search* ctx, const double* dist, uint32_t n) {
+  uint32_t* heap = ctx->dj_heap;
+  const uint32_t v = heap[0];
+  uint32_t i = 0;
+  for (;;) {
+    const uint32_t first = kArity * i + 1u;
+    if (first >= n) break;
+    const uint32_t last = first + kArity < n ? first + kArity : n;
+    uint32_t c = first;
+    for (uint32_t k = first + 1u; k < last; ++k)
+      if (dj_before(dist, heap[k], heap[c])) c = k;
+    if (!dj_before(dist, heap[c], v)) break;
+    heap[i] = heap[c];
+    ctx->dj_pos[heap[i]] = i;
+    i = c;
+  }
+  heap[i] = v;
+  ctx->dj_pos[v] = i;
+}
+
+constexpr uint32_t kDjSettled = 0xFFFFFFFEu;  // dj_pos of a settled voxel
+// The Dijkstra stops once its smallest key exceeds kDjReach times the distance of the other root
+// (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
+// key it stopped at is still a lower bound of every unsettled voxel's distance.
+constexpr double kDjReach = 2.0;
+// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
+constexpr uint32_t kTryMin = 20000;
+constexpr uint32_t kTryDiv = 16;
+// Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
+// the budget).
+constexpr int kRetries = 2;
+constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
+
+// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
+// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
+// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
+// is free), so distances from the root are distances to it. Bounded: each voxel is settled once.
+// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
+bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other,
+                        double* dist) {
+  const uint32_t nvox = g->nvox;
+  for (uint32_t v = 0; v < nvox; ++v) {
+    dist[v] = HUGE_VAL;
+    ctx->dj_pos[v] = kNil;
+  }
+  dist[root] = 0.0;
+  ctx->dj_heap[0] = root;
+  ctx->dj_pos[root] = 0;
+  uint32_t n = 1;
+  double limit = HUGE_VAL;
+  bool reached = false;
+  while (n > 0) {
+    const uint32_t u = ctx->dj_heap[0];
+    const double du = dist[u];
+    if (du > limit) break;
+    --n;
+    if (n > 0) {
+      ctx->dj_heap[0] = ctx->dj_heap[n];
+      dj_sift_down(ctx, dist, n);
+    }
+    ctx->dj_pos[u] = kDjSettled;
+    if (u == other) {
+      reached = true;
+      limit = kDjReach * du;
+    }
+    for (uint32_t m = g->moves[u]; m != 0; m &= m - 1u) {
+      const int e = __builtin_ctz(m);
+      const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
+      const uint32_t pw = ctx->dj_pos[w];
+      if (pw == kDjSettled) continue;
+      const double nd = du + ctx->step_len[e];
+      if (!(nd < dist[w])) continue;
+      dist[w] = nd;
+      if (pw == kNil) {
+        ctx->dj_heap[n] = w;
+        dj_sift_up(ctx, dist, n++);
+      } else {
+        dj_sift_up(ctx, dist, pw);
+      }
+    }
+  }
+  if (!reached) return false;
+  // Unsettled voxels: the smallest key left bounds their distance from below (HUGE_VAL when the
+  // heap ran empty: they are not connected to the root). Settled ones lose 1e-12 relative so that
+  // rounding of the sums never lifts the bound above a path's summed cost.
+  const double rest = n > 0 ? dist[ctx->dj_heap[0]] : HUGE_VAL;
+  for (uint32_t v = 0; v < nvox; ++v)
+    dist[v] = ctx->dj_pos[v] == kDjSettled ? dist[v] * (1.0 - 1e-12) : rest;
+  return true;
 }
 
 void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
@@ -692,6 +821,9 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
 
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
+         (cfg.exact_heuristic
+              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
+              : 0u) +
          tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(OpenItem));
@@ -707,6 +839,9 @@ using namespace tdo_internal;
 extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
   if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
   return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
+         (cfg->exact_heuristic
+              ? 2u * tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * sizeof(uint32_t))
+              : 0u) +
          tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
 }
 
@@ -765,6 +900,22 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     memset(s.slot, 0, cfg->max_voxels * sizeof(uint64_t));
+    s.hx = nullptr;
+    ctx->hdist[k] = nullptr;
+    if (cfg->exact_heuristic) {
+      ctx->hdist[k] =
+          static_cast<double*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(double)));
+      if (ctx->hdist[k] == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    }
+  }
+  ctx->dj_heap = nullptr;
+  ctx->dj_pos = nullptr;
+  if (cfg->exact_heuristic) {
+    ctx->dj_heap =
+        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
+    ctx->dj_pos =
+        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
+    if (ctx->dj_heap == nullptr || ctx->dj_pos == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   }
   ctx->path = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cfg->max_path * sizeof(tdo_voxel)));
   if (ctx->path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
@@ -807,6 +958,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   }
   q.bidir = in->kind == TDO_SEARCH_BIDIR;
   q.mu = in->mu;
+  q.dev_terms = 1;
   q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
   q.first_meet = in->first_meet != 0;
   q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
@@ -822,7 +974,53 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     ctx->gen = 1;
   }
   const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
-  const tdo_status st = headed ? search_loop<true>(ctx, q) : search_loop<false>(ctx, q);
+  for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
+  if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
+    const tdo_status st = search_loop<false>(ctx, q);
+    out->expansions = q.expansions;
+    if (st != TDO_OK) return st;
+    return write_path(ctx, q, out);
+  }
+  // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
+  // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
+  // a try expands more than max(kTryMin, nvox / kTryDiv) states or fills the node pool, the search
+  // starts again with the obstacle-aware heuristic (grid distances to each side's target,
+  // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
+  // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
+  // the free space. The tries share the expansion budget; the last one gets all that is left.
+  const uint32_t budget = q.budget;
+  const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
+  const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
+  tdo_status st = TDO_OK;
+  for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
+    const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
+    q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
+    st = search_loop<true>(ctx, q);
+    const bool retry = t < retries && q.expansions < budget &&
+                       (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY);
+    if (!retry) break;
+    if (t == 0) {
+      for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
+        if (!exact_lower_bounds(ctx, g, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
+          out->expansions = q.expansions;
+          return TDO_ERR_NO_PATH;
+        }
+        ctx->side[k].hx = ctx->hdist[k];
+      }
+    }
+    if (++ctx->gen == 0) {  // a fresh generation: the last try's states are forgotten
+      for (int k = 0; k < 2; ++k)
+        memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
+      ctx->gen = 1;
+    }
+    q.best = HUGE_VAL;
+    q.meet[0] = q.meet[1] = kNil;
+    q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
+    // The deviation term and the turn bound aim at the straight line to the target, through walls:
+    // they would flood as the octile distance did.
+    q.dev_terms = 0;
+    out->fallback = static_cast<uint32_t>(t + 1);
+  }
   out->expansions = q.expansions;
   if (st != TDO_OK) return st;
   return write_path(ctx, q, out);

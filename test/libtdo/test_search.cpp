@@ -470,6 +470,48 @@ TEST(SearchConstrained,
   narrow_penalised(kConstrained);
 }
 
+// Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
+// its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
+// path, deterministically; plain searches never retry and stay optimal.
+TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
+  const int32_t nx = 64, ny = 32, nz = 8;
+  const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
+  tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Case c;
+  c.map = VoxelMap(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  for (int32_t x = 8; x < nx; x += 8) {
+    const bool low = (x / 8) % 2 == 1;  // holes alternate between (y, z) = (0, 0) and (31, 7)
+    for (int32_t z = 0; z < nz; ++z)
+      for (int32_t y = 0; y < ny; ++y)
+        if (!(low ? (y == 0 && z == 0) : (y == ny - 1 && z == nz - 1))) c.map.set(x, y, z);
+  }
+  c.s = {2, 16, 4};
+  c.g = {61, 16, 4};
+  c.ps = c.map.center(c.s);
+  c.pg = c.map.center(c.g);
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+  const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+  ASSERT_LT(want, kInf);
+  for (tdo_search_kind kind : kKinds) {
+    SCOPED_TRACE(tdo_test::kind_name(kind));
+    const Result plain = run(pl.search(), make_input(pl.grid(), c.ps, c.pg, kind));
+    ASSERT_EQ(plain.status, TDO_OK);
+    EXPECT_EQ(plain.out.fallback, 0u);
+    EXPECT_TRUE(near_rel(plain.out.cost, want)) << plain.out.cost << " vs " << want;
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind, 50.0, 20.0);
+    in.theta_max = 0.25 * 3.14159265358979323846;
+    const Result r = run(pl.search(), in);
+    ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+    EXPECT_GE(r.out.fallback, 1u) << r.out.expansions << " expansions";
+    EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+    EXPECT_GE(r.out.cost, want * (1.0 - 1e-9)) << "below the optimal length";
+    EXPECT_TRUE(identical(r, run(pl.search(), in))) << "a second run differs";
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // (c) named statuses
 

@@ -55,6 +55,7 @@ struct Options {
   std::string shorten = "on";
   double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
+  std::string retry = "off";       /**< obstacle-aware retry of a flooding tdo search */
   double d_th = 0.0;               /**< deviation threshold, 0 = off */
   double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
   double v_cruise = 0.0;           /**< m/s, 0 = v_max */
@@ -175,6 +176,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   const uint32_t headings = (o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo") ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
+  cfg.cap.exact_heuristic = o.retry == "on" ? 1u : 0u;
   const double nvox = voxel_count(map.desc);
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
   if (nvox > static_cast<double>(vcap) || cfg.cap.max_voxels > vcap) {
@@ -652,6 +654,10 @@ int run(int argc, char** argv) {
   app.add_option("--h-weight", o.h_weight,
                  "heuristic weight (>= 1) of the turn-penalised search: speed for optimality")
       ->capture_default_str();
+  app.add_option("--retry", o.retry,
+                 "on: a tdo search whose octile-guided try floods restarts with grid distances "
+                 "(24 bytes per voxel more; docs/performance.md)")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))
       ->capture_default_str();

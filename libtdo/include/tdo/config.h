@@ -38,6 +38,10 @@ typedef struct tdo_capacity {
                                  (108 bytes per voxel and direction), so turn-penalised searches
                                  find a (voxel, heading) state in one read; 0: states of a voxel
                                  are chained (compact, slower with penalties) */
+  uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the obstacle-aware
+                                 retry of a turn-penalised search whose octile-guided try floods
+                                 (search.h, tdo_search_output.fallback); 0: no retry (what
+                                 tdo_capacity_for_grid sets) */
   uint32_t max_checks;      /**< segment clearance checks of one inflection correction (budget) */
   uint32_t max_shrinks;     /**< radius reductions per corner when smoothing (budget) */
   uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (80 bytes each) */

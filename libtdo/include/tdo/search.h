@@ -28,12 +28,14 @@ typedef struct tdo_search tdo_search;
 
 /** Capacities of one search context. */
 typedef struct tdo_search_config {
-  uint32_t max_voxels;     /**< largest grid it will search */
-  uint32_t max_nodes;      /**< states per direction */
-  uint32_t max_path;       /**< voxels in the returned path */
-  uint32_t max_expansions; /**< default budget when the input gives 0 */
-  uint32_t dense_headings; /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
-                                direction) for turn-penalised searches; 0: per-voxel chains */
+  uint32_t max_voxels;      /**< largest grid it will search */
+  uint32_t max_nodes;       /**< states per direction */
+  uint32_t max_path;        /**< voxels in the returned path */
+  uint32_t max_expansions;  /**< default budget when the input gives 0 */
+  uint32_t dense_headings;  /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
+                                 direction) for turn-penalised searches; 0: per-voxel chains */
+  uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the retry of a
+                                 flooding turn-penalised search (tdo_search_output.fallback) */
 } tdo_search_config;
 
 /** One query. */
@@ -73,6 +75,10 @@ typedef struct tdo_search_output {
   uint32_t pivots;       /**< pivots (sharp turns in place) on the returned path */
   uint32_t n_path;       /**< voxels in path, start voxel first, goal voxel last */
   const tdo_voxel* path; /**< the voxel path */
+  uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
+                              1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
+                              or 10 (the try before flooded: more than max(20000, voxels / 16)
+                              expansions, or a full node pool). expansions counts every try */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */
