@@ -284,7 +284,8 @@ int tdo_demo_run(tdo_demo_info* info) {
   tdo_capacity_for_grid(&cfg.cap, desc.nx, desc.ny, desc.nz, TDO_DEMO_CLEARANCE / desc.res, 27u,
                         TDO_DEMO_MAX_NODES);
   cfg.cap.max_boxes = TDO_DEMO_MAP_BOXES;
-  cfg.cap.dense_headings = 0u; /* the dense heading index costs 216 bytes per voxel */
+  cfg.cap.dense_headings = 0u;  /* the dense heading index costs 216 bytes per voxel */
+  cfg.cap.exact_heuristic = 0u; /* the retry's tables cost 24 bytes per voxel; Map1 never floods */
   cfg.cap.max_path = TDO_DEMO_MAX_PATH;
   cfg.cap.max_samples = TDO_DEMO_MAX_SAMPLES;
   cfg.cap.max_profile = TDO_DEMO_MAX_PROFILE;

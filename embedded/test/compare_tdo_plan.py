@@ -16,7 +16,7 @@ import sys
 
 def main() -> int:
     tdo_plan, demo, map_path = sys.argv[1:4]
-    ref = json.loads(subprocess.run([tdo_plan, "--map", map_path, "--json"], check=True,
+    ref = json.loads(subprocess.run([tdo_plan, "--map", map_path, "--json", "--retry", "off"], check=True,
                                     capture_output=True, text=True).stdout)
     out = subprocess.run([demo], check=True, capture_output=True, text=True).stdout
     lines = [l for l in out.splitlines() if not l.startswith("@")]

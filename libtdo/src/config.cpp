@@ -30,7 +30,9 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   // at most 64 entries per box: 0 derives max_boxes * 64 at init, which can never overflow.
   cap->max_box_refs = 0;
   cap->dense_headings = headings >= 27u ? 1u : 0u;
-  cap->exact_heuristic = 0u;  // opt-in: the retry changes which paths are found
+  // The obstacle-aware retry (24 bytes per voxel) with the turn-penalised search, whose octile
+  // try can flood (docs/performance.md); plain searches never retry.
+  cap->exact_heuristic = headings >= 27u ? 1u : 0u;
   cap->max_checks = 100000u;  // correction: a few checks per point and scale, far above need
   cap->max_shrinks = 16u;     // radius x0.6 per shrink: 16 steps reach 0.03 % of the radius
   // A flight of 64 samples (0.64 s at dt = 0.01 s) per path voxel covers a slow, stop-heavy path.

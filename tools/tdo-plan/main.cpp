@@ -55,7 +55,7 @@ struct Options {
   std::string shorten = "on";
   double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
-  std::string retry = "off";       /**< obstacle-aware retry of a flooding tdo search */
+  std::string retry = "on";        /**< obstacle-aware retry of a flooding tdo search */
   double d_th = 0.0;               /**< deviation threshold, 0 = off */
   double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
   double v_cruise = 0.0;           /**< m/s, 0 = v_max */

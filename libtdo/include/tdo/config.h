@@ -40,8 +40,8 @@ typedef struct tdo_capacity {
                                  are chained (compact, slower with penalties) */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the obstacle-aware
                                  retry of a turn-penalised search whose octile-guided try floods
-                                 (search.h, tdo_search_output.fallback); 0: no retry (what
-                                 tdo_capacity_for_grid sets) */
+                                 (search.h, tdo_search_output.fallback); 0: no retry.
+                                 tdo_capacity_for_grid sets 1 for 27 headings, else 0 */
   uint32_t max_checks;      /**< segment clearance checks of one inflection correction (budget) */
   uint32_t max_shrinks;     /**< radius reductions per corner when smoothing (budget) */
   uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (80 bytes each) */
