@@ -71,6 +71,20 @@ constexpr double kOnPlan = 0.2;            // m: closer than this to the plan, n
 constexpr int kWallProbes = 4;             // look-ahead probes along the velocity
 constexpr double kWallProbeDt = 0.2;       // s between them
 
+// Central-difference gradient of the capped exact distance to the static map at p.
+tdo_vec3 distance_gradient(const tdo_grid* grid, const tdo_vec3& p, double cap) {
+  const double h = kFdStep;
+  return v3((tdo_collision_point_distance(grid, v3(p.x + h, p.y, p.z), cap) -
+             tdo_collision_point_distance(grid, v3(p.x - h, p.y, p.z), cap)) /
+                (2.0 * h),
+            (tdo_collision_point_distance(grid, v3(p.x, p.y + h, p.z), cap) -
+             tdo_collision_point_distance(grid, v3(p.x, p.y - h, p.z), cap)) /
+                (2.0 * h),
+            (tdo_collision_point_distance(grid, v3(p.x, p.y, p.z + h), cap) -
+             tdo_collision_point_distance(grid, v3(p.x, p.y, p.z - h), cap)) /
+                (2.0 * h));
+}
+
 bool pos(double x) { return isfinite(x) && x > 0.0; }
 bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
 
@@ -220,16 +234,7 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
     const bool repel = d < q.d_0_static && dist > 0.0;
     const bool zone = d < kWallZone && dist > 0.0;
     if (repel || zone) {
-      const double h = kFdStep;
-      const tdo_vec3 grad = v3((tdo_collision_point_distance(c->grid, v3(p.x + h, p.y, p.z), cap) -
-                                tdo_collision_point_distance(c->grid, v3(p.x - h, p.y, p.z), cap)) /
-                                   (2.0 * h),
-                               (tdo_collision_point_distance(c->grid, v3(p.x, p.y + h, p.z), cap) -
-                                tdo_collision_point_distance(c->grid, v3(p.x, p.y - h, p.z), cap)) /
-                                   (2.0 * h),
-                               (tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z + h), cap) -
-                                tdo_collision_point_distance(c->grid, v3(p.x, p.y, p.z - h), cap)) /
-                                   (2.0 * h));
+      const tdo_vec3 grad = distance_gradient(c->grid, p, cap);
       if (repel) {
         double u, g;
         rep_profile(q.k_r_static, d, q.d_0_static, q.d_min, &u, &g);
@@ -258,16 +263,7 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
     }
     if (best_tau > 0.0 && best - q.vehicle_radius < kWallZone && best < dist - 1e-3) {
       const tdo_vec3 x = add(p, mul(st->v, best_tau));
-      const double h = kFdStep;
-      const tdo_vec3 g2 = v3((tdo_collision_point_distance(c->grid, v3(x.x + h, x.y, x.z), cap) -
-                              tdo_collision_point_distance(c->grid, v3(x.x - h, x.y, x.z), cap)) /
-                                 (2.0 * h),
-                             (tdo_collision_point_distance(c->grid, v3(x.x, x.y + h, x.z), cap) -
-                              tdo_collision_point_distance(c->grid, v3(x.x, x.y - h, x.z), cap)) /
-                                 (2.0 * h),
-                             (tdo_collision_point_distance(c->grid, v3(x.x, x.y, x.z + h), cap) -
-                              tdo_collision_point_distance(c->grid, v3(x.x, x.y, x.z - h), cap)) /
-                                 (2.0 * h));
+      const tdo_vec3 g2 = distance_gradient(c->grid, x, cap);
       const double n2 = norm(g2);
       if (n2 > 1e-9) {
         const tdo_vec3 n = mul(g2, 1.0 / n2);
