@@ -70,6 +70,11 @@ constexpr double kWallFade = 1.0;          // m beyond vehicle_radius: no correc
 constexpr double kOnPlan = 0.2;            // m: closer than this to the plan, no wall terms (E-APF)
 constexpr int kWallProbes = 4;             // look-ahead probes along the velocity
 constexpr double kWallProbeDt = 0.2;       // s between them
+constexpr uint32_t kMaxRolloutSteps = 1000u;  // bound of a safety roll-out
+constexpr double kRolloutCap = 1.0;           // m beyond the safety threshold: distance query cap
+constexpr double kRestSpeed = 1e-3;           // m/s: a roll-out below this speed and
+constexpr double kRestAcc = 1e-2;             // m/s^2 this acceleration has stopped
+constexpr int kSafetyBisections = 6;
 
 // Central-difference gradient of the capped exact distance to the static map at p.
 tdo_vec3 distance_gradient(const tdo_grid* grid, const tdo_vec3& p, double cap) {
@@ -103,7 +108,8 @@ bool params_ok(const tdo_apf_params* p) {
          nonneg(p->vehicle_radius) && nonneg(p->mover_margin) && pos(p->v_max) && pos(p->a_max) &&
          pos(p->j_max) && pos(p->goal_tol) && pos(p->lm_window) && pos(p->lm_progress) &&
          pos(p->lm_force) && pos(p->lm_speed) && pos(p->lm_goal_dist) && nonneg(p->k_t) &&
-         pos(p->escape_time) && nonneg(p->k_r_static);
+         pos(p->escape_time) && nonneg(p->k_r_static) && nonneg(p->safety_margin) &&
+         p->safety <= 1u;
 }
 
 bool state_ok(const tdo_vehicle_state* s) {
@@ -309,6 +315,110 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
   t->u_total = t->u_att + t->u_guide + t->u_rep_static + t->u_rep_movers;
 }
 
+// Braking policy of the safety filter: decelerate against v at a_max, proportionally below the
+// speed a_max^2 / (2 j_max) (the speed the jerk limit needs to bring a_max back to zero).
+tdo_vec3 brake_des(const tdo_apf_params& q, tdo_vec3 v) {
+  const double s = norm(v);
+  const double v_lin = q.a_max * q.a_max / (2.0 * q.j_max);
+  return mul(v, -(s > v_lin ? q.a_max / s : q.a_max / v_lin));
+}
+
+// Steps of a braking roll-out: enough to stop from v_max with the acceleration ramps, plus 1 s.
+uint32_t rollout_steps(const tdo_apf_params& q) {
+  const double t = q.v_max / q.a_max + 2.0 * q.a_max / q.j_max + 1.0;
+  const double n = ceil(t / q.dt);
+  return n < static_cast<double>(kMaxRolloutSteps) ? static_cast<uint32_t>(n) : kMaxRolloutSteps;
+}
+
+// Margin of the braking roll-out that starts with setpoint `sp` from state `st`: the smallest
+// static distance at the roll-out's positions (every step, as the simulator checks them) less
+// vehicle_radius + safety_margin. A position is queried only when the distance at the last
+// query, less the path flown since, could be below the threshold (distance is 1-Lipschitz), so
+// far from walls one query covers many steps. Stops early at the first position below.
+double rollout_margin(const tdo_apf* c, const tdo_setpoint& sp) {
+  const tdo_apf_params& q = c->prm;
+  const double thresh = q.vehicle_radius + q.safety_margin;
+  const double cap = thresh + kRolloutCap;
+  tdo_vehicle_state x;
+  x.t = sp.t;
+  x.p = sp.p;
+  x.v = sp.v;
+  x.a = sp.a;
+  double best = HUGE_VAL, d_last = 0.0, since = 0.0;
+  bool queried = false;
+  const uint32_t n = rollout_steps(q);
+  for (uint32_t k = 0; k <= n; ++k) {
+    if (k > 0u) {
+      tdo_setpoint nx;
+      tdo_motion_limit(&x, brake_des(q, x.v), q.v_max, q.a_max, q.j_max, q.dt, &nx);
+      since += norm(sub(nx.p, x.p));
+      x.t = nx.t;
+      x.p = nx.p;
+      x.v = nx.v;
+      x.a = nx.a;
+    }
+    if (!queried || d_last - since < thresh) {
+      d_last = tdo_collision_point_distance(c->grid, x.p, cap);
+      since = 0.0;
+      queried = true;
+      if (d_last < best) best = d_last;
+      if (best < thresh) break;
+    }
+    if (norm(x.v) < kRestSpeed && norm(x.a) < kRestAcc) break;
+  }
+  return best - thresh;
+}
+
+// Static safety filter (E-APF): the command is kept only when the vehicle can still stop, under
+// the same v/a/j limits, before coming within vehicle_radius + safety_margin of the static
+// geometry (braking roll-out). Otherwise the applied acceleration moves towards the braking
+// command just enough (bisection between the two, both within the step's jerk budget); the
+// braking command itself is safe whenever the previous step's command was (its roll-out is the
+// previous roll-out one step on). When even braking is not safe (a state the filter did not
+// produce), the candidate with the largest margin among the command, braking and full
+// acceleration away from the nearest geometry is taken. Returns true when the command changed.
+bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_setpoint* sp) {
+  const tdo_apf_params& q = c->prm;
+  if (rollout_margin(c, *sp) >= 0.0) return false;
+  tdo_setpoint b;
+  tdo_motion_limit(st, brake_des(q, st->v), q.v_max, q.a_max, q.j_max, q.dt, &b);
+  const double mb = rollout_margin(c, b);
+  if (mb >= 0.0) {
+    const tdo_vec3 a_cmd = sp->a;
+    double lo = 0.0, hi = 1.0;  // lo: safe (braking), hi: not (the command)
+    tdo_setpoint best = b;
+    for (int i = 0; i < kSafetyBisections; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      tdo_setpoint m;
+      tdo_motion_limit(st, lerp(b.a, a_cmd, mid), q.v_max, q.a_max, q.j_max, q.dt, &m);
+      if (rollout_margin(c, m) >= 0.0) {
+        lo = mid;
+        best = m;
+      } else {
+        hi = mid;
+      }
+    }
+    *sp = best;
+    return true;
+  }
+  double best_m = rollout_margin(c, *sp);
+  tdo_setpoint best = *sp;
+  if (mb > best_m) {
+    best_m = mb;
+    best = b;
+  }
+  const double cap = q.vehicle_radius + q.safety_margin + kRolloutCap;
+  const tdo_vec3 g = distance_gradient(c->grid, st->p, cap);
+  const double ng = norm(g);
+  if (ng > 1e-9) {
+    tdo_setpoint aw;
+    tdo_motion_limit(st, mul(g, q.a_max / ng), q.v_max, q.a_max, q.j_max, q.dt, &aw);
+    if (rollout_margin(c, aw) > best_m) best = aw;
+  }
+  *sp = best;
+  return true;
+}
+
 double ref_time_of(const tdo_apf* c) {
   if (c->prm.kind != TDO_FOLLOWER_EAPF) return 0.0;
   double r = c->tau + c->prm.lookahead;
@@ -349,6 +459,8 @@ extern "C" void tdo_apf_params_default(tdo_apf_params* p, tdo_follower_kind kind
   p->escape_time = 3.0;
   p->max_escapes = 3u;
   p->k_r_static = eapf ? 0.0025 : 1.5;
+  p->safety = eapf ? 1u : 0u;
+  p->safety_margin = 0.05;
 }
 
 extern "C" size_t tdo_apf_footprint(const tdo_apf_config* cfg) {
@@ -630,36 +742,10 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
     }
   }
   out->a_des = a_des;
-  // Speed governor: the acceleration along v may not exceed what the jerk limit can remove
-  // before the speed reaches v_max. Discrete form: after a step with along-acceleration x the
-  // speed still grows by about x dt + x^2/(2 j) + x dt/2 while the jerk limit brings x to zero,
-  // so x <= j (-1.5 dt + sqrt(2.25 dt^2 + 2 room / j)). When it binds, the jerk budget of the
-  // step goes to the along component first (a uniform scaling of the whole change could leave
-  // the along acceleration too high), the rest to the perpendicular change.
-  if (speed > 1e-9) {
-    const tdo_vec3 vh = mul(st->v, 1.0 / speed);
-    const double along = dot(a_des, vh);
-    const double room = q.v_max - speed;
-    const double bound =
-        room > 0.0 ? q.j_max * (sqrt(2.25 * q.dt * q.dt + 2.0 * room / q.j_max) - 1.5 * q.dt) : 0.0;
-    const double prev_al = dot(st->a, vh);
-    if (along > bound || prev_al > bound) {
-      const double want_al = along < bound ? along : bound;
-      const double dj = q.j_max * q.dt;
-      double d_al = want_al - prev_al;
-      if (d_al > dj) d_al = dj;
-      if (d_al < -dj) d_al = -dj;
-      const double rest2 = dj * dj - d_al * d_al;
-      const double rest = rest2 > 0.0 ? sqrt(rest2) : 0.0;
-      const tdo_vec3 prev_perp = sub(st->a, mul(vh, prev_al));
-      const tdo_vec3 des_perp = sub(a_des, mul(vh, along));
-      tdo_vec3 d_perp = sub(des_perp, prev_perp);
-      const double n_perp = norm(d_perp);
-      if (n_perp > rest) d_perp = n_perp > 0.0 ? mul(d_perp, rest / n_perp) : d_perp;
-      a_des = add(add(st->a, mul(vh, d_al)), d_perp);
-    }
-  }
   tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);
+  if (q.safety != 0u && c->grid != nullptr) {
+    if (safety_filter(c, st, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
+  }
 
   ++c->steps;
   out->ref_time = rt;

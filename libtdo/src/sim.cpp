@@ -110,22 +110,69 @@ void fill_output(const tdo_sim* c, tdo_sim_output* out) {
 
 }  // namespace
 
+namespace {
+
+constexpr int kViableBisections = 12;  // bisection steps of the speed-viability search
+
+// Whether (v + a dt, a) can still keep |v| <= v_max: the acceleration along the new velocity,
+// x, must be removable by the jerk limit before the speed passes v_max, |v'| + x^2 / (2 j) <=
+// v_max for x > 0 (else |v'| <= v_max; the sum over the discrete ramp-down steps is below
+// x^2 / (2 j)). j is half of j_max: while the velocity turns, the perpendicular acceleration
+// feeds the along component at |a_perp|^2 / |v| (up to a_max^2 / |v| near v_max), and the other
+// half of the jerk budget covers that for the usual limits (a_max^2 / (v_max - a_max^2 / j_max)
+// <= j_max / 2, e.g. 4.3 m/s^3 for 3 m/s, 3 m/s^2, 10 m/s^3).
+bool speed_viable(tdo_vec3 v, tdo_vec3 a, double v_max, double j_max, double dt) {
+  const tdo_vec3 v1 = add(v, mul(a, dt));
+  const double s1 = norm(v1);
+  const double x = s1 > 0.0 ? dot(a, v1) / s1 : 0.0;
+  return s1 + (x > 0.0 ? x * x / j_max : 0.0) <= v_max;
+}
+
+// Move from `from` towards `to` by at most dmax, then clip to |a| <= a_max.
+tdo_vec3 jerk_step(tdo_vec3 from, tdo_vec3 to, double dmax, double a_max) {
+  tdo_vec3 da = sub(to, from);
+  const double nda = norm(da);
+  if (nda > dmax) da = mul(da, dmax / nda);
+  tdo_vec3 a = add(from, da);
+  const double na = norm(a);
+  if (na > a_max) a = mul(a, a_max / na);
+  return a;
+}
+
+}  // namespace
+
 extern "C" void tdo_motion_limit(const tdo_vehicle_state* s, tdo_vec3 a_des, double v_max,
                                  double a_max, double j_max, double dt, tdo_setpoint* out) {
   if (s == nullptr || out == nullptr) return;
   if (!isfinite(a_des.x)) a_des.x = 0.0;
   if (!isfinite(a_des.y)) a_des.y = 0.0;
   if (!isfinite(a_des.z)) a_des.z = 0.0;
-  // Jerk.
-  tdo_vec3 da = sub(a_des, s->a);
   const double dmax = j_max * dt;
-  const double nda = norm(da);
-  if (nda > dmax) da = mul(da, dmax / nda);
-  tdo_vec3 a = add(s->a, da);
-  // Acceleration.
-  const double na = norm(a);
-  if (na > a_max) a = mul(a, a_max / na);
-  // Speed.
+  // Jerk, then acceleration (the projection onto the a_max ball never lengthens the change).
+  tdo_vec3 a = jerk_step(s->a, a_des, dmax, a_max);
+  // Speed, within the same jerk budget: when the step would leave the speed-viable set, take the
+  // point of the segment from it to the full along-velocity braking step (s->a less j_max dt
+  // along v) that is nearest to it and still viable (bisection). The braking step is viable
+  // whenever the state was; the hard clip below then never binds for a viable state.
+  if (!speed_viable(s->v, a, v_max, j_max, dt)) {
+    const double sp = norm(s->v);
+    const tdo_vec3 vh = sp > 0.0 ? mul(s->v, 1.0 / sp) : mul(a, 0.0);
+    const tdo_vec3 brake = jerk_step(s->a, sub(s->a, mul(vh, dmax)), dmax, a_max);
+    if (speed_viable(s->v, brake, v_max, j_max, dt)) {
+      double lo = 0.0, hi = 1.0;  // lo: viable (brake), hi: not (a)
+      for (int i = 0; i < kViableBisections; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (speed_viable(s->v, add(brake, mul(sub(a, brake), mid)), v_max, j_max, dt))
+          lo = mid;
+        else
+          hi = mid;
+      }
+      a = add(brake, mul(sub(a, brake), lo));
+    } else {
+      a = brake;
+    }
+  }
+  // Hard speed limit (binds only from a state that was not speed-viable).
   tdo_vec3 v = add(s->v, mul(a, dt));
   const double nv = norm(v);
   if (nv > v_max) {

@@ -85,12 +85,17 @@ bool set_param(tdo_apf_params* p, const std::string& name, double value) {
                                   {"lm_speed", &tdo_apf_params::lm_speed},
                                   {"lm_goal_dist", &tdo_apf_params::lm_goal_dist},
                                   {"k_t", &tdo_apf_params::k_t},
-                                  {"escape_time", &tdo_apf_params::escape_time}};
+                                  {"escape_time", &tdo_apf_params::escape_time},
+                                  {"safety_margin", &tdo_apf_params::safety_margin}};
   for (const Field& f : kFields) {
     if (name == f.name) {
       p->*(f.field) = value;
       return true;
     }
+  }
+  if (name == "safety" && (value < 0.5 || value > 0.5) && value > -0.5 && value < 1.5) {
+    p->safety = value > 0.5 ? 1u : 0u;
+    return true;
   }
   if (name == "max_escapes" && value >= 0.0 && value < 1e6) {
     p->max_escapes = static_cast<uint32_t>(value);

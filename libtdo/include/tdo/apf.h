@@ -20,11 +20,9 @@
  *   planned trajectory (polyline through the samples), F_guide = 2 k_g (p_near - p).
  * - command     a_des = -grad U_total - k_d (v - v_ref) (+ a_ref feed-forward for E-APF, where
  *   v_ref, a_ref are the trajectory's at the reference time; classical APF: v_ref = 0, no
- *   feed-forward), then a speed governor (acceleration along v limited to about
- *   sqrt(2 j_max (v_max - |v|)), in a discrete form, so the jerk limit can stop the speed at
- *   v_max), the jerk limit
- *   |a - a_prev| <= j_max dt, |a| <= a_max and |v| <= v_max (tdo_motion_limit, sim.h, applies the
- *   same rule). Wall terms (classical APF always; E-APF only when more than 0.2 m off the plan,
+ *   feed-forward), then limited by tdo_motion_limit (sim.h: jerk |a - a_prev| <= j_max dt,
+ *   |a| <= a_max, and |v| <= v_max reached without exceeding the jerk limit; the simulator applies
+ *   the same rule). Wall terms (classical APF always; E-APF only when more than 0.2 m off the plan,
  *   or escaping: on the plan the plan vouches for the clearance): within 1 m of the static
  *   geometry (beyond vehicle_radius) the component of the command minus the E-APF feed-forward
  *   that points into the geometry fades linearly to zero at contact, so the field moves the
@@ -33,6 +31,12 @@
  *   added (n the unit normal away from the geometry, v_n the approach speed, d the distance
  *   beyond vehicle_radius, also probed 0.2-0.8 s ahead along v): the deceleration that stops
  *   before contact.
+ * - static safety filter (E-APF, `safety` = 1; the classical APF baseline keeps the plain field):
+ *   the limited command is kept only when a braking roll-out from the state it leads to (same
+ *   v/a/j rule, braking against v at a_max) stays at least vehicle_radius + safety_margin from the
+ *   static geometry; otherwise the applied acceleration moves towards braking just enough
+ *   (bisection), event TDO_APF_EVENT_SAFETY. Braking is safe whenever the previous step's command
+ *   was, so, from a safe start and without disturbance, the vehicle never comes closer than that.
  * - trajectory clock tau: advances with the vehicle time (state.t), but is held while the
  *   vehicle is more than `hold_dist` from the trajectory point at tau (pushed away by a mover),
  *   so the reference waits; while the vehicle is more than hold_dist / 2 from that point,
@@ -133,6 +137,10 @@ typedef struct tdo_apf_params {
   double k_r_static;      /**< m^4/s^2, repulsion gain of the static map, >= 0 (E-APF 0.0025:
                                gentle, the planned trajectory already keeps the clearance and a
                                stiff wall term would shake the vehicle off it; APF 1.5 = k_r) */
+  uint32_t safety;        /**< 1: static safety filter on the command (E-APF default), 0: off
+                               (APF default: the baseline stays the plain field) */
+  double safety_margin;   /**< m, the filter keeps the braking roll-out this far beyond
+                               vehicle_radius from the static geometry, >= 0 (default 0.05) */
 } tdo_apf_params;
 
 /** Fill `p` with the defaults of `kind` (see tdo_apf_params). */
@@ -178,6 +186,7 @@ typedef enum tdo_apf_mode {
 #define TDO_APF_EVENT_GOAL_REACHED 0x10u  /**< arrived at the goal (once) */
 #define TDO_APF_EVENT_CLOCK_HELD 0x20u    /**< trajectory clock held (vehicle pushed away) */
 #define TDO_APF_EVENT_REPULSED 0x40u      /**< a mover is within its influence distance */
+#define TDO_APF_EVENT_SAFETY 0x80u        /**< the static safety filter changed the command */
 
 /** The potential-field terms at one state (tdo_apf_eval, and part of every step's output). */
 typedef struct tdo_apf_terms {

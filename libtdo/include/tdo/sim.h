@@ -6,7 +6,11 @@
  *
  * One step of length dt from state (p, v, a) with setpoint acceleration a_sp (tdo_motion_limit):
  * - a_sp is pushed towards by at most j_max dt (jerk limit), clipped to |a| <= a_max;
- * - v' = v + a' dt, clipped to |v'| <= v_max (the acceleration is then (v' - v)/dt);
+ * - speed within the same jerk budget: when (v + a' dt, a') could no longer stop its speed at
+ *   v_max with the jerk limit (|v'| + x^2 / j_max > v_max, x the acceleration along v', half the
+ *   jerk budget kept for turning), a' moves towards the full braking step along v (bisection);
+ * - v' = v + a' dt, clipped to |v'| <= v_max (the acceleration is then (v' - v)/dt; binds only
+ *   from a state the rule above did not produce);
  * - p' = p + (v + v') dt / 2 (exact for constant acceleration);
  * - plus, when accel_noise > 0, a seeded disturbance acceleration (m/s^2, per axis, constant
  *   over the step; zero mean, standard deviation accel_noise, a sum of four uniform draws so no
@@ -36,8 +40,9 @@ extern "C" {
  * @param a_des m/s^2, desired acceleration (non-finite components count as 0)
  * @param v_max m/s, a_max m/s^2, j_max m/s^3, dt s: all > 0
  * @param[out] out t = s->t + dt, the limited acceleration a (|a| <= a_max,
- *             |a - s->a| <= j_max dt when s->a itself was within a_max and the speed limit did
- *             not cut), v (|v| <= v_max) and p after the step.
+ *             |a - s->a| <= j_max dt when s->a itself was within a_max and the state was
+ *             speed-viable, as every state this rule produces is), v (|v| <= v_max) and p after
+ *             the step.
  */
 void tdo_motion_limit(const tdo_vehicle_state* s, tdo_vec3 a_des, double v_max, double a_max,
                       double j_max, double dt, tdo_setpoint* out);
