@@ -369,48 +369,79 @@ double rollout_margin(const tdo_apf* c, const tdo_setpoint& sp) {
   return best - thresh;
 }
 
+// Largest lo in [0, 1] (of kSafetyBisections halvings) for which the command lerp(from, to, lo),
+// limited, keeps a safe roll-out; `from` must be safe. The limited command goes to *sp.
+void bisect_safe(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_setpoint& from,
+                 tdo_vec3 to, tdo_setpoint* sp) {
+  const tdo_apf_params& q = c->prm;
+  double lo = 0.0, hi = 1.0;
+  *sp = from;
+  for (int i = 0; i < kSafetyBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    tdo_setpoint m;
+    tdo_motion_limit(st, lerp(from.a, to, mid), q.v_max, q.a_max, q.j_max, q.dt, &m);
+    if (rollout_margin(c, m) >= 0.0) {
+      lo = mid;
+      *sp = m;
+    } else {
+      hi = mid;
+    }
+  }
+}
+
 // Static safety filter (E-APF): the command is kept only when the vehicle can still stop, under
 // the same v/a/j limits, before coming within vehicle_radius + safety_margin of the static
-// geometry (braking roll-out). Otherwise the applied acceleration moves towards the braking
-// command just enough (bisection between the two, both within the step's jerk budget); the
-// braking command itself is safe whenever the previous step's command was (its roll-out is the
-// previous roll-out one step on). When even braking is not safe (a state the filter did not
-// produce), the candidate with the largest margin among the command, braking and full
-// acceleration away from the nearest geometry is taken. Returns true when the command changed.
-bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_setpoint* sp) {
+// geometry (braking roll-out). Otherwise, with n the unit normal away from the nearest geometry:
+// the "sliding" command (the desired acceleration without its component along n, at most a_max,
+// plus the braking command's component along n) when that is safe, moved back towards the
+// command as far as safe (bisection), so the field can still move the vehicle along the wall
+// (away from a mover); else the applied acceleration moves from braking towards the sliding
+// command as far as safe. Braking is safe whenever the previous step's command was (its roll-out
+// is the previous one, one step on). When even braking is not safe (a state the filter did not
+// produce), the candidate with the largest margin among the command, braking, sliding and full
+// acceleration away from the geometry is taken. Returns true when the command changed.
+bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_vec3 a_des,
+                   tdo_setpoint* sp) {
   const tdo_apf_params& q = c->prm;
-  if (rollout_margin(c, *sp) >= 0.0) return false;
+  const double m_cmd = rollout_margin(c, *sp);
+  if (m_cmd >= 0.0) return false;
+  const tdo_vec3 b_des = brake_des(q, st->v);
   tdo_setpoint b;
-  tdo_motion_limit(st, brake_des(q, st->v), q.v_max, q.a_max, q.j_max, q.dt, &b);
+  tdo_motion_limit(st, b_des, q.v_max, q.a_max, q.j_max, q.dt, &b);
   const double mb = rollout_margin(c, b);
-  if (mb >= 0.0) {
-    const tdo_vec3 a_cmd = sp->a;
-    double lo = 0.0, hi = 1.0;  // lo: safe (braking), hi: not (the command)
-    tdo_setpoint best = b;
-    for (int i = 0; i < kSafetyBisections; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      tdo_setpoint m;
-      tdo_motion_limit(st, lerp(b.a, a_cmd, mid), q.v_max, q.a_max, q.j_max, q.dt, &m);
-      if (rollout_margin(c, m) >= 0.0) {
-        lo = mid;
-        best = m;
-      } else {
-        hi = mid;
-      }
+  const double cap = q.vehicle_radius + q.safety_margin + kRolloutCap;
+  const tdo_vec3 g = distance_gradient(c->grid, st->p, cap);
+  const double ng = norm(g);
+  const bool have_n = ng > 1e-9;
+  tdo_setpoint sl = b;
+  double m_sl = -HUGE_VAL;
+  if (have_n) {
+    const tdo_vec3 n = mul(g, 1.0 / ng);
+    tdo_vec3 tan = sub(a_des, mul(n, dot(a_des, n)));
+    const double nt = norm(tan);
+    if (nt > q.a_max) tan = mul(tan, q.a_max / nt);
+    tdo_motion_limit(st, add(tan, mul(n, dot(b_des, n))), q.v_max, q.a_max, q.j_max, q.dt, &sl);
+    m_sl = rollout_margin(c, sl);
+    if (m_sl >= 0.0) {
+      bisect_safe(c, st, sl, sp->a, sp);
+      return true;
     }
-    *sp = best;
+  }
+  if (mb >= 0.0) {
+    bisect_safe(c, st, b, have_n ? sl.a : sp->a, sp);
     return true;
   }
-  double best_m = rollout_margin(c, *sp);
+  double best_m = m_cmd;
   tdo_setpoint best = *sp;
   if (mb > best_m) {
     best_m = mb;
     best = b;
   }
-  const double cap = q.vehicle_radius + q.safety_margin + kRolloutCap;
-  const tdo_vec3 g = distance_gradient(c->grid, st->p, cap);
-  const double ng = norm(g);
-  if (ng > 1e-9) {
+  if (have_n && m_sl > best_m) {
+    best_m = m_sl;
+    best = sl;
+  }
+  if (have_n) {
     tdo_setpoint aw;
     tdo_motion_limit(st, mul(g, q.a_max / ng), q.v_max, q.a_max, q.j_max, q.dt, &aw);
     if (rollout_margin(c, aw) > best_m) best = aw;
@@ -744,7 +775,7 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   out->a_des = a_des;
   tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);
   if (q.safety != 0u && c->grid != nullptr) {
-    if (safety_filter(c, st, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
+    if (safety_filter(c, st, a_des, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
   }
 
   ++c->steps;
