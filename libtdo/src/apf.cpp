@@ -75,6 +75,8 @@ constexpr double kRolloutCap = 1.0;           // m beyond the safety threshold: 
 constexpr double kRestSpeed = 1e-3;           // m/s: a roll-out below this speed and
 constexpr double kRestAcc = 1e-2;             // m/s^2 this acceleration has stopped
 constexpr int kSafetyBisections = 6;
+constexpr int kEvadeSteps = 20;   // evasion look-ahead steps
+constexpr double kEvadeDt = 0.1;  // s per evasion step (2 s horizon)
 
 // Central-difference gradient of the capped exact distance to the static map at p.
 tdo_vec3 distance_gradient(const tdo_grid* grid, const tdo_vec3& p, double cap) {
@@ -450,6 +452,82 @@ bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_vec3 a_des
   return true;
 }
 
+// Score of holding the desired acceleration `a_cmd` for the evasion horizon (same v/a/j rule,
+// steps of kEvadeDt, movers at constant velocity): the smallest predicted surface gap to a mover
+// (|p - q| - radius - vehicle_radius) and, with a grid, static distance less vehicle_radius +
+// safety_margin, over the steps. m.
+double evasion_score(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_mover* movers,
+                     uint32_t n_movers, tdo_vec3 a_cmd) {
+  const tdo_apf_params& q = c->prm;
+  const double thresh = q.vehicle_radius + q.safety_margin;
+  tdo_vehicle_state x = *st;
+  double score = HUGE_VAL;
+  for (int k = 1; k <= kEvadeSteps; ++k) {
+    tdo_setpoint nx;
+    tdo_motion_limit(&x, a_cmd, q.v_max, q.a_max, q.j_max, kEvadeDt, &nx);
+    x.t = nx.t;
+    x.p = nx.p;
+    x.v = nx.v;
+    x.a = nx.a;
+    const double tk = kEvadeDt * k;
+    for (uint32_t i = 0; i < n_movers; ++i) {
+      const tdo_vec3 qm = add(movers[i].p, mul(movers[i].v, tk));
+      const double gap = norm(sub(x.p, qm)) - movers[i].radius - q.vehicle_radius;
+      if (gap < score) score = gap;
+    }
+    if (c->grid != nullptr) {
+      const double d = tdo_collision_point_distance(c->grid, x.p, thresh + kRolloutCap) - thresh;
+      if (d < score) score = d;
+    }
+  }
+  return score;
+}
+
+// Mover evasion (E-APF with the safety filter): when the field predicts that a mover comes within
+// mover_margin, the desired acceleration is kept if holding it keeps that gap (evasion_score);
+// otherwise the best of a_max along 18 fixed directions (8 horizontal, up, down, 8 at +-45
+// degrees) by evasion_score replaces it (the first best wins ties). Returns true when replaced.
+bool evade_movers(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_mover* movers,
+                  uint32_t n_movers, tdo_vec3* a_des) {
+  const tdo_apf_params& q = c->prm;
+  tdo_vec3 a0 = *a_des;
+  const double n0 = norm(a0);
+  if (n0 > q.a_max) a0 = mul(a0, q.a_max / n0);
+  const double s0 = evasion_score(c, st, movers, n_movers, a0);
+  if (s0 >= q.mover_margin) return false;
+  static const double kDirs[18][3] = {{1, 0, 0},
+                                      {0.7071067811865476, 0.7071067811865476, 0},
+                                      {0, 1, 0},
+                                      {-0.7071067811865476, 0.7071067811865476, 0},
+                                      {-1, 0, 0},
+                                      {-0.7071067811865476, -0.7071067811865476, 0},
+                                      {0, -1, 0},
+                                      {0.7071067811865476, -0.7071067811865476, 0},
+                                      {0, 0, 1},
+                                      {0, 0, -1},
+                                      {0.7071067811865476, 0, 0.7071067811865476},
+                                      {0, 0.7071067811865476, 0.7071067811865476},
+                                      {-0.7071067811865476, 0, 0.7071067811865476},
+                                      {0, -0.7071067811865476, 0.7071067811865476},
+                                      {0.7071067811865476, 0, -0.7071067811865476},
+                                      {0, 0.7071067811865476, -0.7071067811865476},
+                                      {-0.7071067811865476, 0, -0.7071067811865476},
+                                      {0, -0.7071067811865476, -0.7071067811865476}};
+  double best = s0;
+  tdo_vec3 pick = a0;
+  for (const auto& d : kDirs) {
+    const tdo_vec3 a = mul(v3(d[0], d[1], d[2]), q.a_max);
+    const double sc = evasion_score(c, st, movers, n_movers, a);
+    if (sc > best) {
+      best = sc;
+      pick = a;
+    }
+  }
+  if (best <= s0) return false;
+  *a_des = pick;
+  return true;
+}
+
 double ref_time_of(const tdo_apf* c) {
   if (c->prm.kind != TDO_FOLLOWER_EAPF) return 0.0;
   double r = c->tau + c->prm.lookahead;
@@ -476,7 +554,7 @@ extern "C" void tdo_apf_params_default(tdo_apf_params* p, tdo_follower_kind kind
   p->hold_dist = 1.0;
   p->horizon = 2.5;
   p->vehicle_radius = 0.25;
-  p->mover_margin = 0.25;
+  p->mover_margin = 0.5;
   p->v_max = 3.0;
   p->a_max = 3.0;
   p->j_max = 10.0;
@@ -771,6 +849,10 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
       if (room < q.d_min) room = q.d_min;
       a_des = add(a_des, mul(near.wall_n, v_n * v_n / (2.0 * room)));
     }
+  }
+  if (eapf && q.safety != 0u && in->n_movers > 0u && t->mover_pred_gap < 0.0 &&
+      c->mode != TDO_APF_MODE_ARRIVED) {
+    if (evade_movers(c, st, in->movers, in->n_movers, &a_des)) events |= TDO_APF_EVENT_EVADE;
   }
   out->a_des = a_des;
   tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);

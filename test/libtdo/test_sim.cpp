@@ -78,6 +78,49 @@ TEST(Sim, MotionLimitKeepsTheLimits) {
   EXPECT_EQ(speed_cut, 0);  // with these ranges the speed limit never needs to cut
 }
 
+// GIVEN a vehicle at v_max and a desired acceleration that jumps to a random direction every
+// 0.2-1 s WHEN limited step after step THEN every executed step keeps |a - a_prev| <= j_max dt,
+// |a| <= a_max and |v| <= v_max together (the speed limit never clips outside the jerk budget),
+// also in the finite differences of the positions (paper eq. 15-17).
+TEST(Sim, MotionLimitReachesTheSpeedLimitWithinTheJerkLimit) {
+  tdo_test::Rng rng(23);
+  const double vmax = 3.0, amax = 3.0, jmax = 10.0, dt = 0.02;
+  tdo_vehicle_state s{};
+  s.v = tdo_vec3{vmax, 0.0, 0.0};
+  tdo_vec3 ad{0.0, 0.0, 0.0};
+  std::vector<tdo_vec3> pos{s.p};
+  int hold = 0;
+  for (int i = 0; i < 5000; ++i) {
+    if (hold-- <= 0) {
+      ad = tdo_vec3{rng.uniform(-30, 30), rng.uniform(-30, 30), rng.uniform(-10, 10)};
+      hold = rng.range(10, 50);
+    }
+    tdo_setpoint o{};
+    tdo_motion_limit(&s, ad, vmax, amax, jmax, dt, &o);
+    ASSERT_LE(norm3(sub3(o.a, s.a)), jmax * dt * (1 + 1e-9)) << "step " << i;
+    ASSERT_LE(norm3(o.a), amax * (1 + 1e-12));
+    ASSERT_LE(norm3(o.v), vmax * (1 + 1e-12));
+    s.t = o.t;
+    s.p = o.p;
+    s.v = o.v;
+    s.a = o.a;
+    pos.push_back(s.p);
+  }
+  double jfd = 0.0, vfd = 0.0;
+  for (size_t i = 0; i + 3 < pos.size(); ++i) {
+    tdo_vec3 v[3];
+    for (int k = 0; k < 3; ++k) {
+      const tdo_vec3 d = sub3(pos[i + k + 1], pos[i + k]);
+      v[k] = tdo_vec3{d.x / dt, d.y / dt, d.z / dt};
+    }
+    const tdo_vec3 a0 = sub3(v[1], v[0]), a1 = sub3(v[2], v[1]);
+    jfd = std::fmax(jfd, norm3(sub3(a1, a0)) / (dt * dt));
+    vfd = std::fmax(vfd, norm3(v[0]));
+  }
+  EXPECT_LE(jfd, jmax * 1.01);
+  EXPECT_LE(vfd, vmax * 1.01);
+}
+
 // GIVEN a mover heading for a wall WHEN stepped THEN it bounces: position and velocity match the
 // closed-form mirror solution, and it never leaves the bounds.
 TEST(Sim, MoversReflectAtTheBounds) {

@@ -119,7 +119,7 @@ typedef struct tdo_apf_params {
                                (default 1) */
   double horizon;         /**< s, closest-approach prediction horizon, >= 0 (default 2.5) */
   double vehicle_radius;  /**< m, >= 0 (default 0.25) */
-  double mover_margin;    /**< m, extra gap kept from movers, >= 0 (default 0.25) */
+  double mover_margin;    /**< m, extra gap kept from movers, >= 0 (default 0.5) */
   double v_max;           /**< m/s, > 0 (default 3) */
   double a_max;           /**< m/s^2, > 0 (default 3) */
   double j_max;           /**< m/s^3, > 0 (default 10) */
@@ -187,6 +187,7 @@ typedef enum tdo_apf_mode {
 #define TDO_APF_EVENT_CLOCK_HELD 0x20u    /**< trajectory clock held (vehicle pushed away) */
 #define TDO_APF_EVENT_REPULSED 0x40u      /**< a mover is within its influence distance */
 #define TDO_APF_EVENT_SAFETY 0x80u        /**< the static safety filter changed the command */
+#define TDO_APF_EVENT_EVADE 0x100u        /**< mover evasion replaced the field's command */
 
 /** The potential-field terms at one state (tdo_apf_eval, and part of every step's output). */
 typedef struct tdo_apf_terms {
