@@ -147,6 +147,9 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
   out->plan.assign(res.samples, res.samples + res.n_samples);
   const std::vector<tdo_sample>& plan = out->plan;
   m.plan_duration = plan.back().t;
+  m.v_limit = req.params.v_max;
+  m.a_limit = req.params.a_max;
+  m.j_limit = req.params.j_max;
 
   // Follower and simulator.
   const uint32_t n_movers = m.movers;

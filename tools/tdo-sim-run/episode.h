@@ -75,6 +75,9 @@ struct Metrics {
   double max_speed = 0.0;        /**< m/s, finite differences of the executed positions */
   double max_acc = 0.0;          /**< m/s^2 */
   double max_jerk = 0.0;         /**< m/s^3 */
+  double v_limit = 0.0;          /**< m/s, the limits flown with (the planner's) */
+  double a_limit = 0.0;          /**< m/s^2 */
+  double j_limit = 0.0;          /**< m/s^3 */
   uint32_t steps = 0;            /**< simulator steps */
   uint32_t movers = 0;           /**< movers in the episode */
 };

@@ -96,6 +96,7 @@ struct Agg {
   int lm_episodes = 0, failed = 0;
   long lm_events = 0;
   double min_sep = HUGE_VAL, max_dev = 0.0, max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  int over_limits = 0;  // episodes whose executed v, a or j exceeds its limit by more than 1 %
   std::vector<double> mean_dev, max_devs, overhead, seps;
   void add(const tdo_episode::Metrics& m) {
     ++episodes;
@@ -117,6 +118,9 @@ struct Agg {
     max_v = std::max(max_v, m.max_speed);
     max_a = std::max(max_a, m.max_acc);
     max_j = std::max(max_j, m.max_jerk);
+    // 1 % for the finite differences, as the feasibility check (pipeline.md s.5).
+    over_limits += m.max_speed > 1.01 * m.v_limit || m.max_acc > 1.01 * m.a_limit ||
+                   m.max_jerk > 1.01 * m.j_limit;
   }
 };
 
@@ -163,6 +167,8 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
   row("executed max speed m/s", [&](const Agg& a) { return s(a.max_v); });
   row("executed max acc m/s^2", [&](const Agg& a) { return s(a.max_a); });
   row("executed max jerk m/s^3", [&](const Agg& a) { return s(a.max_j); });
+  row("episodes over a v/a/j limit (1 %)",
+      [&](const Agg& a) { return std::to_string(a.over_limits); });
 }
 
 int run(int argc, char** argv) {
@@ -267,6 +273,15 @@ int run(int argc, char** argv) {
         static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
     print_table(
         {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
+    tdo_plan_params lim;
+    tdo_plan_params_default(&lim);
+    std::printf("limits v %.3g m/s, a %.3g m/s^2, j %.3g m/s^3 (1 %% tolerance):", lim.v_max,
+                lim.a_max, lim.j_max);
+    for (const auto& c :
+         {std::make_pair("E-APF", &eapf), std::make_pair("APF", &apf),
+          std::make_pair("E-APF no mover", &eapf_free), std::make_pair("APF no mover", &apf_free)})
+      std::printf(" %s %s;", c.first, c.second->over_limits == 0 ? "met" : "NOT met");
+    std::printf("\n");
     return kExitOk;
   }
 

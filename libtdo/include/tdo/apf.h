@@ -37,6 +37,12 @@
  *   static geometry; otherwise the applied acceleration moves towards braking just enough
  *   (bisection), event TDO_APF_EVENT_SAFETY. Braking is safe whenever the previous step's command
  *   was, so, from a safe start and without disturbance, the vehicle never comes closer than that.
+ * - mover evasion (E-APF with `safety` = 1): while the field predicts a mover within
+ *   mover_margin (predicted gap d < 0), the desired acceleration (at most a_max) is held in a 2 s
+ *   look-ahead (same v/a/j rule, movers at constant velocity); if the smallest predicted gap to
+ *   the movers or to the static geometry (less vehicle_radius + safety_margin) stays >=
+ *   mover_margin it is kept, else the best of a_max along 18 fixed directions replaces it (event
+ *   TDO_APF_EVENT_EVADE). The static safety filter then still has the last word.
  * - trajectory clock tau: advances with the vehicle time (state.t), but is held while the
  *   vehicle is more than `hold_dist` from the trajectory point at tau (pushed away by a mover),
  *   so the reference waits; while the vehicle is more than hold_dist / 2 from that point,
@@ -54,7 +60,8 @@
  *   hover (a valid, limited setpoint every step) until the next tdo_apf_reset.
  * Fixed memory from the caller's arena, no heap, bounded work per step (nearest-point search over
  * at most `nearest_window` samples, one distance query per static-gradient probe, one pass over
- * the movers), bit-identical results for identical inputs.
+ * the movers; the safety filter's roll-outs and the evasion's 19 look-aheads have fixed step
+ * counts), bit-identical results for identical inputs.
  */
 #ifndef TDO_APF_H
 #define TDO_APF_H
