@@ -57,6 +57,7 @@ struct tdo_apf {
   uint32_t escapes;
   uint32_t steps;
   int arrived_reported;
+  int braked;  // the safety filter changed the previous step's command
 };
 
 namespace {
@@ -452,6 +453,24 @@ bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_vec3 a_des
   return true;
 }
 
+// Smallest predicted gap (as the field's d: less radius, vehicle_radius and mover_margin) to the
+// movers within the horizon if the vehicle stood still at p. m; HUGE_VAL without movers.
+double standing_gap(const tdo_apf_params& q, tdo_vec3 p, const tdo_mover* movers, uint32_t n) {
+  double best = HUGE_VAL;
+  for (uint32_t i = 0; i < n; ++i) {
+    const tdo_mover& m = movers[i];
+    const tdo_vec3 r = sub(p, m.p);
+    const tdo_vec3 w = mul(m.v, -1.0);
+    const double w2 = dot(w, w);
+    double ts = w2 > kEps ? -dot(r, w) / w2 : 0.0;
+    if (ts < 0.0) ts = 0.0;
+    if (ts > q.horizon) ts = q.horizon;
+    const double d = norm(add(r, mul(w, ts))) - m.radius - q.vehicle_radius - q.mover_margin;
+    if (d < best) best = d;
+  }
+  return best;
+}
+
 // Score of holding the desired acceleration `a_cmd` for the evasion horizon (same v/a/j rule,
 // steps of kEvadeDt, movers at constant velocity): the smallest predicted surface gap to a mover
 // (|p - q| - radius - vehicle_radius) and, with a grid, static distance less vehicle_radius +
@@ -662,6 +681,7 @@ extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
   c->escapes = 0u;
   c->steps = 0u;
   c->arrived_reported = 0;
+  c->braked = 0;
   c->ready = 1;
   return TDO_OK;
 }
@@ -850,8 +870,12 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
       a_des = add(a_des, mul(near.wall_n, v_n * v_n / (2.0 * room)));
     }
   }
-  if (eapf && q.safety != 0u && in->n_movers > 0u && t->mover_pred_gap < 0.0 &&
-      c->mode != TDO_APF_MODE_ARRIVED) {
+  // Evasion when a mover is predicted within mover_margin, or, while the safety filter is
+  // braking, when it would come that close to the vehicle standing still.
+  const bool threat =
+      t->mover_pred_gap < 0.0 ||
+      (c->braked && in->n_movers > 0u && standing_gap(q, p, in->movers, in->n_movers) < 0.0);
+  if (eapf && q.safety != 0u && in->n_movers > 0u && threat && c->mode != TDO_APF_MODE_ARRIVED) {
     if (evade_movers(c, st, in->movers, in->n_movers, &a_des)) events |= TDO_APF_EVENT_EVADE;
   }
   out->a_des = a_des;
@@ -859,6 +883,7 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   if (q.safety != 0u && c->grid != nullptr) {
     if (safety_filter(c, st, a_des, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
   }
+  c->braked = (events & TDO_APF_EVENT_SAFETY) != 0u ? 1 : 0;
 
   ++c->steps;
   out->ref_time = rt;
