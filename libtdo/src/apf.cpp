@@ -875,7 +875,7 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   const bool threat =
       t->mover_pred_gap < 0.0 ||
       (c->braked && in->n_movers > 0u && standing_gap(q, p, in->movers, in->n_movers) < 0.0);
-  if (eapf && q.safety != 0u && in->n_movers > 0u && threat && c->mode != TDO_APF_MODE_ARRIVED) {
+  if (eapf && q.safety != 0u && in->n_movers > 0u && threat) {
     if (evade_movers(c, st, in->movers, in->n_movers, &a_des)) events |= TDO_APF_EVENT_EVADE;
   }
   out->a_des = a_des;

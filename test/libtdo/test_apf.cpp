@@ -578,6 +578,25 @@ TEST(Apf, SafetyFilterHoldsTheColumnClearanceWhenAMoverPushes) {
   EXPECT_LE(j, 10.0 * 1.01);
 }
 
+// GIVEN a vehicle that has arrived and holds its goal 1 m from a wall, and a mover coming straight
+// at it from the open side, towards the wall (it would pin the vehicle against it) WHEN E-APF
+// runs on THEN the vehicle gets out of the way sideways: no contact with the mover, and the wall
+// clearance of the safety filter (vehicle_radius + safety_margin) holds.
+TEST(Apf, HoveringVehicleClearsAMoverPinningItToAWall) {
+  TestPlanner tp(small_cap());
+  make_grid(&tp, {tdo_box{{4.0, 11.0, 0.0}, {10.0, 12.0, 6.0}}});
+  const auto traj = line_trajectory({5.0, 10.0, 2.0}, {7.0, 10.0, 2.0}, 3.0, 0.01);
+  // Towards the wall, reaching the goal at about t = 6 s.
+  const tdo_mover m{1u, {7.0, 4.0, 2.0}, {0.0, 1.0, 0.0}, 0.7};
+  GridFlight on;
+  fly_grid(traj, tp.grid(), &m, 1u, 1u, 600, &on);
+  tdo_apf_params d;
+  tdo_apf_params_default(&d, TDO_FOLLOWER_EAPF);
+  EXPECT_FALSE(on.collision);
+  EXPECT_GT(on.min_gap, 0.0);
+  EXPECT_GE(on.min_static, d.vehicle_radius + d.safety_margin - 1e-9);
+}
+
 // GIVEN a feasible curved trajectory and no mover WHEN E-APF follows it THEN the mean deviation
 // is below 0.1 m and the executed v, a, j (finite differences of positions) stay within limits.
 TEST(Apf, EapfTracksWithoutMovers) {
