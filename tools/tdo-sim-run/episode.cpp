@@ -244,6 +244,8 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
       return false;
     }
     if ((ao.events & TDO_APF_EVENT_ESCAPE_FAILED) != 0u) m.escape_failed = true;
+    if ((ao.events & TDO_APF_EVENT_SAFETY) != 0u) ++m.safety_steps;
+    if ((ao.events & TDO_APF_EVENT_EVADE) != 0u) ++m.evade_steps;
     event_lines(so.state.t, ao.events, &out->events);
     m.lm_events = ao.lm_detections;
     m.escapes = ao.escapes;
@@ -330,6 +332,8 @@ std::string to_json(const Episode& e, const tdo_io::Map& map, const Options& o) 
   mj["max_acc"] = m.max_acc;
   mj["max_jerk"] = m.max_jerk;
   mj["steps"] = m.steps;
+  mj["safety_filter_steps"] = m.safety_steps;
+  mj["evasion_steps"] = m.evade_steps;
   mj["movers"] = m.movers;
   j["metrics"] = mj;
   json pj;

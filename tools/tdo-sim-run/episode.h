@@ -79,6 +79,8 @@ struct Metrics {
   double a_limit = 0.0;          /**< m/s^2 */
   double j_limit = 0.0;          /**< m/s^3 */
   uint32_t steps = 0;            /**< simulator steps */
+  uint32_t safety_steps = 0;     /**< steps where the static safety filter changed the command */
+  uint32_t evade_steps = 0;      /**< steps where the mover evasion replaced the command */
   uint32_t movers = 0;           /**< movers in the episode */
 };
 

@@ -96,7 +96,10 @@ struct Agg {
   int lm_episodes = 0, failed = 0;
   long lm_events = 0;
   double min_sep = HUGE_VAL, max_dev = 0.0, max_v = 0.0, max_a = 0.0, max_j = 0.0;
-  int over_limits = 0;  // episodes whose executed v, a or j exceeds its limit by more than 1 %
+  int over_limits = 0;
+  long safety_steps = 0, evade_steps = 0;
+  int safety_episodes = 0,
+      evade_episodes = 0;  // episodes whose executed v, a or j exceeds its limit by more than 1 %
   std::vector<double> mean_dev, max_devs, overhead, seps;
   void add(const tdo_episode::Metrics& m) {
     ++episodes;
@@ -118,6 +121,10 @@ struct Agg {
     max_v = std::max(max_v, m.max_speed);
     max_a = std::max(max_a, m.max_acc);
     max_j = std::max(max_j, m.max_jerk);
+    safety_steps += m.safety_steps;
+    evade_steps += m.evade_steps;
+    safety_episodes += m.safety_steps > 0;
+    evade_episodes += m.evade_steps > 0;
     // 1 % for the finite differences, as the feasibility check (pipeline.md s.5).
     over_limits += m.max_speed > 1.01 * m.v_limit || m.max_acc > 1.01 * m.a_limit ||
                    m.max_jerk > 1.01 * m.j_limit;
@@ -164,6 +171,12 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
   row("local-minimum events", [&](const Agg& a) { return std::to_string(a.lm_events); });
   row("episodes with a local minimum", [&](const Agg& a) { return std::to_string(a.lm_episodes); });
   row("escape failed (named status)", [&](const Agg& a) { return std::to_string(a.failed); });
+  row("safety-filter steps (episodes)", [&](const Agg& a) {
+    return std::to_string(a.safety_steps) + " (" + std::to_string(a.safety_episodes) + ")";
+  });
+  row("evasion steps (episodes)", [&](const Agg& a) {
+    return std::to_string(a.evade_steps) + " (" + std::to_string(a.evade_episodes) + ")";
+  });
   row("executed max speed m/s", [&](const Agg& a) { return s(a.max_v); });
   row("executed max acc m/s^2", [&](const Agg& a) { return s(a.max_a); });
   row("executed max jerk m/s^3", [&](const Agg& a) { return s(a.max_j); });
