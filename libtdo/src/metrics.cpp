@@ -1,11 +1,12 @@
 // Stage 6: trajectory quality metrics (pipeline.md s.6), identical for every planner.
 //
 // Curvature integrals use composite 8-point Gauss-Legendre per curved segment (lines contribute
-// nothing). Without a geometric path the waypoint polyline is measured with its discrete
-// curvature: the turn angle theta_i concentrated at vertex i, so integral |kappa| ds = sum theta_i
-// (exact for the polyline as a limit of ever tighter fillets) and integral kappa^2 ds =
-// sum theta_i^2 / l_i with l_i the mean length of the two segments at the vertex (the usual
-// discrete bending energy; the exact value is infinite for a sharp corner).
+// nothing; Beziers over their parameter, arcs over arclength). Without a geometric path the
+// waypoint polyline is measured with its discrete curvature: the turn angle theta_i concentrated at
+// vertex i, so integral |kappa| ds = sum theta_i (exact for the polyline as a limit of ever tighter
+// fillets) and integral kappa^2 ds = sum theta_i^2 / l_i with l_i the mean length of the two
+// segments at the vertex (the usual discrete bending energy; the exact value is infinite for a
+// sharp corner).
 //
 // The clearance of curves is a proven lower bound: each curve is cut into chords, the exact
 // segment-to-obstacle distance of a chord is computed by the collision module, and the largest
@@ -116,9 +117,46 @@ Turns turn_stats(const tdo_vec3* w, uint32_t n) {
 // ---------------------------------------------------------------------------------------------
 // Curvature integrals of a path.
 
+/**
+ * Adds integral |kappa| ds and integral kappa^2 ds of a cubic Bezier, integrated over its
+ * parameter u (ds = |B'| du, kappa = |B' x B''| / |B'|^3), so no arclength is inverted: the
+ * integrands |B' x B''| / |B'|^2 and |B' x B''|^2 / |B'|^5, kPanels panels of the 8-point rule.
+ */
+void bezier_curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
+  const V3 d0 = sub(mk(seg.p[1]), mk(seg.p[0])), d1 = sub(mk(seg.p[2]), mk(seg.p[1])),
+           d2 = sub(mk(seg.p[3]), mk(seg.p[2]));
+  const V3 e0 = sub(d1, d0), e1 = sub(d2, d1);
+  const auto add_at = [&](double u, double w, double* a, double* q) {
+    const double v = 1.0 - u;
+    const V3 b1 = mul(add(add(mul(d0, v * v), mul(d1, 2.0 * v * u)), mul(d2, u * u)), 3.0);
+    const V3 b2 = mul(add(mul(e0, v), mul(e1, u)), 6.0);
+    const double sp2 = dot(b1, b1);
+    if (!(sp2 > 0.0)) return;  // a cusp of a degenerate curve: no curvature counted
+    const double c = norm(cross(b1, b2));
+    *a += w * c / sp2;
+    *q += w * c * c / (sp2 * sp2 * sqrt(sp2));
+  };
+  const double h = 1.0 / kPanels;
+  for (uint32_t p = 0; p < kPanels; ++p) {
+    const double mid = h * (p + 0.5);
+    double a = 0.0, q = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double dx = 0.5 * h * kGlX[i];
+      add_at(mid - dx, kGlW[i], &a, &q);
+      add_at(mid + dx, kGlW[i], &a, &q);
+    }
+    *abs_int += 0.5 * h * a;
+    *sq_int += 0.5 * h * q;
+  }
+}
+
 /** Adds integral |kappa| ds and integral kappa^2 ds of one segment. */
 void curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
   if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0)) return;
+  if (seg.kind == TDO_SEGMENT_BEZIER) {
+    bezier_curvature_integrals(seg, abs_int, sq_int);
+    return;
+  }
   const double h = seg.length / kPanels;
   for (uint32_t p = 0; p < kPanels; ++p) {
     const double mid = h * (p + 0.5);
