@@ -192,6 +192,7 @@ constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local a
 struct BezierCursor {
   V3 p[4];       // control points
   V3 d[3];       // P[i+1] - P[i]
+  V3 h[3];       // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
   double u;      // parameter of the last sample
   double s;      // m, arclength at u
   double len;    // m, segment length (tdo_segment_length)
@@ -206,6 +207,10 @@ inline V3 bez_d2(const BezierCursor& b, double u) {
   return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
 }
 inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
+/** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
+inline double bez_speed(const BezierCursor& b, double u) {
+  return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
+}
 
 /** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
 double bez_arclen(const BezierCursor& b, double a, double e) {
@@ -221,7 +226,7 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
     double sum = 0.0;
     for (int i = 0; i < 4; ++i) {
       const double dx = 0.5 * h * kGlX[i];
-      sum += kGlW[i] * (norm(bez_d1(b, m - dx)) + norm(bez_d1(b, m + dx)));
+      sum += kGlW[i] * (bez_speed(b, m - dx) + bez_speed(b, m + dx));
     }
     total += 0.5 * h * sum;
   }
@@ -231,6 +236,9 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
 void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) {
   for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
   for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
+  c->h[0] = mul(c->d[0], 3.0);
+  c->h[1] = mul(sub(c->d[1], c->d[0]), 6.0);
+  c->h[2] = mul(add(sub(c->d[0], mul(c->d[1], 2.0)), c->d[2]), 3.0);
   c->u = 0.0;
   c->s = 0.0;
   c->len = seg.length;
