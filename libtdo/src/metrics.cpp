@@ -1,11 +1,12 @@
 // Stage 6: trajectory quality metrics (pipeline.md s.6), identical for every planner.
 //
 // Curvature integrals use composite 8-point Gauss-Legendre per curved segment (lines contribute
-// nothing). Without a geometric path the waypoint polyline is measured with its discrete
-// curvature: the turn angle theta_i concentrated at vertex i, so integral |kappa| ds = sum theta_i
-// (exact for the polyline as a limit of ever tighter fillets) and integral kappa^2 ds =
-// sum theta_i^2 / l_i with l_i the mean length of the two segments at the vertex (the usual
-// discrete bending energy; the exact value is infinite for a sharp corner).
+// nothing; Beziers over their parameter, arcs over arclength). Without a geometric path the
+// waypoint polyline is measured with its discrete curvature: the turn angle theta_i concentrated at
+// vertex i, so integral |kappa| ds = sum theta_i (exact for the polyline as a limit of ever tighter
+// fillets) and integral kappa^2 ds = sum theta_i^2 / l_i with l_i the mean length of the two
+// segments at the vertex (the usual discrete bending energy; the exact value is infinite for a
+// sharp corner).
 //
 // The clearance of curves is a proven lower bound: each curve is cut into chords, the exact
 // segment-to-obstacle distance of a chord is computed by the collision module, and the largest
@@ -116,9 +117,46 @@ Turns turn_stats(const tdo_vec3* w, uint32_t n) {
 // ---------------------------------------------------------------------------------------------
 // Curvature integrals of a path.
 
+/**
+ * Adds integral |kappa| ds and integral kappa^2 ds of a cubic Bezier, integrated over its
+ * parameter u (ds = |B'| du, kappa = |B' x B''| / |B'|^3), so no arclength is inverted: the
+ * integrands |B' x B''| / |B'|^2 and |B' x B''|^2 / |B'|^5, kPanels panels of the 8-point rule.
+ */
+void bezier_curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
+  const V3 d0 = sub(mk(seg.p[1]), mk(seg.p[0])), d1 = sub(mk(seg.p[2]), mk(seg.p[1])),
+           d2 = sub(mk(seg.p[3]), mk(seg.p[2]));
+  const V3 e0 = sub(d1, d0), e1 = sub(d2, d1);
+  const auto add_at = [&](double u, double w, double* a, double* q) {
+    const double v = 1.0 - u;
+    const V3 b1 = mul(add(add(mul(d0, v * v), mul(d1, 2.0 * v * u)), mul(d2, u * u)), 3.0);
+    const V3 b2 = mul(add(mul(e0, v), mul(e1, u)), 6.0);
+    const double sp2 = dot(b1, b1);
+    if (!(sp2 > 0.0)) return;  // a cusp of a degenerate curve: no curvature counted
+    const double c = norm(cross(b1, b2));
+    *a += w * c / sp2;
+    *q += w * c * c / (sp2 * sp2 * sqrt(sp2));
+  };
+  const double h = 1.0 / kPanels;
+  for (uint32_t p = 0; p < kPanels; ++p) {
+    const double mid = h * (p + 0.5);
+    double a = 0.0, q = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double dx = 0.5 * h * kGlX[i];
+      add_at(mid - dx, kGlW[i], &a, &q);
+      add_at(mid + dx, kGlW[i], &a, &q);
+    }
+    *abs_int += 0.5 * h * a;
+    *sq_int += 0.5 * h * q;
+  }
+}
+
 /** Adds integral |kappa| ds and integral kappa^2 ds of one segment. */
 void curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
   if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0)) return;
+  if (seg.kind == TDO_SEGMENT_BEZIER) {
+    bezier_curvature_integrals(seg, abs_int, sq_int);
+    return;
+  }
   const double h = seg.length / kPanels;
   for (uint32_t p = 0; p < kPanels; ++p) {
     const double mid = h * (p + 0.5);
@@ -158,10 +196,25 @@ int curvature_continuous(const tdo_path& path) {
 // ---------------------------------------------------------------------------------------------
 // Clearance lower bounds.
 
-/** Lower bound (m) of the distance of a chord-approximated piece: chord distance minus sagitta. */
-double piece_bound(const tdo_grid* grid, const V3& a, const V3& b, double sagitta, double cap) {
-  const double d = tdo_collision_segment_distance(grid, tv(a), tv(b), cap + sagitta);
-  return d - sagitta;
+/**
+ * min(best, the lower bound (m) of the distance of a chord-approximated piece: chord distance,
+ * capped at cap + sagitta, minus the sagitta). The chord is queried with a cap just above
+ * min(best, cap) + sagitta, so the distance queries stop early (the obstacle index is searched
+ * only that far): when the distance reaches that cap, the uncapped bound would exceed best by far
+ * more than a rounding error and best stays; below it the distance is the same exact value. So the
+ * result is bit for bit that of querying every chord at cap + sagitta.
+ */
+double piece_bound(const tdo_grid* grid, const V3& a, const V3& b, double sagitta, double cap,
+                   double best) {
+  const double full = cap + sagitta;
+  double q = full;
+  if (best < cap) {
+    const double tight = (best + sagitta) * (1.0 + 1e-9) + 1e-12;
+    if (tight < full) q = tight;
+  }
+  const double d = tdo_collision_segment_distance(grid, tv(a), tv(b), q);
+  if (q < full && !(d < q)) return best;  // reached the tight cap: no lower bound below best
+  return dmin(best, d - sagitta);
 }
 
 uint32_t chords_for(double flatness) {
@@ -188,12 +241,12 @@ V3 bez_d1(const Bezier& b, double u) {
   return mul(add(add(mul(d0, w * w), mul(d1, 2.0 * w * u)), mul(d2, u * u)), 3.0);
 }
 
-double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap) {
+double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap,
+                        double best) {
   const Bezier b{{mk(seg.p[0]), mk(seg.p[1]), mk(seg.p[2]), mk(seg.p[3])}};
   const double flat =
       dmax(point_segment(b.p[1], b.p[0], b.p[3]), point_segment(b.p[2], b.p[0], b.p[3]));
   const uint32_t k = chords_for(flat);
-  double best = HUGE_VAL;
   V3 q0 = b.p[0], d0 = bez_d1(b, 0.0);
   for (uint32_t i = 0; i < k; ++i) {
     const double u1 = i + 1u == k ? 1.0 : static_cast<double>(i + 1u) / k;
@@ -204,14 +257,14 @@ double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, doubl
     const V3 q1 = add(q0, mul(d0, du / 3.0));
     const V3 q2 = sub(q3, mul(d1, du / 3.0));
     const double sag = dmax(point_segment(q1, q0, q3), point_segment(q2, q0, q3));
-    best = dmin(best, piece_bound(grid, q0, q3, sag, cap));
+    best = piece_bound(grid, q0, q3, sag, cap, best);
     q0 = q3;
     d0 = d1;
   }
   return best;
 }
 
-double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap) {
+double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap, double best) {
   const double r = norm(sub(mk(seg.p[0]), mk(seg.p[2])));
   const double whole = norm(sub(mk(seg.p[1]), mk(seg.p[0])));
   // Sagitta of a chord c on a circle of radius r: (c^2/4) / (r + sqrt(r^2 - c^2/4)).
@@ -221,37 +274,35 @@ double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double c
     return q / (r + sqrt(root > 0.0 ? root : 0.0)) + kSagittaSlack;
   };
   const uint32_t k = chords_for(sagitta(whole));
-  double best = HUGE_VAL;
   V3 a = mk(seg.p[0]);
   for (uint32_t i = 0; i < k; ++i) {
     const V3 b =
         i + 1u == k ? mk(seg.p[1]) : mk(tdo_segment_point(&seg, seg.length * (i + 1u) / k));
-    best = dmin(best, piece_bound(grid, a, b, sagitta(norm(sub(b, a))), cap));
+    best = piece_bound(grid, a, b, sagitta(norm(sub(b, a))), cap, best);
     a = b;
   }
   return best;
 }
 
+// The running minimum goes into every query (piece_bound): same result, shorter queries.
 double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
   double best = HUGE_VAL;
   for (uint32_t i = 0; i < path.n; ++i) {
     const tdo_path_segment& seg = path.seg[i];
-    double d;
     if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0))
-      d = tdo_collision_segment_distance(grid, seg.p[0], tdo_segment_point(&seg, seg.length), cap);
+      best =
+          piece_bound(grid, mk(seg.p[0]), mk(tdo_segment_point(&seg, seg.length)), 0.0, cap, best);
     else if (seg.kind == TDO_SEGMENT_ARC)
-      d = arc_clearance(grid, seg, cap);
+      best = arc_clearance(grid, seg, cap, best);
     else
-      d = bezier_clearance(grid, seg, cap);
-    best = dmin(best, d);
+      best = bezier_clearance(grid, seg, cap, best);
   }
   return best;
 }
 
 double polyline_clearance(const tdo_grid* grid, const tdo_vec3* w, uint32_t n, double cap) {
   double best = HUGE_VAL;
-  for (uint32_t i = 1; i < n; ++i)
-    best = dmin(best, tdo_collision_segment_distance(grid, w[i - 1], w[i], cap));
+  for (uint32_t i = 1; i < n; ++i) best = piece_bound(grid, mk(w[i - 1]), mk(w[i]), 0.0, cap, best);
   return best;
 }
 

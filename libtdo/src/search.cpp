@@ -102,10 +102,10 @@ struct tdo_search {
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
-  // distances (m) to the side's target; a Dijkstra's heap and heap positions, max_voxels each.
+  // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
   double* hdist[2];
-  uint32_t* dj_heap;
-  uint32_t* dj_pos;
+  uint32_t* dj_heap;  // next voxel in the bucket
+  uint32_t* dj_pos;   // previous voxel in the bucket, kDjHead, kDjSettled or kNil (not reached)
 };
 
 namespace tdo_internal {
@@ -269,7 +269,8 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
 // the cheapest split is into as many equal turns as allowed. Admissible, so h stays a lower bound.
 inline double turn_bound(const tdo_search* ctx, double dev) {
   if (!(dev > 1e-9) || !(ctx->turn_lambda > 0.0)) return 0.0;
-  double k = floor(dev * kPi / kMinTurn);
+  // dev in (0, 1], so the quotient is in (0, 5.2): truncation is the floor, without a libm call.
+  double k = static_cast<double>(static_cast<int>(dev * kPi / kMinTurn));
   if (k < 1.0) k = 1.0;
   return ctx->turn_lambda * dev * dev / k;
 }
@@ -528,46 +529,43 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   return TDO_OK;
 }
 
-// Dijkstra heap of voxels keyed by dist[] (ties: smaller voxel index), positions in ctx->dj_pos.
-inline bool dj_before(const double* dist, uint32_t a, uint32_t b) {
-  return dist[a] < dist[b] || (!(dist[b] < dist[a]) && a < b);
-}
-
-void dj_sift_up(tdo_search* ctx, const double* dist, uint32_t i) {
-  uint32_t* heap = ctx->dj_heap;
-  const uint32_t v = heap[i];
-  while (i > 0) {
-    const uint32_t p = (i - 1u) / kArity;
-    if (!dj_before(dist, v, heap[p])) break;
-    heap[i] = heap[p];
-    ctx->dj_pos[heap[i]] = i;
-    i = p;
-  }
-  heap[i] = v;
-  ctx->dj_pos[v] = i;
-}
-
-void dj_sift_down(tdo_search* ctx, const double* dist, uint32_t n) {
-  uint32_t* heap = ctx->dj_heap;
-  const uint32_t v = heap[0];
-  uint32_t i = 0;
-  for (;;) {
-    const uint32_t first = kArity * i + 1u;
-    if (first >= n) break;
-    const uint32_t last = first + kArity < n ? first + kArity : n;
-    uint32_t c = first;
-    for (uint32_t k = first + 1u; k < last; ++k)
-      if (dj_before(dist, heap[k], heap[c])) c = k;
-    if (!dj_before(dist, heap[c], v)) break;
-    heap[i] = heap[c];
-    ctx->dj_pos[heap[i]] = i;
-    i = c;
-  }
-  heap[i] = v;
-  ctx->dj_pos[v] = i;
-}
-
+// The Dijkstra queue: buckets of key width kDjWidth * res, a ring of kDjRing of them, each a
+// doubly linked list of voxels (next in ctx->dj_heap, previous in ctx->dj_pos). Every step is at
+// least res long, so a voxel whose key lies in the lowest non-empty bucket cannot be lowered by any
+// other queued voxel (Dinitz): a bucket is settled in any order with the keys a heap would give,
+// and the settled set and the keys are those of the heap's order. A step adds at most sqrt(3) res,
+// so the keys in the queue span fewer than 4 buckets and a ring of 8 holds them apart.
+constexpr uint32_t kDjRing = 8;
+constexpr double kDjWidth = 1.0 - 1e-6;       // bucket width per res (below 1: rounding margin)
+constexpr uint32_t kDjHead = 0xFFFFFFFDu;     // dj_pos of the first voxel of a bucket's list
 constexpr uint32_t kDjSettled = 0xFFFFFFFEu;  // dj_pos of a settled voxel
+
+struct DjQueue {
+  uint32_t* next;
+  uint32_t* prev;
+  uint32_t head[kDjRing];
+  uint32_t queued;
+  double inv_width;  // 1/m
+
+  uint64_t bucket(double d) const { return static_cast<uint64_t>(d * inv_width); }
+  void insert(uint32_t v, uint64_t b) {
+    uint32_t& h = head[b & (kDjRing - 1u)];
+    next[v] = h;
+    prev[v] = kDjHead;
+    if (h != kNil) prev[h] = v;
+    h = v;
+    ++queued;
+  }
+  void unlink(uint32_t v, uint64_t b) {
+    if (prev[v] == kDjHead)
+      head[b & (kDjRing - 1u)] = next[v];
+    else
+      next[prev[v]] = next[v];
+    if (next[v] != kNil) prev[next[v]] = prev[v];
+    --queued;
+  }
+};
+
 // The Dijkstra stops once its smallest key exceeds kDjReach times the distance of the other root
 // (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
@@ -583,58 +581,78 @@ constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
 // Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
 // voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
 // stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
-// is free), so distances from the root are distances to it. Bounded: each voxel is settled once.
+// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
+// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
 // @return false when the Dijkstra ran out without reaching voxel `other` (no path).
 bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other,
                         double* dist) {
   const uint32_t nvox = g->nvox;
+  DjQueue qu;
+  qu.next = ctx->dj_heap;
+  qu.prev = ctx->dj_pos;
+  for (uint32_t k = 0; k < kDjRing; ++k) qu.head[k] = kNil;
+  qu.queued = 0;
+  qu.inv_width = 1.0 / (kDjWidth * g->desc.res);
   for (uint32_t v = 0; v < nvox; ++v) {
     dist[v] = HUGE_VAL;
-    ctx->dj_pos[v] = kNil;
+    qu.prev[v] = kNil;
   }
   dist[root] = 0.0;
-  ctx->dj_heap[0] = root;
-  ctx->dj_pos[root] = 0;
-  uint32_t n = 1;
+  qu.insert(root, 0u);
   double limit = HUGE_VAL;
   bool reached = false;
-  while (n > 0) {
-    const uint32_t u = ctx->dj_heap[0];
-    const double du = dist[u];
-    if (du > limit) break;
-    --n;
-    if (n > 0) {
-      ctx->dj_heap[0] = ctx->dj_heap[n];
-      dj_sift_down(ctx, dist, n);
+  uint64_t cur = 0;  // current bucket
+  while (qu.queued > 0) {
+    uint32_t u = qu.head[cur & (kDjRing - 1u)];
+    if (u == kNil) {
+      ++cur;
+      continue;
     }
-    ctx->dj_pos[u] = kDjSettled;
-    if (u == other) {
-      reached = true;
-      limit = kDjReach * du;
-    }
-    for (uint32_t m = g->moves[u]; m != 0; m &= m - 1u) {
-      const int e = __builtin_ctz(m);
-      const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
-      const uint32_t pw = ctx->dj_pos[w];
-      if (pw == kDjSettled) continue;
-      const double nd = du + ctx->step_len[e];
-      if (!(nd < dist[w])) continue;
-      dist[w] = nd;
-      if (pw == kNil) {
-        ctx->dj_heap[n] = w;
-        dj_sift_up(ctx, dist, n++);
-      } else {
-        dj_sift_up(ctx, dist, pw);
+    bool over = false;  // a voxel of this bucket is beyond the limit: so is every later one
+    while (u != kNil) {
+      const uint32_t after = qu.next[u];
+      const double du = dist[u];
+      if (du > limit) {
+        over = true;
+        u = after;
+        continue;
       }
+      qu.unlink(u, cur);
+      qu.prev[u] = kDjSettled;
+      if (u == other) {
+        reached = true;
+        limit = kDjReach * du;
+      }
+      for (uint32_t m = g->moves[u]; m != 0; m &= m - 1u) {
+        const int e = __builtin_ctz(m);
+        const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
+        const uint32_t pw = qu.prev[w];
+        if (pw == kDjSettled) continue;
+        const double nd = du + ctx->step_len[e];
+        if (!(nd < dist[w])) continue;
+        if (pw != kNil) {
+          const uint64_t bw = qu.bucket(dist[w]);
+          if (bw <= cur) continue;  // cannot happen (see DjQueue); keeps the list being walked
+          qu.unlink(w, bw);
+        }
+        dist[w] = nd;
+        const uint64_t b = qu.bucket(nd);
+        qu.insert(w, b > cur ? b : cur + 1u);
+      }
+      u = after;
     }
+    if (over) break;
+    ++cur;
   }
   if (!reached) return false;
   // Unsettled voxels: the smallest key left bounds their distance from below (HUGE_VAL when the
-  // heap ran empty: they are not connected to the root). Settled ones lose 1e-12 relative so that
+  // queue ran empty: they are not connected to the root). Settled ones lose 1e-12 relative so that
   // rounding of the sums never lifts the bound above a path's summed cost.
-  const double rest = n > 0 ? dist[ctx->dj_heap[0]] : HUGE_VAL;
+  double rest = HUGE_VAL;
   for (uint32_t v = 0; v < nvox; ++v)
-    dist[v] = ctx->dj_pos[v] == kDjSettled ? dist[v] * (1.0 - 1e-12) : rest;
+    if (qu.prev[v] != kDjSettled && dist[v] < rest) rest = dist[v];
+  for (uint32_t v = 0; v < nvox; ++v)
+    dist[v] = qu.prev[v] == kDjSettled ? dist[v] * (1.0 - 1e-12) : rest;
   return true;
 }
 

@@ -35,6 +35,7 @@ namespace {
 constexpr double kTolerance = 0.01;         // 1 % discretisation tolerance on v, a, j and r
 constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
 constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
+constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skipped-sample bound
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
 constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
@@ -172,6 +173,159 @@ double reach(double v0, double d, double cap, double acc, double jerk) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Bezier cursor (sampling and curve summaries).
+//
+// Samples and curvature stations walk a segment forward in small steps, so a cubic Bezier is
+// followed by a cursor (parameter u and its arclength) that Newton-steps from the previous point
+// with 8-point Gauss-Legendre over the short stretch, instead of inverting the arclength from
+// u = 0 every time as tdo_segment_eval must. Same curve and same arclength (to ~1e-13 relative).
+
+constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
+                            0.7966664774136267395915539, 0.9602898564975362316835609};
+constexpr double kGlW[4] = {0.3626837833783619829651504, 0.3137066458778872873379622,
+                            0.2223810344533744705443560, 0.1012285362903762591525314};
+constexpr int kCursorSteps = 24;             // Newton steps per sample, at most
+constexpr double kCursorPanel = 1.0 / 64.0;  // widest Gauss-Legendre panel in u
+constexpr uint32_t kCursorPanels = 64;  // panels per step, at most (covers the whole of [0, 1])
+constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local arclength model
+
+struct BezierCursor {
+  V3 p[4];       // control points
+  V3 d[3];       // P[i+1] - P[i]
+  V3 h[3];       // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
+  double u;      // parameter of the last sample
+  double s;      // m, arclength at u
+  double len;    // m, segment length (tdo_segment_length)
+  uint32_t seg;  // segment index, UINT32_MAX when unset
+};
+
+inline V3 bez_d1(const BezierCursor& b, double u) {
+  const double w = 1.0 - u;
+  return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
+}
+inline V3 bez_d2(const BezierCursor& b, double u) {
+  return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
+}
+inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
+/** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
+inline double bez_speed(const BezierCursor& b, double u) {
+  return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
+}
+
+/** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
+double bez_arclen(const BezierCursor& b, double a, double e) {
+  const double span = e - a;
+  double n = ceil(fabs(span) / kCursorPanel);
+  if (n < 1.0) n = 1.0;
+  if (n > kCursorPanels) n = kCursorPanels;
+  const uint32_t panels = static_cast<uint32_t>(n);
+  const double h = span / panels;
+  double total = 0.0;
+  for (uint32_t k = 0; k < panels; ++k) {
+    const double m = a + h * (k + 0.5);
+    double sum = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double dx = 0.5 * h * kGlX[i];
+      sum += kGlW[i] * (bez_speed(b, m - dx) + bez_speed(b, m + dx));
+    }
+    total += 0.5 * h * sum;
+  }
+  return total;
+}
+
+void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) {
+  for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
+  for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
+  c->h[0] = mul(c->d[0], 3.0);
+  c->h[1] = mul(sub(c->d[1], c->d[0]), 6.0);
+  c->h[2] = mul(add(sub(c->d[0], mul(c->d[1], 2.0)), c->d[2]), 3.0);
+  c->u = 0.0;
+  c->s = 0.0;
+  c->len = seg.length;
+  c->seg = index;
+}
+
+/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
+void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+  double u = c->u, at = c->s;
+  if (s <= 0.0) {
+    u = 0.0;
+    at = 0.0;
+  } else if (s >= c->len) {
+    u = 1.0;
+    at = c->len;
+  } else {
+    const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
+    double lo = 0.0, hi = 1.0;  // bracket of the solution in u
+    for (int it = 0; it < kCursorSteps; ++it) {
+      const double r = s - at;
+      if (fabs(r) <= tol) break;
+      if (r > 0.0)
+        lo = u;
+      else
+        hi = u;
+      const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
+      const double sp = norm(d1);
+      // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
+      const double curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
+      double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
+      if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
+      double un = u + du;
+      if (!(un > lo && un < hi)) un = 0.5 * (lo + hi);
+      if (!(un > lo && un < hi)) break;  // bracket down to adjacent doubles
+      du = un - u;
+      // Tiny corrections: the local second-order model is exact to ~du^3 (< 1e-15 m); larger
+      // steps integrate the speed exactly (Gauss-Legendre).
+      if (fabs(du) < kCursorTaylor && sp > 0.0)
+        at += du * (sp + 0.5 * curv * du);
+      else
+        at += bez_arclen(*c, u, un);
+      u = un;
+    }
+  }
+  c->u = u;
+  c->s = at;
+  const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
+           a2 = lerp(c->p[2], c->p[3], u);
+  st->p = u <= 0.0 ? tv(c->p[0])
+                   : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
+  const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
+  const double sp = norm(d1);
+  if (!(sp > 0.0)) {
+    st->t = tdo_vec3{0.0, 0.0, 0.0};
+    st->kn = st->t;
+    return;
+  }
+  const V3 t = mul(d1, 1.0 / sp);
+  st->t = tv(t);
+  st->kn = tv(mul(sub(d2, mul(t, dot(d2, t))), 1.0 / (sp * sp)));  // dT/ds
+}
+
+/** kappa and dkappa_ds at the cursor's parameter, as tdo_segment_eval computes them. */
+void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
+  st->kappa = 0.0;
+  st->dkappa_ds = 0.0;
+  const double u = c.u;
+  const V3 d1 = bez_d1(c, u), d2 = bez_d2(c, u);
+  const V3 d3 = mul(sub(sub(c.d[2], c.d[1]), sub(c.d[1], c.d[0])), 6.0);
+  const double sp = norm(d1);
+  if (!(sp > 0.0)) return;
+  const V3 cr = cross(d1, d2);
+  const double cn = norm(cr);
+  const double sp3 = sp * sp * sp;
+  st->kappa = cn / sp3;
+  // kappa = |c| / |B'|^3 with c = B' x B'', c' = B' x B''' (B'' x B'' = 0).
+  const V3 cp = cross(d1, d3);
+  double dcn;  // d|c|/du
+  if (cn > 1e-12 * (norm(cp) + sp3 / (c.len > 0.0 ? c.len : 1.0)))
+    dcn = dot(cr, cp) / cn;
+  else
+    dcn = u < 0.5 ? norm(cp) : -norm(cp);  // one-sided limit where kappa = 0
+  const double dk_du = dcn / sp3 - 3.0 * cn * dot(d1, d2) / (sp3 * sp * sp);
+  st->dkappa_ds = dk_du / sp;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Path analysis (once per run).
 
 struct Limits {
@@ -182,10 +336,19 @@ struct Limits {
 tdo_status summarise_curve(const tdo_path_segment& seg, double* kappa, double* dkappa) {
   double km = 0.0, dkm = 0.0, prev = 0.0;
   const double h = seg.length / kStations;
+  // Beziers: the stations come in order, so a cursor walks them.
+  const bool bez = seg.kind == TDO_SEGMENT_BEZIER;
+  BezierCursor cursor;
+  cursor_reset(&cursor, seg, 0u);
   for (uint32_t i = 0; i <= kStations; ++i) {
     tdo_segment_state st;
     const double s = i == kStations ? seg.length : h * i;
-    if (!tdo_segment_eval(&seg, s, &st)) return TDO_ERR_INVALID_ARGUMENT;
+    if (bez) {
+      cursor_eval(&cursor, s, &st);
+      cursor_curvature(cursor, &st);
+    } else if (!tdo_segment_eval(&seg, s, &st)) {
+      return TDO_ERR_INVALID_ARGUMENT;
+    }
     if (!isfinite(st.kappa) || !isfinite(st.dkappa_ds)) return TDO_ERR_INVALID_ARGUMENT;
     km = dmax(km, st.kappa);
     dkm = dmax(dkm, fabs(st.dkappa_ds));
@@ -420,126 +583,7 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sampling.
-//
-// Samples walk every segment forward in small steps, so a cubic Bezier is followed by a cursor
-// (parameter u and its arclength) that Newton-steps from the previous sample with 8-point
-// Gauss-Legendre over the short stretch, instead of inverting the arclength from u = 0 for every
-// sample as tdo_segment_eval must. Same curve and same arclength (to ~1e-13 relative); lines and
-// arcs use tdo_segment_eval directly.
-
-constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
-                            0.7966664774136267395915539, 0.9602898564975362316835609};
-constexpr double kGlW[4] = {0.3626837833783619829651504, 0.3137066458778872873379622,
-                            0.2223810344533744705443560, 0.1012285362903762591525314};
-constexpr int kCursorSteps = 24;             // Newton steps per sample, at most
-constexpr double kCursorPanel = 1.0 / 64.0;  // widest Gauss-Legendre panel in u
-constexpr uint32_t kCursorPanels = 64;  // panels per step, at most (covers the whole of [0, 1])
-constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local arclength model
-
-struct BezierCursor {
-  V3 p[4];       // control points
-  V3 d[3];       // P[i+1] - P[i]
-  double u;      // parameter of the last sample
-  double s;      // m, arclength at u
-  double len;    // m, segment length (tdo_segment_length)
-  uint32_t seg;  // segment index, UINT32_MAX when unset
-};
-
-inline V3 bez_d1(const BezierCursor& b, double u) {
-  const double w = 1.0 - u;
-  return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
-}
-inline V3 bez_d2(const BezierCursor& b, double u) {
-  return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
-}
-inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
-
-/** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
-double bez_arclen(const BezierCursor& b, double a, double e) {
-  const double span = e - a;
-  double n = ceil(fabs(span) / kCursorPanel);
-  if (n < 1.0) n = 1.0;
-  if (n > kCursorPanels) n = kCursorPanels;
-  const uint32_t panels = static_cast<uint32_t>(n);
-  const double h = span / panels;
-  double total = 0.0;
-  for (uint32_t k = 0; k < panels; ++k) {
-    const double m = a + h * (k + 0.5);
-    double sum = 0.0;
-    for (int i = 0; i < 4; ++i) {
-      const double dx = 0.5 * h * kGlX[i];
-      sum += kGlW[i] * (norm(bez_d1(b, m - dx)) + norm(bez_d1(b, m + dx)));
-    }
-    total += 0.5 * h * sum;
-  }
-  return total;
-}
-
-void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) {
-  for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
-  for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
-  c->u = 0.0;
-  c->s = 0.0;
-  c->len = seg.length;
-  c->seg = index;
-}
-
-/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
-void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
-  double u = c->u, at = c->s;
-  if (s <= 0.0) {
-    u = 0.0;
-    at = 0.0;
-  } else if (s >= c->len) {
-    u = 1.0;
-    at = c->len;
-  } else {
-    const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
-    double lo = 0.0, hi = 1.0;  // bracket of the solution in u
-    for (int it = 0; it < kCursorSteps; ++it) {
-      const double r = s - at;
-      if (fabs(r) <= tol) break;
-      if (r > 0.0)
-        lo = u;
-      else
-        hi = u;
-      const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
-      const double sp = norm(d1);
-      // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
-      const double curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
-      double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
-      if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
-      double un = u + du;
-      if (!(un > lo && un < hi)) un = 0.5 * (lo + hi);
-      if (!(un > lo && un < hi)) break;  // bracket down to adjacent doubles
-      du = un - u;
-      // Tiny corrections: the local second-order model is exact to ~du^3 (< 1e-15 m); larger
-      // steps integrate the speed exactly (Gauss-Legendre).
-      if (fabs(du) < kCursorTaylor && sp > 0.0)
-        at += du * (sp + 0.5 * curv * du);
-      else
-        at += bez_arclen(*c, u, un);
-      u = un;
-    }
-  }
-  c->u = u;
-  c->s = at;
-  const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
-           a2 = lerp(c->p[2], c->p[3], u);
-  st->p = u <= 0.0 ? tv(c->p[0])
-                   : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
-  const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
-  const double sp = norm(d1);
-  if (!(sp > 0.0)) {
-    st->t = tdo_vec3{0.0, 0.0, 0.0};
-    st->kn = st->t;
-    return;
-  }
-  const V3 t = mul(d1, 1.0 / sp);
-  st->t = tv(t);
-  st->kn = tv(mul(sub(d2, mul(t, dot(d2, t))), 1.0 / (sp * sp)));  // dT/ds
-}
+// Sampling: Beziers by the cursor, lines and arcs by tdo_segment_eval.
 
 tdo_status sample(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t* n_out) {
   const Phase& last = ctx->phases[ctx->n_phases - 1];
@@ -679,9 +723,20 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     v_prev = v;
   }
   if (in->grid != nullptr) {
+    // The distance to the obstacles is 1-Lipschitz: a sample within `moved` (summed sample
+    // steps) of the last evaluated one, whose distance was `ref`, is at least ref - moved away. It
+    // is skipped when that bound cannot lower the minimum nor be a violation, so the minimum and
+    // the violations are those of evaluating every sample.
     const double cap = in->clearance + kClearanceCapExtra;
+    const double floor_ok = in->clearance - kClearanceSlack;
+    double ref = -HUGE_VAL, moved = 0.0;
     for (uint32_t i = 0; i < n; ++i) {
+      if (i > 0u) moved += norm(sub(mk(sm[i].p), mk(sm[i - 1u].p)));
+      const double lb = ref - moved - kLipschitzSlack;
+      if (lb >= rep->min_clearance && lb >= floor_ok) continue;
       const double d = tdo_collision_point_distance(in->grid, sm[i].p, cap);
+      ref = d;
+      moved = 0.0;
       rep->min_clearance = dmin(rep->min_clearance, d);
       if (d < in->clearance - kClearanceSlack)
         add_violation(&r, sm[i].t, TDO_QUANTITY_CLEARANCE, d, in->clearance);

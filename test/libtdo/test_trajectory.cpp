@@ -725,6 +725,42 @@ TEST_F(TrajectoryClearance, GivenPathClearOfObstaclesThenOkAndMinClearanceIsExac
   EXPECT_NEAR(out.report.min_clearance, 1.2, 1e-9);
 }
 
+TEST_F(TrajectoryClearance, GivenPathDippingTwiceTowardsABoxThenEveryCloseSampleIsReportedExactly) {
+  // GIVEN a zigzag path that dips towards the box's lower face twice, to 0.3 m and then to 0.45 m
+  // (the verification skips samples a Lipschitz bound clears: it must not miss any of the second
+  // dip, which is closer than the clearance but farther than the minimum)
+  load_box(0.3, 0.0);
+  Traj t;
+  const std::vector<tdo_path_segment> segs{
+      line({6.5, -3, 2}, {7.0, 0.0, 2}), line({7.0, 0.0, 2}, {7.5, -3, 2}),
+      line({7.5, -3, 2}, {8.0, -0.15, 2}), line({8.0, -0.15, 2}, {8.5, -3, 2})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.grid = pl_.grid();
+  in.clearance = 0.5;
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
+  // THEN the minimum is the exact minimum over all samples, and every sample closer than the
+  // clearance is one violation, at its own distance
+  double best = kInfty;
+  uint32_t close = 0;
+  for (uint32_t i = 0; i < out.n_samples; ++i) {
+    const double d = tdo_test::distance_to_box(out.samples[i].p, obs_.boxes[0]);
+    best = std::fmin(best, d);
+    if (d < in.clearance - 1e-9) ++close;
+  }
+  ASSERT_GT(close, 0u);
+  ASSERT_LT(close, out.n_samples / 2u);
+  EXPECT_NEAR(out.report.min_clearance, best, 1e-9);
+  EXPECT_EQ(out.report.n_violations_total, close);
+  for (uint32_t i = 0; i < out.report.n_violations; ++i) {
+    const tdo_violation& v = out.report.violations[i];
+    EXPECT_EQ(v.what, TDO_QUANTITY_CLEARANCE);
+    const uint32_t k = static_cast<uint32_t>(std::lround(v.t / in.dt));
+    EXPECT_NEAR(tdo_test::distance_to_box(out.samples[k].p, obs_.boxes[0]), v.value, 1e-9);
+  }
+}
+
 TEST_F(TrajectoryClearance, GivenPathTooCloseToAnObstacleThenInfeasibleWithoutRefinement) {
   // GIVEN the box 0.3 m from the path and a clearance of 0.5 m: no speed can fix that
   load_box(0.3, 0.0);
