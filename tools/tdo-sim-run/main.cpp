@@ -96,6 +96,9 @@ struct Agg {
   int lm_episodes = 0, failed = 0;
   long lm_events = 0;
   double min_sep = HUGE_VAL, max_dev = 0.0, max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  double min_static = HUGE_VAL;  // m, smallest distance to the static geometry of any episode
+  double clearance = 0.0;        // m, the planner's clearance (set by the caller)
+  int inside_clearance = 0;      // episodes that came closer than the planner's clearance
   int over_limits = 0;
   long safety_steps = 0, evade_steps = 0;
   int safety_episodes = 0,
@@ -113,6 +116,8 @@ struct Agg {
     lm_episodes += m.lm_events > 0;
     failed += m.escape_failed;
     min_sep = std::min(min_sep, m.min_mover_sep);
+    min_static = std::min(min_static, m.min_static_dist);
+    inside_clearance += m.min_static_dist < clearance;
     if (std::isfinite(m.min_mover_sep)) seps.push_back(m.min_mover_sep);
     max_dev = std::max(max_dev, m.max_deviation);
     mean_dev.push_back(m.mean_deviation);
@@ -160,6 +165,9 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
     return std::to_string(a.collisions) + " (" + std::to_string(a.coll_mover) + "/" +
            std::to_string(a.coll_static) + ")";
   });
+  row("min static distance m", [&](const Agg& a) { return s(a.min_static); });
+  row("episodes inside planner clearance",
+      [&](const Agg& a) { return std::to_string(a.inside_clearance); });
   row("min mover separation m",
       [&](const Agg& a) { return a.seps.empty() ? std::string("-") : s(a.min_sep); });
   row("median min separation m",
@@ -261,6 +269,7 @@ int run(int argc, char** argv) {
   if (bench > 0) {
     const std::string dir = scratch_dir();
     Agg eapf, apf, eapf_free, apf_free;
+    for (Agg* a : {&eapf, &apf, &eapf_free, &apf_free}) a->clearance = o.clearance;
     for (int i = 0; i < bench; ++i) {
       const uint64_t sd = seed + static_cast<uint64_t>(i);
       const tdo_io::Map map = random_map(r, sd, dir);
