@@ -152,44 +152,77 @@ inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool fir
   row[heading] = idx;
 }
 
-inline bool before(const OpenItem& a, const OpenItem& b) {
-  if (a.f < b.f) return true;
-  if (b.f < a.f) return false;
-  if (a.h < b.h) return true;
-  if (b.h < a.h) return false;
-  return a.node < b.node;
+// Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
+// +inf), so their bit patterns order as unsigned integers: the order is that of the 128-bit integer
+// (f bits, h bits, node), compared without a data-dependent branch.
+struct Key {
+  uint64_t hi;  // bits of f
+  uint64_t lo;  // bits of h << 32 | node
+};
+
+inline Key key_of(const OpenItem& a) {
+  Key k;
+  memcpy(&k.hi, &a.f, sizeof(k.hi));
+  uint32_t h;
+  memcpy(&h, &a.h, sizeof(h));
+  k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+  return k;
+}
+
+inline bool less(const Key& a, const Key& b) {
+  return (a.hi < b.hi) | ((a.hi == b.hi) & (a.lo < b.lo));
+}
+
+inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a), key_of(b)); }
+
+inline void place(Side& s, uint32_t i, const OpenItem& it) {
+  s.open[i] = it;
+  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
 }
 
 void sift_up(Side& s, uint32_t i) {
   const OpenItem it = s.open[i];
+  const Key k = key_of(it);
   while (i > 0) {
     const uint32_t p = (i - 1u) / kArity;
-    if (!before(it, s.open[p])) break;
-    s.open[i] = s.open[p];
-    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
+    if (!less(k, key_of(s.open[p]))) break;
+    place(s, i, s.open[p]);
     i = p;
   }
-  s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+  place(s, i, it);
+}
+
+// Index of the smallest of the kArity items from `first` (all present), chosen by selects.
+inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
+  const uint32_t a =
+      first + static_cast<uint32_t>(less(key_of(open[first + 1u]), key_of(open[first])));
+  const uint32_t b =
+      first + 2u + static_cast<uint32_t>(less(key_of(open[first + 3u]), key_of(open[first + 2u])));
+  const uint32_t m = 0u - static_cast<uint32_t>(less(key_of(open[b]), key_of(open[a])));
+  return a ^ ((a ^ b) & m);
 }
 
 void sift_down(Side& s, uint32_t i) {
+  static_assert(kArity == 4, "min_of_four");
   const OpenItem it = s.open[i];
+  const Key k = key_of(it);
   const uint32_t n = s.n_open;
   for (;;) {
     const uint32_t first = kArity * i + 1u;
     if (first >= n) break;
-    const uint32_t last = first + kArity < n ? first + kArity : n;
-    uint32_t c = first;
-    for (uint32_t k = first + 1u; k < last; ++k)
-      if (before(s.open[k], s.open[c])) c = k;
-    if (!before(s.open[c], it)) break;
-    s.open[i] = s.open[c];
-    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
+    uint32_t c;
+    if (first + kArity <= n) {
+      c = min_of_four(s.open, first);
+    } else {
+      c = first;
+      for (uint32_t j = first + 1u; j < n; ++j)
+        if (before(s.open[j], s.open[c])) c = j;
+    }
+    if (!less(key_of(s.open[c]), k)) break;
+    place(s, i, s.open[c]);
     i = c;
   }
-  s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+  place(s, i, it);
 }
 
 uint32_t pop(Side& s) {
