@@ -236,6 +236,16 @@ uint32_t pop(Side& s) {
   return top;
 }
 
+// A hint to load the cache line at p (GCC drops __builtin_prefetch here, so x86 gets the
+// instruction itself; a prefetch never faults).
+inline void prefetch(const void* p) {
+#if defined(__x86_64__) || defined(__i386__)
+  __asm__ volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#else
+  __builtin_prefetch(p);
+#endif
+}
+
 inline int32_t iabs(int32_t a) { return a < 0 ? -a : a; }
 
 // 3D octile distance: admissible and consistent for the length part of the cost.
@@ -516,30 +526,100 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   return TDO_OK;
 }
 
-template <bool kHeaded>
-tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+// Voxel-state searches (no heading costs): offer voxel w, whose open slot word of this query is
+// `word` (0 = not reached yet), at cost ng with parent ui over search-sense step e (forward-sense
+// d). The same as relax<false>.
+inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int e,
+                              int d, double ng, uint64_t word) {
+  Side& s = ctx->side[back];
+  uint32_t idx;
+  if (word != 0) {
+    idx = static_cast<uint32_t>(word & kSlotIndex);
+    Node& n = s.nodes[idx];
+    if (!(ng < n.g)) return TDO_OK;
+    n.g = ng;
+    n.parent = ui;
+    n.heading = static_cast<uint8_t>(d);
+    if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
+      float h = 0.0f;
+      s.open[n.heap].f = priority<false>(ctx, q, s, back, n, &h);
+      s.open[n.heap].h = h;
+      sift_up(s, n.heap);
+    }
+  } else {
+    if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+    const Node& u = s.nodes[ui];
+    idx = s.n_nodes++;
+    Node& n = s.nodes[idx];
+    n.g = ng;
+    n.parent = ui;
+    n.voxel = w;
+    n.next = kNil;
+    n.x = static_cast<uint16_t>(u.x + dir_dx(e));
+    n.y = static_cast<uint16_t>(u.y + dir_dy(e));
+    n.z = static_cast<uint16_t>(u.z + dir_dz(e));
+    n.heading = static_cast<uint8_t>(d);
+    n.closed = 0;
+    slot_set(ctx, s, w, idx);
+    push(ctx, q, s, back, idx, false);
+  }
+  if (q.bidir) meet<false>(ctx, q, back, idx);
+  return TDO_OK;
+}
+
+// Expansion of a voxel state: a neighbour one legal step away from u's parent p was already offered
+// by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up. The
+// slot words of the other neighbours are read first (their cache misses overlap, and the states
+// they name are prefetched), then the neighbours are relaxed in step order as before.
+tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const tdo_grid* g = q.grid;
+  const Node u = s.nodes[ui];
+  uint32_t mask = g->moves[u.voxel];  // search-sense steps
+  if (u.parent != kNil) {
+    const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
+    const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
+    for (uint32_t m = mask; m != 0; m &= m - 1u) {
+      const int e = __builtin_ctz(m);
+      const uint8_t c = ctx->combo[s_in][e];
+      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) mask &= ~(1u << e);
+    }
+  }
+  uint64_t word[kNumDirs];  // slot word of each step's voxel, 0 when not reached this query
+  const uint64_t gen = static_cast<uint64_t>(ctx->gen) << 32;
+  for (uint32_t m = mask; m != 0; m &= m - 1u) {
+    const int e = __builtin_ctz(m);
+    const uint64_t wd = s.slot[static_cast<int64_t>(u.voxel) + ctx->offset[e]];
+    const bool current = (wd & ~kSlotIndex & ~kSlotClosed) == gen;
+    if (current && (wd & kSlotClosed) != 0) {
+      mask &= ~(1u << e);  // expanded already
+      continue;
+    }
+    word[e] = current ? wd : 0u;
+    if (current) prefetch(s.nodes + (wd & kSlotIndex));
+  }
+  for (; mask != 0; mask &= mask - 1u) {
+    const int e = __builtin_ctz(mask);
+    const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
+    const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
+                                      u.g + ctx->step_len[e], word[e]);
+    if (st != TDO_OK) return st;
+  }
+  return TDO_OK;
+}
+
+template <bool kHeaded>
+tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+  if (!kHeaded) return expand_voxel(ctx, q, back, ui);
+  Side& s = ctx->side[back];
   const Node u = s.nodes[ui];
   uint32_t direct;  // search-sense steps expanded directly
   uint32_t sharp;   // search-sense steps reached through a pivot only
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  // Without heading costs, a neighbour one legal step away from u's parent p was already offered
-  // by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up.
-  int s_in = -1;         // search-sense step p -> u
-  uint32_t p_moves = 0;  // legal steps from p
-  if (!kHeaded && u.parent != kNil) {
-    s_in = back ? dir_opposite(u.heading) : u.heading;
-    p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-  }
   uint32_t mask = direct;
   while (mask != 0) {
     const int e = __builtin_ctz(mask);  // search-direction step
     mask &= mask - 1u;
-    if (!kHeaded && s_in >= 0) {
-      const uint8_t c = ctx->combo[s_in][e];
-      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) continue;
-    }
     const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
@@ -718,20 +798,15 @@ inline double top_of(const Side& s) {
   return s.n_open > 0 ? s.open[0].f : HUGE_VAL;
 }
 
-// A hint to load the cache line at p (GCC drops __builtin_prefetch here, so x86 gets the
-// instruction itself; a prefetch never faults).
-inline void prefetch(const void* p) {
-#if defined(__x86_64__) || defined(__i386__)
-  __asm__ volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
-#else
-  __builtin_prefetch(p);
-#endif
-}
-
 // Voxel-state searches: start loading the slot words of the 3x3x3 block around voxel v (one line
 // per row of three) and its move mask while the open list is reordered.
-inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s, uint32_t v) {
+inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s, int back,
+                           const Node& n) {
+  const uint32_t v = n.voxel;
   prefetch(q.grid->moves + v);
+  if (n.parent != kNil)  // the parent's move mask, for the pruning in expand_voxel
+    prefetch(q.grid->moves +
+             (static_cast<int64_t>(v) - ctx->offset[back ? dir_opposite(n.heading) : n.heading]));
   const int64_t sy = q.grid->stride_y, sz = q.grid->stride_z;
   for (int64_t dz = -sz; dz <= sz; dz += sz)
     for (int64_t dy = -sy; dy <= sy; dy += sy) {
@@ -775,7 +850,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       s.nodes[ui].heap = kNil;
     } else {
       s.f_cur = s.open[0].f;
-      if (!kHeaded) prefetch_block(ctx, q, s, s.nodes[s.open[0].node].voxel);
+      if (!kHeaded) prefetch_block(ctx, q, s, back, s.nodes[s.open[0].node]);
       ui = pop(s);
     }
     ++q.expansions;
