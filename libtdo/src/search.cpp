@@ -44,11 +44,13 @@ static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
 constexpr uint32_t kArity =
     4;  // 4-ary heap: half the depth of a binary heap, children share a line
 
-// Per-voxel slot word: generation stamp in the high 32 bits, first state of the voxel's chain in
-// the low 31 bits, and kSlotClosed once the voxel's only state is expanded (searches without
-// heading costs), so closed neighbours are skipped without touching the node pool.
-constexpr uint64_t kSlotClosed = 0x80000000u;
-constexpr uint64_t kSlotIndex = 0x7FFFFFFFu;
+// Per-voxel slot: the first state of the voxel's chain in the low 31 bits, kNil when the voxel has
+// none, and kSlotClosed once the voxel's only state is expanded (searches without heading costs),
+// so closed neighbours are skipped without touching the node pool. A search ends by setting the
+// slots of its states' voxels back to kNil (clear_slots), so no generation stamp is needed and a
+// slot takes 4 bytes.
+constexpr uint32_t kSlotClosed = 0x80000000u;
+constexpr uint32_t kSlotIndex = 0x7FFFFFFFu;
 // Open-list item that stands for the deferred pivots of an expanded state (partial expansion):
 // its f is a lower bound of every pivot's f, so most are never popped.
 constexpr uint32_t kPivotItem = 0x80000000u;
@@ -66,8 +68,8 @@ struct StackItem {
 };
 
 struct Side {
-  uint64_t* slot;           // per voxel: see kSlotClosed
-  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is current
+  uint32_t* slot;           // per voxel: see kSlotClosed
+  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
   Node* nodes;              // state pool, max_nodes
   OpenItem* open;           // binary min-heap, max_nodes
   uint32_t n_nodes;
@@ -88,7 +90,6 @@ struct Side {
 struct tdo_search {
   tdo_search_config cfg;
   tdo_internal::Side side[2];                                           // 0 forward, 1 backward
-  uint32_t gen;                                                         // query generation stamp
   tdo_voxel* path;                                                      // max_path voxels
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
   double turn_lambda;                       // lambda the turn table was built for
@@ -134,12 +135,14 @@ constexpr uint8_t kComboBack = 26;   // b undoes a
 constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
 
 inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
-  const uint64_t w = s.slot[v];
-  return (w >> 32) == ctx->gen ? static_cast<uint32_t>(w & kSlotIndex) : kNil;
+  (void)ctx;
+  const uint32_t i = s.slot[v];
+  return i == kNil ? kNil : (i & kSlotIndex);
 }
 
 inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
-  s.slot[v] = (static_cast<uint64_t>(ctx->gen) << 32) | idx;
+  (void)ctx;
+  s.slot[v] = idx;
 }
 
 // Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
@@ -419,15 +422,11 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
       while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
     }
   } else {
-    const uint64_t word = s.slot[w];
-    if ((word >> 32) == ctx->gen) {
-      if ((word & kSlotClosed) != 0) return TDO_OK;
-      idx = static_cast<uint32_t>(word & kSlotIndex);
-    }
+    idx = slot_first(ctx, s, w);
   }
   if (idx != kNil) {
     Node& n = s.nodes[idx];
-    if ((kHeaded && n.closed) || !(ng < n.g)) return TDO_OK;  // voxel mode: the slot said open
+    if (n.closed || !(ng < n.g)) return TDO_OK;
     n.g = ng;
     n.parent = ui;
     n.heading = static_cast<uint8_t>(heading);
@@ -526,15 +525,13 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   return TDO_OK;
 }
 
-// Voxel-state searches (no heading costs): offer voxel w, whose open slot word of this query is
-// `word` (0 = not reached yet), at cost ng with parent ui over search-sense step e (forward-sense
-// d). The same as relax<false>.
+// Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
+// reached yet), at cost ng with parent ui over search-sense step e (forward-sense d). The same as
+// relax<false>.
 inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int e,
-                              int d, double ng, uint64_t word) {
+                              int d, double ng, uint32_t idx) {
   Side& s = ctx->side[back];
-  uint32_t idx;
-  if (word != 0) {
-    idx = static_cast<uint32_t>(word & kSlotIndex);
+  if (idx != kNil) {
     Node& n = s.nodes[idx];
     if (!(ng < n.g)) return TDO_OK;
     n.g = ng;
@@ -569,8 +566,8 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
 
 // Expansion of a voxel state: a neighbour one legal step away from u's parent p was already offered
 // by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up. The
-// slot words of the other neighbours are read first (their cache misses overlap, and the states
-// they name are prefetched), then the neighbours are relaxed in step order as before.
+// slots of the other neighbours are read first (their cache misses overlap), then the neighbours
+// are relaxed in step order as before.
 tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const tdo_grid* g = q.grid;
@@ -585,24 +582,22 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
       if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) mask &= ~(1u << e);
     }
   }
-  uint64_t word[kNumDirs];  // slot word of each step's voxel, 0 when not reached this query
-  const uint64_t gen = static_cast<uint64_t>(ctx->gen) << 32;
+  uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
   for (uint32_t m = mask; m != 0; m &= m - 1u) {
     const int e = __builtin_ctz(m);
-    const uint64_t wd = s.slot[static_cast<int64_t>(u.voxel) + ctx->offset[e]];
-    const bool current = (wd & ~kSlotIndex & ~kSlotClosed) == gen;
-    if (current && (wd & kSlotClosed) != 0) {
+    const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
+    const uint32_t i = s.slot[w];
+    if (i != kNil && (i & kSlotClosed) != 0) {
       mask &= ~(1u << e);  // expanded already
       continue;
     }
-    word[e] = current ? wd : 0u;
-    if (current) prefetch(s.nodes + (wd & kSlotIndex));
+    state[e] = i;
   }
   for (; mask != 0; mask &= mask - 1u) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
-                                      u.g + ctx->step_len[e], word[e]);
+                                      u.g + ctx->step_len[e], state[e]);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -866,6 +861,17 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
   }
 }
 
+// The search loop, then every slot it set back to kNil (the states' voxels, from the pools).
+template <bool kHeaded>
+tdo_status run_search(tdo_search* ctx, Query& q) {
+  const tdo_status st = search_loop<kHeaded>(ctx, q);
+  for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
+    Side& s = ctx->side[k];
+    for (uint32_t i = 0; i < s.n_nodes; ++i) s.slot[s.nodes[i].voxel] = kNil;
+  }
+  return st;
+}
+
 double step_length(const tdo_voxel& a, const tdo_voxel& b, double res) {
   const int order = (a.i != b.i ? 1 : 0) + (a.j != b.j ? 1 : 0) + (a.k != b.k ? 1 : 0);
   return order == 3 ? res * kSqrt3 : order == 2 ? res * kSqrt2 : order == 1 ? res : 0.0;
@@ -963,7 +969,7 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
 }
 
 size_t side_bytes(const tdo_search_config& cfg) {
-  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
+  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint32_t)) +
          (cfg.exact_heuristic
               ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
               : 0u) +
@@ -1032,7 +1038,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   }
   for (int k = 0; k < 2; ++k) {
     Side& s = ctx->side[k];
-    s.slot = static_cast<uint64_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint64_t)));
+    s.slot = static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
     s.heading_index = nullptr;
     if (cfg->dense_headings) {
       s.heading_index = static_cast<uint32_t*>(tdo_arena_alloc(arena, heading_index_bytes(*cfg)));
@@ -1042,7 +1048,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     s.open = static_cast<OpenItem*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(OpenItem)));
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
-    memset(s.slot, 0, cfg->max_voxels * sizeof(uint64_t));
+    memset(s.slot, 0xFF, cfg->max_voxels * sizeof(uint32_t));  // kNil: no states
     s.hx = nullptr;
     ctx->hdist[k] = nullptr;
     if (cfg->exact_heuristic) {
@@ -1111,15 +1117,10 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
-  if (++ctx->gen == 0) {  // stamps wrapped: clear them once every 2^32 queries
-    for (int k = 0; k < 2; ++k)
-      memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
-    ctx->gen = 1;
-  }
   const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
-    const tdo_status st = search_loop<false>(ctx, q);
+    const tdo_status st = run_search<false>(ctx, q);
     out->expansions = q.expansions;
     if (st != TDO_OK) return st;
     return write_path(ctx, q, out);
@@ -1138,7 +1139,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
-    st = search_loop<true>(ctx, q);
+    st = run_search<true>(ctx, q);
     const bool retry = t < retries && q.expansions < budget &&
                        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY);
     if (!retry) break;
@@ -1150,11 +1151,6 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
         }
         ctx->side[k].hx = ctx->hdist[k];
       }
-    }
-    if (++ctx->gen == 0) {  // a fresh generation: the last try's states are forgotten
-      for (int k = 0; k < 2; ++k)
-        memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
-      ctx->gen = 1;
     }
     q.best = HUGE_VAL;
     q.meet[0] = q.meet[1] = kNil;
