@@ -183,8 +183,10 @@ inline void place(Side& s, uint32_t i, const OpenItem& it) {
   if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
 }
 
-void sift_up(Side& s, uint32_t i) {
-  const OpenItem it = s.open[i];
+// Put item `it` at position i (a hole, or its old place) and move it up to where it belongs. The
+// item comes in registers: storing its fields and reading them back as one key would stall on
+// store-to-load forwarding.
+void sift_up(Side& s, uint32_t i, const OpenItem& it) {
   const Key k = key_of(it);
   while (i > 0) {
     const uint32_t p = (i - 1u) / kArity;
@@ -194,6 +196,8 @@ void sift_up(Side& s, uint32_t i) {
   }
   place(s, i, it);
 }
+
+inline void sift_up(Side& s, uint32_t i) { sift_up(s, i, s.open[i]); }
 
 // Index of the smallest of the kArity items from `first` (all present), chosen by selects.
 inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
@@ -205,35 +209,30 @@ inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
   return a ^ ((a ^ b) & m);
 }
 
-void sift_down(Side& s, uint32_t i) {
-  static_assert(kArity == 4, "min_of_four");
-  const OpenItem it = s.open[i];
-  const Key k = key_of(it);
-  const uint32_t n = s.n_open;
-  for (;;) {
-    const uint32_t first = kArity * i + 1u;
-    if (first >= n) break;
-    uint32_t c;
-    if (first + kArity <= n) {
-      c = min_of_four(s.open, first);
-    } else {
-      c = first;
-      for (uint32_t j = first + 1u; j < n; ++j)
-        if (before(s.open[j], s.open[c])) c = j;
-    }
-    if (!less(key_of(s.open[c]), k)) break;
-    place(s, i, s.open[c]);
-    i = c;
-  }
-  place(s, i, it);
-}
-
+// Remove the smallest item: the hole it leaves goes down to a leaf along the smaller children
+// (no comparison with the item that fills it), then the last item fills the hole and sifts up,
+// which it rarely does far (it came from the bottom).
 uint32_t pop(Side& s) {
+  static_assert(kArity == 4, "min_of_four");
   const uint32_t top = s.open[0].node;
-  --s.n_open;
-  if (s.n_open > 0) {
-    s.open[0] = s.open[s.n_open];
-    sift_down(s, 0);
+  const uint32_t n = --s.n_open;
+  if (n > 0) {
+    uint32_t i = 0;
+    for (;;) {
+      const uint32_t first = kArity * i + 1u;
+      if (first >= n) break;
+      uint32_t c;
+      if (first + kArity <= n) {
+        c = min_of_four(s.open, first);
+      } else {
+        c = first;
+        for (uint32_t j = first + 1u; j < n; ++j)
+          if (before(s.open[j], s.open[c])) c = j;
+      }
+      place(s, i, s.open[c]);
+      i = c;
+    }
+    sift_up(s, i, s.open[n]);
   }
   if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
   return top;
@@ -367,8 +366,7 @@ void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool
     s.nodes[idx].heap = kInStack;
     return;
   }
-  s.open[s.n_open] = it;
-  sift_up(s, s.n_open++);
+  sift_up(s, s.n_open++, it);
 }
 
 // A pivot state turned in place: its parent holds the same voxel.
@@ -431,10 +429,10 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     n.parent = ui;
     n.heading = static_cast<uint8_t>(heading);
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
-      float h = 0.0f;
-      s.open[n.heap].f = priority<kHeaded>(ctx, q, s, back, n, &h);
-      s.open[n.heap].h = h;
-      sift_up(s, n.heap);
+      OpenItem it;
+      it.node = idx;
+      it.f = priority<kHeaded>(ctx, q, s, back, n, &it.h);
+      sift_up(s, n.heap, it);
     }
   } else {
     if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
@@ -538,10 +536,10 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
     n.parent = ui;
     n.heading = static_cast<uint8_t>(d);
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
-      float h = 0.0f;
-      s.open[n.heap].f = priority<false>(ctx, q, s, back, n, &h);
-      s.open[n.heap].h = h;
-      sift_up(s, n.heap);
+      OpenItem it;
+      it.node = idx;
+      it.f = priority<false>(ctx, q, s, back, n, &it.h);
+      sift_up(s, n.heap, it);
     }
   } else {
     if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
