@@ -47,7 +47,7 @@ constexpr uint32_t kArity =
 // Per-voxel slot: the first state of the voxel's chain in the low 31 bits, kNil when the voxel has
 // none, and kSlotClosed once the voxel's only state is expanded (searches without heading costs),
 // so closed neighbours are skipped without touching the node pool. A search ends by setting the
-// slots of its states' voxels back to kNil (clear_slots), so no generation stamp is needed and a
+// slots of its states' voxels back to kNil (run_search), so no generation stamp is needed and a
 // slot takes 4 bytes.
 constexpr uint32_t kSlotClosed = 0x80000000u;
 constexpr uint32_t kSlotIndex = 0x7FFFFFFFu;
@@ -197,7 +197,10 @@ void sift_up(Side& s, uint32_t i, const OpenItem& it) {
   place(s, i, it);
 }
 
-inline void sift_up(Side& s, uint32_t i) { sift_up(s, i, s.open[i]); }
+inline void sift_up(Side& s, uint32_t i) {
+  const OpenItem it = s.open[i];  // a copy: sift_up overwrites position i
+  sift_up(s, i, it);
+}
 
 // Index of the smallest of the kArity items from `first` (all present), chosen by selects.
 inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
@@ -232,7 +235,8 @@ uint32_t pop(Side& s) {
       place(s, i, s.open[c]);
       i = c;
     }
-    sift_up(s, i, s.open[n]);
+    const OpenItem last = s.open[n];
+    sift_up(s, i, last);
   }
   if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
   return top;
@@ -791,7 +795,7 @@ inline double top_of(const Side& s) {
   return s.n_open > 0 ? s.open[0].f : HUGE_VAL;
 }
 
-// Voxel-state searches: start loading the slot words of the 3x3x3 block around voxel v (one line
+// Voxel-state searches: start loading the slots of the 3x3x3 block around voxel v (one line
 // per row of three) and its move mask while the open list is reordered.
 inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s, int back,
                            const Node& n) {
@@ -864,8 +868,10 @@ template <bool kHeaded>
 tdo_status run_search(tdo_search* ctx, Query& q) {
   const tdo_status st = search_loop<kHeaded>(ctx, q);
   for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-    Side& s = ctx->side[k];
-    for (uint32_t i = 0; i < s.n_nodes; ++i) s.slot[s.nodes[i].voxel] = kNil;
+    uint32_t* slot = ctx->side[k].slot;
+    const Node* nodes = ctx->side[k].nodes;
+    const uint32_t n = ctx->side[k].n_nodes;
+    for (uint32_t i = 0; i < n; ++i) slot[nodes[i].voxel] = kNil;
   }
   return st;
 }
