@@ -44,11 +44,13 @@ static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
 constexpr uint32_t kArity =
     4;  // 4-ary heap: half the depth of a binary heap, children share a line
 
-// Per-voxel slot word: generation stamp in the high 32 bits, first state of the voxel's chain in
-// the low 31 bits, and kSlotClosed once the voxel's only state is expanded (searches without
-// heading costs), so closed neighbours are skipped without touching the node pool.
-constexpr uint64_t kSlotClosed = 0x80000000u;
-constexpr uint64_t kSlotIndex = 0x7FFFFFFFu;
+// Per-voxel slot: the first state of the voxel's chain in the low 31 bits, kNil when the voxel has
+// none, and kSlotClosed once the voxel's only state is expanded (searches without heading costs),
+// so closed neighbours are skipped without touching the node pool. A search ends by setting the
+// slots of its states' voxels back to kNil (run_search), so no generation stamp is needed and a
+// slot takes 4 bytes.
+constexpr uint32_t kSlotClosed = 0x80000000u;
+constexpr uint32_t kSlotIndex = 0x7FFFFFFFu;
 // Open-list item that stands for the deferred pivots of an expanded state (partial expansion):
 // its f is a lower bound of every pivot's f, so most are never popped.
 constexpr uint32_t kPivotItem = 0x80000000u;
@@ -66,8 +68,8 @@ struct StackItem {
 };
 
 struct Side {
-  uint64_t* slot;           // per voxel: see kSlotClosed
-  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is current
+  uint32_t* slot;           // per voxel: see kSlotClosed
+  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
   Node* nodes;              // state pool, max_nodes
   OpenItem* open;           // binary min-heap, max_nodes
   uint32_t n_nodes;
@@ -88,7 +90,6 @@ struct Side {
 struct tdo_search {
   tdo_search_config cfg;
   tdo_internal::Side side[2];                                           // 0 forward, 1 backward
-  uint32_t gen;                                                         // query generation stamp
   tdo_voxel* path;                                                      // max_path voxels
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
   double turn_lambda;                       // lambda the turn table was built for
@@ -134,12 +135,14 @@ constexpr uint8_t kComboBack = 26;   // b undoes a
 constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
 
 inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
-  const uint64_t w = s.slot[v];
-  return (w >> 32) == ctx->gen ? static_cast<uint32_t>(w & kSlotIndex) : kNil;
+  (void)ctx;
+  const uint32_t i = s.slot[v];
+  return i == kNil ? kNil : (i & kSlotIndex);
 }
 
 inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
-  s.slot[v] = (static_cast<uint64_t>(ctx->gen) << 32) | idx;
+  (void)ctx;
+  s.slot[v] = idx;
 }
 
 // Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
@@ -152,55 +155,101 @@ inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool fir
   row[heading] = idx;
 }
 
-inline bool before(const OpenItem& a, const OpenItem& b) {
-  if (a.f < b.f) return true;
-  if (b.f < a.f) return false;
-  if (a.h < b.h) return true;
-  if (b.h < a.h) return false;
-  return a.node < b.node;
+// Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
+// +inf), so their bit patterns order as unsigned integers: the order is that of the 128-bit integer
+// (f bits, h bits, node), compared without a data-dependent branch.
+struct Key {
+  uint64_t hi;  // bits of f
+  uint64_t lo;  // bits of h << 32 | node
+};
+
+inline Key key_of(const OpenItem& a) {
+  Key k;
+  memcpy(&k.hi, &a.f, sizeof(k.hi));
+  uint32_t h;
+  memcpy(&h, &a.h, sizeof(h));
+  k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+  return k;
 }
 
-void sift_up(Side& s, uint32_t i) {
-  const OpenItem it = s.open[i];
+inline bool less(const Key& a, const Key& b) {
+  return (a.hi < b.hi) | ((a.hi == b.hi) & (a.lo < b.lo));
+}
+
+inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a), key_of(b)); }
+
+inline void place(Side& s, uint32_t i, const OpenItem& it) {
+  s.open[i] = it;
+  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+}
+
+// Put item `it` at position i (a hole, or its old place) and move it up to where it belongs. The
+// item comes in registers: storing its fields and reading them back as one key would stall on
+// store-to-load forwarding.
+void sift_up(Side& s, uint32_t i, const OpenItem& it) {
+  const Key k = key_of(it);
   while (i > 0) {
     const uint32_t p = (i - 1u) / kArity;
-    if (!before(it, s.open[p])) break;
-    s.open[i] = s.open[p];
-    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
+    if (!less(k, key_of(s.open[p]))) break;
+    place(s, i, s.open[p]);
     i = p;
   }
-  s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+  place(s, i, it);
 }
 
-void sift_down(Side& s, uint32_t i) {
-  const OpenItem it = s.open[i];
-  const uint32_t n = s.n_open;
-  for (;;) {
-    const uint32_t first = kArity * i + 1u;
-    if (first >= n) break;
-    const uint32_t last = first + kArity < n ? first + kArity : n;
-    uint32_t c = first;
-    for (uint32_t k = first + 1u; k < last; ++k)
-      if (before(s.open[k], s.open[c])) c = k;
-    if (!before(s.open[c], it)) break;
-    s.open[i] = s.open[c];
-    if ((s.open[i].node & kPivotItem) == 0) s.nodes[s.open[i].node].heap = i;
-    i = c;
-  }
-  s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+inline void sift_up(Side& s, uint32_t i) {
+  const OpenItem it = s.open[i];  // a copy: sift_up overwrites position i
+  sift_up(s, i, it);
 }
 
+// Index of the smallest of the kArity items from `first` (all present), chosen by selects.
+inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
+  const uint32_t a =
+      first + static_cast<uint32_t>(less(key_of(open[first + 1u]), key_of(open[first])));
+  const uint32_t b =
+      first + 2u + static_cast<uint32_t>(less(key_of(open[first + 3u]), key_of(open[first + 2u])));
+  const uint32_t m = 0u - static_cast<uint32_t>(less(key_of(open[b]), key_of(open[a])));
+  return a ^ ((a ^ b) & m);
+}
+
+// Remove the smallest item: the hole it leaves goes down to a leaf along the smaller children
+// (no comparison with the item that fills it), then the last item fills the hole and sifts up,
+// which it rarely does far (it came from the bottom).
 uint32_t pop(Side& s) {
+  static_assert(kArity == 4, "min_of_four");
   const uint32_t top = s.open[0].node;
-  --s.n_open;
-  if (s.n_open > 0) {
-    s.open[0] = s.open[s.n_open];
-    sift_down(s, 0);
+  const uint32_t n = --s.n_open;
+  if (n > 0) {
+    uint32_t i = 0;
+    for (;;) {
+      const uint32_t first = kArity * i + 1u;
+      if (first >= n) break;
+      uint32_t c;
+      if (first + kArity <= n) {
+        c = min_of_four(s.open, first);
+      } else {
+        c = first;
+        for (uint32_t j = first + 1u; j < n; ++j)
+          if (before(s.open[j], s.open[c])) c = j;
+      }
+      place(s, i, s.open[c]);
+      i = c;
+    }
+    const OpenItem last = s.open[n];
+    sift_up(s, i, last);
   }
   if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
   return top;
+}
+
+// A hint to load the cache line at p (GCC drops __builtin_prefetch here, so x86 gets the
+// instruction itself; a prefetch never faults).
+inline void prefetch(const void* p) {
+#if defined(__x86_64__) || defined(__i386__)
+  __asm__ volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#else
+  __builtin_prefetch(p);
+#endif
 }
 
 inline int32_t iabs(int32_t a) { return a < 0 ? -a : a; }
@@ -225,6 +274,18 @@ inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res)
   }
   return res * (static_cast<double>(a) + (kSqrt2 - 1.0) * static_cast<double>(b) +
                 (kSqrt3 - kSqrt2) * static_cast<double>(c));
+}
+
+// octile() of the voxel-state searches without a branch per comparison: the same sorted
+// differences and the same arithmetic, so the same value bit for bit.
+inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+  const int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
+  const int32_t ab_max = a > b ? a : b, ab_min = a > b ? b : a;
+  const int32_t hi = ab_max > c ? ab_max : c;
+  const int32_t lo = ab_min < c ? ab_min : c;
+  const int32_t mid = a + b + c - hi - lo;
+  return res * (static_cast<double>(hi) + (kSqrt2 - 1.0) * static_cast<double>(mid) +
+                (kSqrt3 - kSqrt2) * static_cast<double>(lo));
 }
 
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
@@ -288,7 +349,7 @@ template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
   const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
-                           : octile(s, n.x, n.y, n.z, q.grid->desc.res);
+                           : octile_voxel(s, n.x, n.y, n.z, q.grid->desc.res);
   *h_out = static_cast<float>(h);
   if (!kHeaded) return n.g + h;
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
@@ -310,8 +371,7 @@ void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool
     s.nodes[idx].heap = kInStack;
     return;
   }
-  s.open[s.n_open] = it;
-  sift_up(s, s.n_open++);
+  sift_up(s, s.n_open++, it);
 }
 
 // A pivot state turned in place: its parent holds the same voxel.
@@ -365,11 +425,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
       while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
     }
   } else {
-    const uint64_t word = s.slot[w];
-    if ((word >> 32) == ctx->gen) {
-      if ((word & kSlotClosed) != 0) return TDO_OK;
-      idx = static_cast<uint32_t>(word & kSlotIndex);
-    }
+    idx = slot_first(ctx, s, w);
   }
   if (idx != kNil) {
     Node& n = s.nodes[idx];
@@ -378,10 +434,10 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     n.parent = ui;
     n.heading = static_cast<uint8_t>(heading);
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
-      float h = 0.0f;
-      s.open[n.heap].f = priority<kHeaded>(ctx, q, s, back, n, &h);
-      s.open[n.heap].h = h;
-      sift_up(s, n.heap);
+      OpenItem it;
+      it.node = idx;
+      it.f = priority<kHeaded>(ctx, q, s, back, n, &it.h);
+      sift_up(s, n.heap, it);
     }
   } else {
     if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
@@ -397,7 +453,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     n.z = static_cast<uint16_t>(u.z + (step >= 0 ? dir_dz(step) : 0));
     n.heading = static_cast<uint8_t>(heading);
     n.closed = 0;
-    index_state(s, w, heading, idx, n.next == kNil);
+    if (kHeaded) index_state(s, w, heading, idx, n.next == kNil);
     slot_set(ctx, s, w, idx);
     push(ctx, q, s, back, idx, kHeaded);
   }
@@ -472,30 +528,96 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   return TDO_OK;
 }
 
-template <bool kHeaded>
-tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+// Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
+// reached yet), at cost ng with parent ui over search-sense step e (forward-sense d). The same as
+// relax<false>.
+inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int e,
+                              int d, double ng, uint32_t idx) {
+  Side& s = ctx->side[back];
+  if (idx != kNil) {
+    Node& n = s.nodes[idx];
+    if (!(ng < n.g)) return TDO_OK;
+    n.g = ng;
+    n.parent = ui;
+    n.heading = static_cast<uint8_t>(d);
+    if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
+      OpenItem it;
+      it.node = idx;
+      it.f = priority<false>(ctx, q, s, back, n, &it.h);
+      sift_up(s, n.heap, it);
+    }
+  } else {
+    if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+    const Node& u = s.nodes[ui];
+    idx = s.n_nodes++;
+    Node& n = s.nodes[idx];
+    n.g = ng;
+    n.parent = ui;
+    n.voxel = w;
+    n.next = kNil;
+    n.x = static_cast<uint16_t>(u.x + dir_dx(e));
+    n.y = static_cast<uint16_t>(u.y + dir_dy(e));
+    n.z = static_cast<uint16_t>(u.z + dir_dz(e));
+    n.heading = static_cast<uint8_t>(d);
+    n.closed = 0;
+    slot_set(ctx, s, w, idx);
+    push(ctx, q, s, back, idx, false);
+  }
+  if (q.bidir) meet<false>(ctx, q, back, idx);
+  return TDO_OK;
+}
+
+// Expansion of a voxel state: a neighbour one legal step away from u's parent p was already offered
+// by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up. The
+// slots of the other neighbours are read first (their cache misses overlap), then the neighbours
+// are relaxed in step order as before.
+tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const tdo_grid* g = q.grid;
+  const Node u = s.nodes[ui];
+  uint32_t mask = g->moves[u.voxel];  // search-sense steps
+  if (u.parent != kNil) {
+    const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
+    const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
+    for (uint32_t m = mask; m != 0; m &= m - 1u) {
+      const int e = __builtin_ctz(m);
+      const uint8_t c = ctx->combo[s_in][e];
+      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) mask &= ~(1u << e);
+    }
+  }
+  uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
+  for (uint32_t m = mask; m != 0; m &= m - 1u) {
+    const int e = __builtin_ctz(m);
+    const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
+    const uint32_t i = s.slot[w];
+    if (i != kNil && (i & kSlotClosed) != 0) {
+      mask &= ~(1u << e);  // expanded already
+      continue;
+    }
+    state[e] = i;
+  }
+  for (; mask != 0; mask &= mask - 1u) {
+    const int e = __builtin_ctz(mask);
+    const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
+    const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
+                                      u.g + ctx->step_len[e], state[e]);
+    if (st != TDO_OK) return st;
+  }
+  return TDO_OK;
+}
+
+template <bool kHeaded>
+tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
+  if (!kHeaded) return expand_voxel(ctx, q, back, ui);
+  Side& s = ctx->side[back];
   const Node u = s.nodes[ui];
   uint32_t direct;  // search-sense steps expanded directly
   uint32_t sharp;   // search-sense steps reached through a pivot only
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  // Without heading costs, a neighbour one legal step away from u's parent p was already offered
-  // by p at no greater cost (triangle inequality of step lengths), so it is skipped unlooked-up.
-  int s_in = -1;         // search-sense step p -> u
-  uint32_t p_moves = 0;  // legal steps from p
-  if (!kHeaded && u.parent != kNil) {
-    s_in = back ? dir_opposite(u.heading) : u.heading;
-    p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-  }
   uint32_t mask = direct;
   while (mask != 0) {
     const int e = __builtin_ctz(mask);  // search-direction step
     mask &= mask - 1u;
-    if (!kHeaded && s_in >= 0) {
-      const uint8_t c = ctx->combo[s_in][e];
-      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) continue;
-    }
     const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
@@ -691,6 +813,23 @@ inline double top_of(const Side& s) {
   return s.n_open > 0 ? s.open[0].f : HUGE_VAL;
 }
 
+// Voxel-state searches: start loading the slots of the 3x3x3 block around voxel v (one line
+// per row of three) and its move mask while the open list is reordered.
+inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s, int back,
+                           const Node& n) {
+  const uint32_t v = n.voxel;
+  prefetch(q.grid->moves + v);
+  if (n.parent != kNil)  // the parent's move mask, for the pruning in expand_voxel
+    prefetch(q.grid->moves +
+             (static_cast<int64_t>(v) - ctx->offset[back ? dir_opposite(n.heading) : n.heading]));
+  const int64_t sy = q.grid->stride_y, sz = q.grid->stride_z;
+  for (int64_t dz = -sz; dz <= sz; dz += sz)
+    for (int64_t dy = -sy; dy <= sy; dy += sy) {
+      const int64_t w = static_cast<int64_t>(v) + dz + dy;
+      if (w >= 1 && w + 1 < static_cast<int64_t>(ctx->cfg.max_voxels)) prefetch(s.slot + w);
+    }
+}
+
 template <bool kHeaded>
 tdo_status search_loop(tdo_search* ctx, Query& q) {
   Side& fw = ctx->side[0];
@@ -726,6 +865,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       s.nodes[ui].heap = kNil;
     } else {
       s.f_cur = s.open[0].f;
+      if (!kHeaded) prefetch_block(ctx, q, s, back, s.nodes[s.open[0].node]);
       ui = pop(s);
     }
     ++q.expansions;
@@ -739,6 +879,19 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
     if (st != TDO_OK) return st;
   }
+}
+
+// The search loop, then every slot it set back to kNil (the states' voxels, from the pools).
+template <bool kHeaded>
+tdo_status run_search(tdo_search* ctx, Query& q) {
+  const tdo_status st = search_loop<kHeaded>(ctx, q);
+  for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
+    uint32_t* slot = ctx->side[k].slot;
+    const Node* nodes = ctx->side[k].nodes;
+    const uint32_t n = ctx->side[k].n_nodes;
+    for (uint32_t i = 0; i < n; ++i) slot[nodes[i].voxel] = kNil;
+  }
+  return st;
 }
 
 double step_length(const tdo_voxel& a, const tdo_voxel& b, double res) {
@@ -838,7 +991,7 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
 }
 
 size_t side_bytes(const tdo_search_config& cfg) {
-  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint64_t)) +
+  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint32_t)) +
          (cfg.exact_heuristic
               ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
               : 0u) +
@@ -907,7 +1060,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   }
   for (int k = 0; k < 2; ++k) {
     Side& s = ctx->side[k];
-    s.slot = static_cast<uint64_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint64_t)));
+    s.slot = static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
     s.heading_index = nullptr;
     if (cfg->dense_headings) {
       s.heading_index = static_cast<uint32_t*>(tdo_arena_alloc(arena, heading_index_bytes(*cfg)));
@@ -917,7 +1070,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     s.open = static_cast<OpenItem*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(OpenItem)));
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
-    memset(s.slot, 0, cfg->max_voxels * sizeof(uint64_t));
+    memset(s.slot, 0xFF, cfg->max_voxels * sizeof(uint32_t));  // kNil: no states
     s.hx = nullptr;
     ctx->hdist[k] = nullptr;
     if (cfg->exact_heuristic) {
@@ -986,15 +1139,10 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
-  if (++ctx->gen == 0) {  // stamps wrapped: clear them once every 2^32 queries
-    for (int k = 0; k < 2; ++k)
-      memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
-    ctx->gen = 1;
-  }
   const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
-    const tdo_status st = search_loop<false>(ctx, q);
+    const tdo_status st = run_search<false>(ctx, q);
     out->expansions = q.expansions;
     if (st != TDO_OK) return st;
     return write_path(ctx, q, out);
@@ -1013,7 +1161,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
-    st = search_loop<true>(ctx, q);
+    st = run_search<true>(ctx, q);
     const bool retry = t < retries && q.expansions < budget &&
                        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY);
     if (!retry) break;
@@ -1025,11 +1173,6 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
         }
         ctx->side[k].hx = ctx->hdist[k];
       }
-    }
-    if (++ctx->gen == 0) {  // a fresh generation: the last try's states are forgotten
-      for (int k = 0; k < 2; ++k)
-        memset(ctx->side[k].slot, 0, ctx->cfg.max_voxels * sizeof(uint64_t));
-      ctx->gen = 1;
     }
     q.best = HUGE_VAL;
     q.meet[0] = q.meet[1] = kNil;

@@ -17,7 +17,7 @@ extern "C" {
 /** Capacities fixed at init. Exceeding any of them returns a named status, never truncates. */
 typedef struct tdo_capacity {
   uint32_t max_voxels;      /**< nx*ny*nz of the largest map; sizes the occupancy and move masks
-                                 (5 bytes per voxel) and the per-voxel search slots (8 bytes per
+                                 (5 bytes per voxel) and the per-voxel search slots (4 bytes per
                                  voxel and search direction). */
   uint32_t max_boxes;       /**< obstacle boxes kept for exact distance queries (48 bytes each) */
   uint32_t max_nodes;       /**< search states per direction (56 bytes each): at most
