@@ -4,15 +4,15 @@
 
 /* m, obstacle clearance (tdo-plan's default for .tdomap files) */
 #define TDO_DEMO_CLEARANCE 0.5
-/* search states per direction: Map1's query needs 11300 with the default parameters */
-#define TDO_DEMO_MAX_NODES 12288u
+/* search states per direction: Map1's query needs 6033 with the default parameters (retry off) */
+#define TDO_DEMO_MAX_NODES 6656u
 /* voxels in one grid path (Map1's path has 26) */
 #define TDO_DEMO_MAX_PATH 64u
-/* trajectory samples at dt = 0.01 s (Map1's flight: 1699) */
+/* trajectory samples at dt = 0.01 s (Map1's flight: 1875) */
 #define TDO_DEMO_MAX_SAMPLES 2048u
 /* speed-profile pieces (8 per path segment + 1) */
 #define TDO_DEMO_MAX_PROFILE 257u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (1704u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (1112u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */
