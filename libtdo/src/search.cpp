@@ -61,6 +61,24 @@ constexpr uint32_t kPivotItem = 0x80000000u;
 constexpr uint32_t kStackCap = 1024;
 constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stack
 
+// Open list of unidirectional voxel-state A* (plain A*, consistent octile heuristic): buckets by
+// floor(f / width). Only the current bucket (and every item whose bucket is not above it) is in
+// the heap `open`, ordered exactly by (f, h, node); the later buckets are doubly linked lists
+// through Node::next (next) and Node::heap (kBucketBit | previous item, or kBucketBit |
+// (kBucketHeadBase + ring slot) at the head), in a ring of kRing: no memory beyond the heap's.
+// Every item of a later bucket has a larger f than every heap item, so the pop order is the heap's.
+// Bounded ring: an item is queued while its parent, whose f lies at most at the end of the current
+// bucket, is expanded, and a step raises f by at most 2 sqrt(3) res (step length plus the change of
+// the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead; decrease-key
+// only lowers f.
+constexpr uint32_t kRing = 64;                // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
+constexpr double kWidth = 0.0625;             // bucket width per res
+constexpr uint32_t kBucketBit = 0x80000000u;  // Node::heap of a state in a later bucket
+constexpr uint32_t kBucketHeadBase = 0x7FFFFF00u;      // list head: kBucketBit | (this + ring slot)
+constexpr uint32_t kBucketMaxNodes = kBucketHeadBase;  // larger pools keep the plain heap
+static_assert((kRing & (kRing - 1u)) == 0 && kRing > 3.0 + 2.0 * kSqrt3 / kWidth,
+              "bucket ring too small for the largest f step (one bucket of rounding margin)");
+
 struct StackItem {
   double f;       // m, f when pushed (<= the f of every open heap state at that time)
   uint32_t node;  // node index
@@ -82,6 +100,12 @@ struct Side {
   uint32_t n_stack;
   double f_cur;   // f of the state being expanded
   int use_stack;  // 1 for unidirectional A*
+  // Buckets (kBucketBit): unidirectional voxel-state A* only (forward side).
+  int bucketed;
+  uint32_t n_future;     // items in later buckets
+  uint64_t cur;          // current bucket
+  double inv_width;      // 1/m
+  uint32_t head[kRing];  // first item of each later bucket, kNil when empty
 };
 
 }  // namespace
@@ -130,6 +154,21 @@ struct Query {
   uint32_t meet[2];
   uint32_t expansions;
 };
+
+// Offsets of the steps as a table: the voxel-state relaxation reads them instead of dividing.
+struct StepDelta {
+  int8_t d[kNumDirs][3];
+};
+constexpr StepDelta make_step_delta() {
+  StepDelta t{};
+  for (int e = 0; e < kNumDirs; ++e) {
+    t.d[e][0] = static_cast<int8_t>(dir_dx(e));
+    t.d[e][1] = static_cast<int8_t>(dir_dy(e));
+    t.d[e][2] = static_cast<int8_t>(dir_dz(e));
+  }
+  return t;
+}
+constexpr StepDelta kStepDelta = make_step_delta();
 
 constexpr uint8_t kComboBack = 26;   // b undoes a
 constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
@@ -240,6 +279,62 @@ uint32_t pop(Side& s) {
   }
   if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
   return top;
+}
+
+inline uint64_t bucket_of(const Side& s, double f) {
+  return static_cast<uint64_t>(f * s.inv_width);
+}
+
+// Queue item `it` (not queued yet): into the heap when its bucket is not above the current one,
+// else at the head of its bucket's list.
+inline void enqueue(Side& s, const OpenItem& it) {
+  const uint64_t b = bucket_of(s, it.f);
+  // b - cur < kRing always holds (see kRing); the heap keeps the order if it ever did not.
+  if (!s.bucketed || b <= s.cur || b - s.cur >= kRing) {
+    sift_up(s, s.n_open++, it);
+    return;
+  }
+  const uint32_t r = static_cast<uint32_t>(b & (kRing - 1u));
+  const uint32_t h = s.head[r];
+  s.nodes[it.node].next = h;
+  s.nodes[it.node].heap = kBucketBit | (kBucketHeadBase + r);
+  if (h != kNil) s.nodes[h].heap = kBucketBit | it.node;
+  s.head[r] = it.node;
+  ++s.n_future;
+}
+
+// Take item i out of its bucket list.
+inline void unlink(Side& s, uint32_t i) {
+  const uint32_t p = s.nodes[i].heap & ~kBucketBit, n = s.nodes[i].next;
+  if (p >= kBucketHeadBase)
+    s.head[p - kBucketHeadBase] = n;
+  else
+    s.nodes[p].next = n;
+  if (n != kNil) s.nodes[n].heap = kBucketBit | p;
+  --s.n_future;
+}
+
+// The heap is empty: make the next non-empty bucket current and build its heap (f and h computed
+// as push() computes them, so the same bits). Bounded: the later buckets lie within kRing.
+template <typename Prio>
+void advance(Side& s, Prio prio) {
+  for (uint32_t k = 0; k < kRing && s.n_future > 0; ++k) {
+    ++s.cur;
+    const uint32_t r = static_cast<uint32_t>(s.cur & (kRing - 1u));
+    uint32_t i = s.head[r];
+    if (i == kNil) continue;
+    s.head[r] = kNil;
+    while (i != kNil) {  // bounded by the items queued
+      const uint32_t after = s.nodes[i].next;
+      OpenItem it;
+      it.node = i;
+      it.f = prio(s.nodes[i], &it.h);
+      sift_up(s, s.n_open++, it);
+      --s.n_future;
+      i = after;
+    }
+    return;
+  }
 }
 
 // A hint to load the cache line at p (GCC drops __builtin_prefetch here, so x86 gets the
@@ -369,9 +464,10 @@ void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool
     s.stack[s.n_stack].pad = 0;
     ++s.n_stack;
     s.nodes[idx].heap = kInStack;
+    if (!headed) prefetch(q.grid->moves + s.nodes[idx].voxel);  // expanded soon
     return;
   }
-  sift_up(s, s.n_open++, it);
+  enqueue(s, it);
 }
 
 // A pivot state turned in place: its parent holds the same voxel.
@@ -544,7 +640,12 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
       OpenItem it;
       it.node = idx;
       it.f = priority<false>(ctx, q, s, back, n, &it.h);
-      sift_up(s, n.heap, it);
+      if (n.heap >= kBucketBit) {  // in a later bucket (kNil and kInStack do not come here)
+        unlink(s, idx);
+        enqueue(s, it);
+      } else {
+        sift_up(s, n.heap, it);
+      }
     }
   } else {
     if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
@@ -555,9 +656,9 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
     n.parent = ui;
     n.voxel = w;
     n.next = kNil;
-    n.x = static_cast<uint16_t>(u.x + dir_dx(e));
-    n.y = static_cast<uint16_t>(u.y + dir_dy(e));
-    n.z = static_cast<uint16_t>(u.z + dir_dz(e));
+    n.x = static_cast<uint16_t>(u.x + kStepDelta.d[e][0]);
+    n.y = static_cast<uint16_t>(u.y + kStepDelta.d[e][1]);
+    n.z = static_cast<uint16_t>(u.z + kStepDelta.d[e][2]);
     n.heading = static_cast<uint8_t>(d);
     n.closed = 0;
     slot_set(ctx, s, w, idx);
@@ -802,6 +903,14 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   // The stack changes no order that matters to a stopping rule: unidirectional A* (f <= fmin)
   // and the first-meet bidirectional search (it stops at the first meeting, whatever the f).
   s.use_stack = !q.bidir || q.first_meet;
+  s.bucketed = !q.bidir && !headed && ctx->cfg.max_nodes <= kBucketMaxNodes;
+  s.n_future = 0;
+  s.inv_width = 1.0 / (kWidth * q.grid->desc.res);
+  for (uint32_t k = 0; k < kRing; ++k) s.head[k] = kNil;
+  if (s.bucketed) {
+    float h;
+    s.cur = bucket_of(s, priority<false>(ctx, q, s, back, n, &h));
+  }
   index_state(s, n.voxel, kHeadingNone, 0, true);
   slot_set(ctx, s, n.voxel, 0);
   push(ctx, q, s, back, 0, headed);
@@ -840,6 +949,8 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
   for (;;) {
     int back = 0;
     if (!q.bidir) {
+      if (fw.n_open == 0 && fw.n_stack == 0 && fw.n_future > 0)
+        advance(fw, [&](const Node& n, float* h) { return priority<false>(ctx, q, fw, 0, n, h); });
       if (fw.n_open == 0 && fw.n_stack == 0) return TDO_ERR_NO_PATH;
       const uint32_t top = fw.n_stack > 0 ? fw.stack[fw.n_stack - 1].node : fw.open[0].node;
       if ((top & kPivotItem) == 0 && fw.nodes[top].voxel == q.voxel[1]) {
@@ -862,6 +973,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       --s.n_stack;
       ui = s.stack[s.n_stack].node;
       s.f_cur = s.stack[s.n_stack].f;
+      if (!kHeaded) prefetch_block(ctx, q, s, back, s.nodes[ui]);
       s.nodes[ui].heap = kNil;
     } else {
       s.f_cur = s.open[0].f;
