@@ -507,21 +507,38 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
   }
 }
 
-// Offer state (w, heading) at cost ng with parent ui: create it, or lower its cost.
-template <bool kHeaded>
+// Allocate the state (w, heading) reached from ui over a step of (dx, dy, dz) voxels at cost ng,
+// chained before `next` (the voxel's previous first state, kNil for none). kNil: the pool is full.
+inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t w, double ng,
+                          int dx, int dy, int dz, int heading, uint32_t next) {
+  if (s.n_nodes >= ctx->cfg.max_nodes) return kNil;
+  const Node& u = s.nodes[ui];
+  const uint32_t idx = s.n_nodes++;
+  Node& n = s.nodes[idx];
+  n.g = ng;
+  n.parent = ui;
+  n.voxel = w;
+  n.next = next;
+  n.x = static_cast<uint16_t>(u.x + dx);
+  n.y = static_cast<uint16_t>(u.y + dy);
+  n.z = static_cast<uint16_t>(u.z + dz);
+  n.heading = static_cast<uint8_t>(heading);
+  n.closed = 0;
+  return idx;
+}
+
+// Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
+// step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
+// use relax_voxel.
 inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
                         int step, double ng) {
   Side& s = ctx->side[back];
-  uint32_t idx = kNil;
-  if (kHeaded) {
-    idx = slot_first(ctx, s, w);
-    if (s.heading_index != nullptr) {
-      if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
-    } else {
-      while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
-    }
+  const uint32_t first = slot_first(ctx, s, w);
+  uint32_t idx = first;
+  if (s.heading_index != nullptr) {
+    if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
   } else {
-    idx = slot_first(ctx, s, w);
+    while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
   }
   if (idx != kNil) {
     Node& n = s.nodes[idx];
@@ -532,28 +549,18 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
       it.node = idx;
-      it.f = priority<kHeaded>(ctx, q, s, back, n, &it.h);
+      it.f = priority<true>(ctx, q, s, back, n, &it.h);
       sift_up(s, n.heap, it);
     }
   } else {
-    if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-    const Node& u = s.nodes[ui];
-    idx = s.n_nodes++;
-    Node& n = s.nodes[idx];
-    n.g = ng;
-    n.parent = ui;
-    n.voxel = w;
-    n.next = slot_first(ctx, s, w);
-    n.x = static_cast<uint16_t>(u.x + (step >= 0 ? dir_dx(step) : 0));
-    n.y = static_cast<uint16_t>(u.y + (step >= 0 ? dir_dy(step) : 0));
-    n.z = static_cast<uint16_t>(u.z + (step >= 0 ? dir_dz(step) : 0));
-    n.heading = static_cast<uint8_t>(heading);
-    n.closed = 0;
-    if (kHeaded) index_state(s, w, heading, idx, n.next == kNil);
+    idx = new_state(ctx, s, ui, w, ng, step >= 0 ? dir_dx(step) : 0, step >= 0 ? dir_dy(step) : 0,
+                    step >= 0 ? dir_dz(step) : 0, heading, first);
+    if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
+    index_state(s, w, heading, idx, first == kNil);
     slot_set(ctx, s, w, idx);
-    push(ctx, q, s, back, idx, kHeaded);
+    push(ctx, q, s, back, idx, true);
   }
-  if (q.bidir) meet<kHeaded>(ctx, q, back, idx);
+  if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
 }
 
@@ -625,8 +632,8 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
 }
 
 // Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
-// reached yet), at cost ng with parent ui over search-sense step e (forward-sense d). The same as
-// relax<false>.
+// reached yet), at cost ng with parent ui over search-sense step e (forward-sense d): relax
+// without the heading lookup, the closed test (the slot word holds it) and the heading index.
 inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int e,
                               int d, double ng, uint32_t idx) {
   Side& s = ctx->side[back];
@@ -648,19 +655,9 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
       }
     }
   } else {
-    if (s.n_nodes >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-    const Node& u = s.nodes[ui];
-    idx = s.n_nodes++;
-    Node& n = s.nodes[idx];
-    n.g = ng;
-    n.parent = ui;
-    n.voxel = w;
-    n.next = kNil;
-    n.x = static_cast<uint16_t>(u.x + kStepDelta.d[e][0]);
-    n.y = static_cast<uint16_t>(u.y + kStepDelta.d[e][1]);
-    n.z = static_cast<uint16_t>(u.z + kStepDelta.d[e][2]);
-    n.heading = static_cast<uint8_t>(d);
-    n.closed = 0;
+    idx = new_state(ctx, s, ui, w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1], kStepDelta.d[e][2],
+                    d, kNil);
+    if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     slot_set(ctx, s, w, idx);
     push(ctx, q, s, back, idx, false);
   }
@@ -723,7 +720,7 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
     if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
-    const tdo_status st = relax<kHeaded>(ctx, q, back, ui, w, d, e, ng);
+    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng);
     if (st != TDO_OK) return st;
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
@@ -746,7 +743,7 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const int d = back ? dir_opposite(e) : e;
     const double ng =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const tdo_status st = relax<kHeaded>(ctx, q, back, ui, u.voxel, d, -1, ng);
+    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
