@@ -607,22 +607,8 @@ TEST(Apf, EapfTracksWithoutMovers) {
   EXPECT_LT(mean_dev, 0.1);
   EXPECT_LT(max_dev, 0.3);
   EXPECT_LT(norm3(sub3(st.back().p, traj.back().p)), 0.2);
-  const double dt = 0.02;
   double vmax = 0, amax = 0, jmax = 0;
-  for (size_t i = 0; i + 3 < st.size(); ++i) {
-    tdo_vec3 v[3], a[2];
-    for (int k = 0; k < 3; ++k) {
-      const tdo_vec3 d = sub3(st[i + k + 1].p, st[i + k].p);
-      v[k] = tdo_vec3{d.x / dt, d.y / dt, d.z / dt};
-    }
-    for (int k = 0; k < 2; ++k) {
-      const tdo_vec3 d = sub3(v[k + 1], v[k]);
-      a[k] = tdo_vec3{d.x / dt, d.y / dt, d.z / dt};
-    }
-    vmax = std::fmax(vmax, norm3(v[0]));
-    amax = std::fmax(amax, norm3(a[0]));
-    jmax = std::fmax(jmax, norm3(sub3(a[1], a[0])) / dt);
-  }
+  executed_vaj(st, 0.02, &vmax, &amax, &jmax);
   EXPECT_LE(vmax, 3.0 * 1.01);
   EXPECT_LE(amax, 3.0 * 1.01);
   EXPECT_LE(jmax, 10.0 * 1.01);
