@@ -148,6 +148,7 @@ struct Query {
   double pivot_cost;  // m, surcharge of a pivot
   int constrained;    // theta_max active
   int dev_terms;      // 1: f has the deviation term and the turn lower bound (0 in the retry)
+  int exact_turns;    // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
   uint32_t budget;
   // results
   double best;
@@ -419,16 +420,24 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
   return deviation_to(ctx, travel, vx, vy, vz, n);
 }
 
-// Least turn penalty (m) still to pay from a state whose heading deviates by dev*pi from the
-// target direction: the turns must add up to dev*pi (the path's later steps would otherwise stay in
-// a cone that misses the target), each step turn is at least kMinTurn, and with a convex penalty
-// the cheapest split is into as many equal turns as allowed. Admissible, so h stays a lower bound.
-inline double turn_bound(const tdo_search* ctx, double dev) {
+// Least turn penalty (m) still to pay from a state whose heading deviates by T = dev*pi from the
+// target direction: the turns must add up to T (the path's later steps would otherwise stay in a
+// cone that misses the target) and each is at least kMinTurn = m. With n turns the penalty is at
+// least lambda/pi^2 * max(T^2 / n, n m^2) (convex penalty: equal turns are cheapest); the smallest
+// over n is min(T^2 / floor(T/m), ceil(T/m) m^2), a lower bound (`exact`: A* and the optimal stop
+// of bidir need it). The first-meet search (the paper's stop, no optimality claim) is guided by
+// T^2 / floor(T/m) alone, which can exceed the bound between multiples of m by up to
+// lambda (m/pi)^2 (docs/performance.md: the plans it finds have fewer turns on Map5).
+inline double turn_bound(const tdo_search* ctx, const Query& q, double dev) {
   if (!(dev > 1e-9) || !(ctx->turn_lambda > 0.0)) return 0.0;
   // dev in (0, 1], so the quotient is in (0, 5.2): truncation is the floor, without a libm call.
-  double k = static_cast<double>(static_cast<int>(dev * kPi / kMinTurn));
-  if (k < 1.0) k = 1.0;
-  return ctx->turn_lambda * dev * dev / k;
+  const double k = static_cast<double>(static_cast<int>(dev * kPi / kMinTurn));
+  if (k < 1.0) return ctx->turn_lambda * dev * dev;
+  const double split = dev * dev / k;
+  if (!q.exact_turns) return ctx->turn_lambda * split;
+  const double m = kMinTurn / kPi;
+  const double more = (k + 1.0) * m * m;
+  return ctx->turn_lambda * (split < more ? split : more);
 }
 
 // Heuristic of a state at voxel v = (x, y, z): the octile distance, or with an exact table the
@@ -450,7 +459,7 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
   const int travel = back ? dir_opposite(n.heading) : n.heading;
   const double dev = deviation(ctx, s, travel, n.x, n.y, n.z);
-  return n.g + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
+  return n.g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
 }
 
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
@@ -621,7 +630,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
     if (lb > it.f + 1e-9) break;
     if (!(lb < it.f)) continue;
     const double dev = n > 0.0 && q.dev_terms ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
-    const double f = pg + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
+    const double f = pg + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
   }
   it.h = static_cast<float>(h);
@@ -1241,6 +1250,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.dev_terms = 1;
   q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
   q.first_meet = in->first_meet != 0;
+  q.exact_turns = !q.bidir || !q.first_meet;
   q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
   q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);

@@ -454,6 +454,39 @@ TEST(SearchPenalty,
   random_penalised(kUnconstrained);
 }
 
+// The optimal stop (first_meet = 0) with mu = 0 and no direction constraint must return the
+// optimal turn-penalised cost, so the turn part of h must stay a lower bound (pipeline.md s.1).
+TEST(SearchPenalty, GivenRandomGrids_WhenSearchingWithTheOptimalStop_ThenPenalisedCostsAreOptimal) {
+  TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(0x0D71A1ull);
+  int reachable = 0;
+  for (int round = 0; round < 3000; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    for (double lambda : {0.5, 5.0, 50.0}) {
+      const double want = tdo_test::reference_penalised_cost(c.map, c.s, c.g, lambda);
+      if (want < kInf && lambda > 10.0) ++reachable;
+      for (tdo_search_kind kind : kKinds) {
+        tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind, lambda, 0.0);
+        in.first_meet = 0;
+        const Result r = run(pl.search(), in);
+        SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
+                                          << " lambda " << lambda << " start " << tdo_test::str(c.s)
+                                          << " goal " << tdo_test::str(c.g));
+        if (!(want < kInf)) {
+          EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+          continue;
+        }
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+        EXPECT_TRUE(near_rel(r.out.penalized_cost, want))
+            << "penalized_cost " << r.out.penalized_cost << " reference " << want;
+      }
+    }
+  }
+  EXPECT_GE(reachable, 1500);
+}
+
 TEST(SearchPenalty, GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithPenalties_ThenPathFound) {
   narrow_penalised(kUnconstrained);
 }

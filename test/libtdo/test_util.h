@@ -298,6 +298,57 @@ inline double reference_cost(const VoxelMap& m, const tdo_voxel& s, const tdo_vo
   return kInf;
 }
 
+/**
+ * Optimal turn-penalised cost from s to g: Dijkstra over (voxel, last step) states, every legal
+ * step allowed (no direction constraint), cost = length + lambda * (angle between consecutive
+ * steps / pi)^2 summed over the path's turns (pipeline.md s.1); +inf when unreachable.
+ */
+inline double reference_penalised_cost(const VoxelMap& m, const tdo_voxel& s, const tdo_voxel& g,
+                                       double lambda) {
+  if (!m.is_free(s) || !m.is_free(g)) return kInf;
+  const double pi = std::acos(-1.0);
+  constexpr int kNone = 27;  // start state: no step yet; steps are (dx+1) + 3 (dy+1) + 9 (dz+1)
+  std::vector<double> dist(m.size() * 28u, kInf);
+  using Item = std::pair<double, size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  const size_t start = m.idx(s) * 28u + kNone;
+  dist[start] = 0.0;
+  open.push(Item{0.0, start});
+  const size_t goal = m.idx(g);
+  while (!open.empty()) {
+    const Item top = open.top();
+    open.pop();
+    if (top.first > dist[top.second]) continue;
+    if (top.second / 28u == goal) return top.first;
+    const tdo_voxel u = m.voxel(top.second / 28u);
+    const int last = static_cast<int>(top.second % 28u);
+    for (int32_t dz = -1; dz <= 1; ++dz)
+      for (int32_t dy = -1; dy <= 1; ++dy)
+        for (int32_t dx = -1; dx <= 1; ++dx) {
+          const tdo_voxel w{u.i + dx, u.j + dy, u.k + dz};
+          if (!legal_step(m, u, w)) continue;
+          double turn = 0.0;
+          if (last != kNone) {
+            const double a[3] = {double(last % 3 - 1), double(last / 3 % 3 - 1),
+                                 double(last / 9 - 1)};
+            const double c = (a[0] * dx + a[1] * dy + a[2] * dz) /
+                             std::sqrt((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]) *
+                                       double(dx * dx + dy * dy + dz * dz));
+            const double angle = std::acos(std::fmax(-1.0, std::fmin(1.0, c)));
+            turn = lambda * (angle / pi) * (angle / pi);
+          }
+          const double nd = top.first + step_length(m.res, u, w) + turn;
+          const size_t wi =
+              m.idx(w) * 28u + static_cast<size_t>((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
+          if (nd < dist[wi]) {
+            dist[wi] = nd;
+            open.push(Item{nd, wi});
+          }
+        }
+  }
+  return kInf;
+}
+
 inline bool near_rel(double a, double b, double rel = 1e-9) {
   return std::fabs(a - b) <= rel * std::fmax(1.0, std::fmax(std::fabs(a), std::fabs(b)));
 }
