@@ -103,7 +103,7 @@ tdo_vec3 to_vec(const std::vector<double>& v, const char* name) {
 void validate(const Options& o) {
   check_nonneg(o.lambda, "--lambda");
   check_nonneg(o.mu, "--mu");
-  check_positive(o.theta_max, "--theta-max");
+  check_nonneg(o.theta_max, "--theta-max");  // 0 (or 180): unconstrained, as in the library
   if (o.theta_max > 180.0)
     throw BadInput{"--theta-max must be at most 180 degrees, got " + fmt(o.theta_max)};
   if (o.clearance_given) check_nonneg(o.clearance, "--clearance");
@@ -649,7 +649,8 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--lambda", o.lambda, "turn penalty, m of cost per (turn/pi)^2 (tdo: 50, else 0)");
   app.add_option("--mu", o.mu, "deviation weight, m of f (tdo: 20, else 0)");
-  app.add_option("--theta-max", o.theta_max, "deg, direction constraint of the tdo search")
+  app.add_option("--theta-max", o.theta_max,
+                 "deg, direction constraint of the tdo search (0 or 180: unconstrained)")
       ->capture_default_str();
   app.add_option("--h-weight", o.h_weight,
                  "heuristic weight (>= 1) of the turn-penalised search: speed for optimality")
