@@ -189,8 +189,8 @@ inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
 inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
   if (s.heading_index == nullptr) return;
   uint32_t* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  if (first)
-    for (int h = 0; h < kNumHeadings; ++h) row[h] = kNil;
+  static_assert(kNil == 0xFFFFFFFFu, "memset fills kNil");
+  if (first) memset(row, 0xFF, kNumHeadings * sizeof(uint32_t));  // kNil
   row[heading] = idx;
 }
 
@@ -790,6 +790,7 @@ struct DjQueue {
 // (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
 constexpr double kDjReach = 2.0;
+constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 // Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
 constexpr uint32_t kTryMin = 20000;
 constexpr uint32_t kTryDiv = 16;
@@ -843,21 +844,30 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         reached = true;
         limit = kDjReach * du;
       }
-      for (uint32_t m = g->moves[u]; m != 0; m &= m - 1u) {
-        const int e = __builtin_ctz(m);
+      // The cost test comes first: a settled neighbour fails it too (its key lies at most one
+      // bucket, under res, above du, and a step adds at least res), so most steps end after one
+      // load; the settled test after it only guards the list being walked.
+      const auto step = [&](int e) {
         const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
-        const uint32_t pw = qu.prev[w];
-        if (pw == kDjSettled) continue;
         const double nd = du + ctx->step_len[e];
-        if (!(nd < dist[w])) continue;
+        if (!(nd < dist[w])) return;
+        const uint32_t pw = qu.prev[w];
+        if (pw == kDjSettled) return;
         if (pw != kNil) {
           const uint64_t bw = qu.bucket(dist[w]);
-          if (bw <= cur) continue;  // cannot happen (see DjQueue); keeps the list being walked
+          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
           qu.unlink(w, bw);
         }
         dist[w] = nd;
         const uint64_t b = qu.bucket(nd);
         qu.insert(w, b > cur ? b : cur + 1u);
+      };
+      const uint32_t moves = g->moves[u];
+      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+#pragma GCC unroll 26
+        for (int e = 0; e < kNumDirs; ++e) step(e);
+      } else {
+        for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
       u = after;
     }
