@@ -453,6 +453,51 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   return n.g + q.h_weight * (h + turn_bound(ctx, dev)) + q.mu * dev;
 }
 
+// The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
+// the vector to the side's target (deviation() in parts), shared by the pivots of one voxel.
+struct Target {
+  double h;           // m, heuristic()
+  double vx, vy, vz;  // voxels, target minus voxel
+  double n;           // voxels, norm of (vx, vy, vz)
+};
+
+inline Target target_of(const Query& q, const Side& s, const Node& u) {
+  Target t;
+  t.h = heuristic(s, u.voxel, u.x, u.y, u.z, q.grid->desc.res);
+  t.vx = s.tx - u.x;
+  t.vy = s.ty - u.y;
+  t.vz = s.tz - u.z;
+  t.n = q.dev_terms ? sqrt(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz) : 0.0;  // unused without them
+  return t;
+}
+
+// priority<true>() of a state with cost g and `heading` in the voxel of t: the same arithmetic, so
+// the same bits.
+inline double priority_at(const tdo_search* ctx, const Query& q, int back, double g, int heading,
+                          const Target& t) {
+  if (heading >= kNumDirs || !q.dev_terms) return g + q.h_weight * t.h;
+  const int travel = back ? dir_opposite(heading) : heading;
+  const double dev = t.n > 0.0 ? deviation_to(ctx, travel, t.vx, t.vy, t.vz, t.n) : 0.0;
+  return g + q.h_weight * (t.h + turn_bound(ctx, dev)) + q.mu * dev;
+}
+
+// push() of a turn-penalised state whose f and h are known.
+inline void push_headed(Side& s, uint32_t idx, double f, double h) {
+  OpenItem it;
+  it.node = idx;
+  it.f = f;
+  it.h = static_cast<float>(h);
+  if (s.use_stack && !(it.f > s.f_cur) && s.n_stack < kStackCap) {
+    s.stack[s.n_stack].f = it.f;
+    s.stack[s.n_stack].node = idx;
+    s.stack[s.n_stack].pad = 0;
+    ++s.n_stack;
+    s.nodes[idx].heap = kInStack;
+    return;
+  }
+  enqueue(s, it);
+}
+
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
   OpenItem it;
   it.node = idx;
@@ -530,8 +575,9 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
 // Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
 // step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
 // use relax_voxel.
+// `t`: the voxel parts of w's priority (target_of), nullptr to compute them.
 inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
-                        int step, double ng) {
+                        int step, double ng, const Target* t) {
   Side& s = ctx->side[back];
   const uint32_t first = slot_first(ctx, s, w);
   uint32_t idx = first;
@@ -549,7 +595,12 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
       it.node = idx;
-      it.f = priority<true>(ctx, q, s, back, n, &it.h);
+      if (t != nullptr) {
+        it.f = priority_at(ctx, q, back, ng, heading, *t);
+        it.h = static_cast<float>(t->h);
+      } else {
+        it.f = priority<true>(ctx, q, s, back, n, &it.h);
+      }
       sift_up(s, n.heap, it);
     }
   } else {
@@ -558,7 +609,10 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
     slot_set(ctx, s, w, idx);
-    push(ctx, q, s, back, idx, true);
+    if (t != nullptr)
+      push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
+    else
+      push(ctx, q, s, back, idx, true);
   }
   if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
@@ -720,7 +774,7 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
     if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
-    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng);
+    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng, nullptr);
     if (st != TDO_OK) return st;
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
@@ -737,13 +791,14 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const Node u = s.nodes[ui];
   uint32_t direct, sharp;
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
+  const Target t = target_of(q, s, u);  // every pivot stays in u's voxel
   while (sharp != 0) {
     const int e = __builtin_ctz(sharp);
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
     const double ng =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng);
+    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
