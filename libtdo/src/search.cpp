@@ -6,6 +6,7 @@
 #include "tdo/search.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "directions.h"
@@ -35,10 +36,12 @@ struct Node {
 };
 static_assert(sizeof(Node) == 32, "Node layout");
 
+// node before h: bytes 8-15 read as one little-endian word are (h bits << 32 | node), the key's
+// low half (key_of).
 struct OpenItem {
   double f;       // m, g + h (+ mu * deviation)
-  float h;        // m, heuristic; smaller h wins ties of f
   uint32_t node;  // node index; smaller wins ties of f and h (deterministic allocation order)
+  float h;        // m, heuristic; smaller h wins ties of f
 };
 static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
 constexpr uint32_t kArity =
@@ -205,9 +208,14 @@ struct Key {
 inline Key key_of(const OpenItem& a) {
   Key k;
   memcpy(&k.hi, &a.f, sizeof(k.hi));
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  static_assert(offsetof(OpenItem, node) == 8 && offsetof(OpenItem, h) == 12, "OpenItem layout");
+  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + 8, sizeof(k.lo));  // node, h: 1 load
+#else
   uint32_t h;
   memcpy(&h, &a.h, sizeof(h));
   k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+#endif
   return k;
 }
 
