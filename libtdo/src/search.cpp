@@ -794,36 +794,20 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
 
 // Generate the deferred pivots of state ui (already expanded).
 template <bool kHeaded>
-tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui, double f_item) {
+tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const Node u = s.nodes[ui];
   uint32_t direct, sharp;
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
   const Target t = target_of(q, s, u);  // every pivot stays in u's voxel
-  double next = HUGE_VAL;
   while (sharp != 0) {
     const int e = __builtin_ctz(sharp);
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
     const double ng =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const double f = priority_at(ctx, q, back, ng, d, t);
-    if (f > f_item) {
-      if (f < next) next = f;
-      continue;
-    }
-    if (f < f_item) continue;
     const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
-  }
-  if (next < HUGE_VAL) {
-    if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-    OpenItem it;
-    it.f = next;
-    it.h = static_cast<float>(t.h);
-    it.node = ui | kPivotItem;
-    s.open[s.n_open] = it;
-    sift_up(s, s.n_open++);
   }
   return TDO_OK;
 }
@@ -1068,7 +1052,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     }
     ++q.expansions;
     if ((ui & kPivotItem) != 0) {
-      const tdo_status st = expand_pivots<kHeaded>(ctx, q, back, ui & ~kPivotItem, s.f_cur);
+      const tdo_status st = expand_pivots<kHeaded>(ctx, q, back, ui & ~kPivotItem);
       if (st != TDO_OK) return st;
       continue;
     }
