@@ -6,6 +6,7 @@
 #include "tdo/search.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "directions.h"
@@ -35,10 +36,12 @@ struct Node {
 };
 static_assert(sizeof(Node) == 32, "Node layout");
 
+// node before h: bytes 8-15 read as one little-endian word are (h bits << 32 | node), the key's
+// low half (key_of).
 struct OpenItem {
   double f;       // m, g + h (+ mu * deviation)
-  float h;        // m, heuristic; smaller h wins ties of f
   uint32_t node;  // node index; smaller wins ties of f and h (deterministic allocation order)
+  float h;        // m, heuristic; smaller h wins ties of f
 };
 static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
 constexpr uint32_t kArity =
@@ -87,7 +90,7 @@ struct StackItem {
 
 struct Side {
   uint32_t* slot;           // per voxel: see kSlotClosed
-  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
+  uint32_t* heading_index;  // dense_headings: 27 states per voxel, checked on use (lookup_state)
   Node* nodes;              // state pool, max_nodes
   OpenItem* open;           // binary min-heap, max_nodes
   uint32_t n_nodes;
@@ -185,14 +188,21 @@ inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
   s.slot[v] = idx;
 }
 
-// Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
-// this query, whose other entries are cleared first.
-inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
+// Record state idx as (voxel w, heading) in the dense index. Entries are never cleared: one counts
+// only when it names a state of this query with that voxel and heading (lookup_state).
+inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx) {
   if (s.heading_index == nullptr) return;
-  uint32_t* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  if (first)
-    for (int h = 0; h < kNumHeadings; ++h) row[h] = kNil;
-  row[heading] = idx;
+  s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading] = idx;
+}
+
+// The state (w, heading) of this query from the dense index, kNil when there is none. A state's
+// voxel and heading never change and (voxel, heading) names at most one state, whose creation
+// wrote its entry last: so an entry that points at a state with that voxel and heading is right,
+// and any other (left by an earlier query, or never written) is not a state of this one.
+inline uint32_t lookup_state(const Side& s, uint32_t w, int heading) {
+  const uint32_t idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
+  if (idx >= s.n_nodes || s.nodes[idx].voxel != w || s.nodes[idx].heading != heading) return kNil;
+  return idx;
 }
 
 // Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
@@ -206,9 +216,14 @@ struct Key {
 inline Key key_of(const OpenItem& a) {
   Key k;
   memcpy(&k.hi, &a.f, sizeof(k.hi));
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  static_assert(offsetof(OpenItem, node) == 8 && offsetof(OpenItem, h) == 12, "OpenItem layout");
+  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + 8, sizeof(k.lo));  // node, h: 1 load
+#else
   uint32_t h;
   memcpy(&h, &a.h, sizeof(h));
   k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+#endif
   return k;
 }
 
@@ -462,6 +477,51 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   return n.g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
 }
 
+// The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
+// the vector to the side's target (deviation() in parts), shared by the pivots of one voxel.
+struct Target {
+  double h;           // m, heuristic()
+  double vx, vy, vz;  // voxels, target minus voxel
+  double n;           // voxels, norm of (vx, vy, vz)
+};
+
+inline Target target_of(const Query& q, const Side& s, const Node& u) {
+  Target t;
+  t.h = heuristic(s, u.voxel, u.x, u.y, u.z, q.grid->desc.res);
+  t.vx = s.tx - u.x;
+  t.vy = s.ty - u.y;
+  t.vz = s.tz - u.z;
+  t.n = q.dev_terms ? sqrt(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz) : 0.0;  // unused without them
+  return t;
+}
+
+// priority<true>() of a state with cost g and `heading` in the voxel of t: the same arithmetic, so
+// the same bits.
+inline double priority_at(const tdo_search* ctx, const Query& q, int back, double g, int heading,
+                          const Target& t) {
+  if (heading >= kNumDirs || !q.dev_terms) return g + q.h_weight * t.h;
+  const int travel = back ? dir_opposite(heading) : heading;
+  const double dev = t.n > 0.0 ? deviation_to(ctx, travel, t.vx, t.vy, t.vz, t.n) : 0.0;
+  return g + q.h_weight * (t.h + turn_bound(ctx, q, dev)) + q.mu * dev;
+}
+
+// push() of a turn-penalised state whose f and h are known.
+inline void push_headed(Side& s, uint32_t idx, double f, double h) {
+  OpenItem it;
+  it.node = idx;
+  it.f = f;
+  it.h = static_cast<float>(h);
+  if (s.use_stack && !(it.f > s.f_cur) && s.n_stack < kStackCap) {
+    s.stack[s.n_stack].f = it.f;
+    s.stack[s.n_stack].node = idx;
+    s.stack[s.n_stack].pad = 0;
+    ++s.n_stack;
+    s.nodes[idx].heap = kInStack;
+    return;
+  }
+  enqueue(s, it);
+}
+
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
   OpenItem it;
   it.node = idx;
@@ -539,13 +599,14 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
 // Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
 // step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
 // use relax_voxel.
+// `t`: the voxel parts of w's priority (target_of), nullptr to compute them.
 inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
-                        int step, double ng) {
+                        int step, double ng, const Target* t) {
   Side& s = ctx->side[back];
   const uint32_t first = slot_first(ctx, s, w);
   uint32_t idx = first;
   if (s.heading_index != nullptr) {
-    if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
+    if (idx != kNil) idx = lookup_state(s, w, heading);
   } else {
     while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
   }
@@ -558,16 +619,24 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
       it.node = idx;
-      it.f = priority<true>(ctx, q, s, back, n, &it.h);
+      if (t != nullptr) {
+        it.f = priority_at(ctx, q, back, ng, heading, *t);
+        it.h = static_cast<float>(t->h);
+      } else {
+        it.f = priority<true>(ctx, q, s, back, n, &it.h);
+      }
       sift_up(s, n.heap, it);
     }
   } else {
     idx = new_state(ctx, s, ui, w, ng, step >= 0 ? dir_dx(step) : 0, step >= 0 ? dir_dy(step) : 0,
                     step >= 0 ? dir_dz(step) : 0, heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
-    index_state(s, w, heading, idx, first == kNil);
+    index_state(s, w, heading, idx);
     slot_set(ctx, s, w, idx);
-    push(ctx, q, s, back, idx, true);
+    if (t != nullptr)
+      push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
+    else
+      push(ctx, q, s, back, idx, true);
   }
   if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
@@ -729,7 +798,7 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
     if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
-    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng);
+    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng, nullptr);
     if (st != TDO_OK) return st;
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
@@ -746,13 +815,14 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const Node u = s.nodes[ui];
   uint32_t direct, sharp;
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
+  const Target t = target_of(q, s, u);  // every pivot stays in u's voxel
   while (sharp != 0) {
     const int e = __builtin_ctz(sharp);
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
     const double ng =
         u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng);
+    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -799,6 +869,7 @@ struct DjQueue {
 // (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
 constexpr double kDjReach = 2.0;
+constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 // Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
 constexpr uint32_t kTryMin = 20000;
 constexpr uint32_t kTryDiv = 16;
@@ -852,21 +923,30 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         reached = true;
         limit = kDjReach * du;
       }
-      for (uint32_t m = g->moves[u]; m != 0; m &= m - 1u) {
-        const int e = __builtin_ctz(m);
+      // The cost test comes first: a settled neighbour fails it too (its key lies at most one
+      // bucket, under res, above du, and a step adds at least res), so most steps end after one
+      // load; the settled test after it only guards the list being walked.
+      const auto step = [&](int e) {
         const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
-        const uint32_t pw = qu.prev[w];
-        if (pw == kDjSettled) continue;
         const double nd = du + ctx->step_len[e];
-        if (!(nd < dist[w])) continue;
+        if (!(nd < dist[w])) return;
+        const uint32_t pw = qu.prev[w];
+        if (pw == kDjSettled) return;
         if (pw != kNil) {
           const uint64_t bw = qu.bucket(dist[w]);
-          if (bw <= cur) continue;  // cannot happen (see DjQueue); keeps the list being walked
+          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
           qu.unlink(w, bw);
         }
         dist[w] = nd;
         const uint64_t b = qu.bucket(nd);
         qu.insert(w, b > cur ? b : cur + 1u);
+      };
+      const uint32_t moves = g->moves[u];
+      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+#pragma GCC unroll 26
+        for (int e = 0; e < kNumDirs; ++e) step(e);
+      } else {
+        for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
       u = after;
     }
@@ -917,7 +997,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
     float h;
     s.cur = bucket_of(s, priority<false>(ctx, q, s, back, n, &h));
   }
-  index_state(s, n.voxel, kHeadingNone, 0, true);
+  index_state(s, n.voxel, kHeadingNone, 0);
   slot_set(ctx, s, n.voxel, 0);
   push(ctx, q, s, back, 0, headed);
 }
