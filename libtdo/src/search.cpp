@@ -90,7 +90,7 @@ struct StackItem {
 
 struct Side {
   uint32_t* slot;           // per voxel: see kSlotClosed
-  uint32_t* heading_index;  // dense_headings: 27 states per voxel, checked on use (lookup_state)
+  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
   Node* nodes;              // state pool, max_nodes
   OpenItem* open;           // binary min-heap, max_nodes
   uint32_t n_nodes;
@@ -188,21 +188,14 @@ inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
   s.slot[v] = idx;
 }
 
-// Record state idx as (voxel w, heading) in the dense index. Entries are never cleared: one counts
-// only when it names a state of this query with that voxel and heading (lookup_state).
-inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx) {
+// Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
+// this query, whose other entries are cleared first.
+inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
   if (s.heading_index == nullptr) return;
-  s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading] = idx;
-}
-
-// The state (w, heading) of this query from the dense index, kNil when there is none. A state's
-// voxel and heading never change and (voxel, heading) names at most one state, whose creation
-// wrote its entry last: so an entry that points at a state with that voxel and heading is right,
-// and any other (left by an earlier query, or never written) is not a state of this one.
-inline uint32_t lookup_state(const Side& s, uint32_t w, int heading) {
-  const uint32_t idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
-  if (idx >= s.n_nodes || s.nodes[idx].voxel != w || s.nodes[idx].heading != heading) return kNil;
-  return idx;
+  uint32_t* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
+  static_assert(kNil == 0xFFFFFFFFu, "memset fills kNil");
+  if (first) memset(row, 0xFF, kNumHeadings * sizeof(uint32_t));  // kNil
+  row[heading] = idx;
 }
 
 // Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
@@ -606,7 +599,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
   const uint32_t first = slot_first(ctx, s, w);
   uint32_t idx = first;
   if (s.heading_index != nullptr) {
-    if (idx != kNil) idx = lookup_state(s, w, heading);
+    if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
   } else {
     while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
   }
@@ -631,7 +624,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
     idx = new_state(ctx, s, ui, w, ng, step >= 0 ? dir_dx(step) : 0, step >= 0 ? dir_dy(step) : 0,
                     step >= 0 ? dir_dz(step) : 0, heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
-    index_state(s, w, heading, idx);
+    index_state(s, w, heading, idx, first == kNil);
     slot_set(ctx, s, w, idx);
     if (t != nullptr)
       push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
@@ -997,7 +990,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
     float h;
     s.cur = bucket_of(s, priority<false>(ctx, q, s, back, n, &h));
   }
-  index_state(s, n.voxel, kHeadingNone, 0);
+  index_state(s, n.voxel, kHeadingNone, 0, true);
   slot_set(ctx, s, n.voxel, 0);
   push(ctx, q, s, back, 0, headed);
 }
