@@ -313,6 +313,7 @@ int tdo_demo_run(tdo_demo_info* info) {
   cfg.cap.max_samples = TDO_DEMO_MAX_SAMPLES;
   cfg.cap.max_profile = TDO_DEMO_MAX_PROFILE;
   cfg.cap.stream_samples = TDO_DEMO_STREAM_SAMPLES;
+  cfg.cap.max_open = TDO_DEMO_MAX_OPEN;
 
   info->arena_bytes = sizeof(tdo_demo_arena);
   info->footprint = tdo_planner_footprint(&cfg);

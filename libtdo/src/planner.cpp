@@ -20,7 +20,8 @@ GridCapacity grid_cap(const tdo_planner_config& cfg) {
 
 tdo_search_config search_cfg(const tdo_planner_config& cfg) {
   return tdo_search_config{cfg.cap.max_voxels,     cfg.cap.max_nodes,      cfg.cap.max_path,
-                           cfg.cap.max_expansions, cfg.cap.dense_headings, cfg.cap.exact_heuristic};
+                           cfg.cap.max_expansions, cfg.cap.dense_headings, cfg.cap.exact_heuristic,
+                           cfg.cap.max_open};
 }
 
 }  // namespace

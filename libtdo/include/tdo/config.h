@@ -21,8 +21,8 @@ typedef struct tdo_capacity {
                                  voxel and search direction). */
   uint32_t max_boxes;       /**< obstacle boxes kept for exact distance queries (48 bytes each) */
   uint32_t max_nodes;       /**< search states per direction (32 bytes each, plus 16 for the open
-                                 list): at most max_voxels without heading costs, up to 27x that
-                                 with them */
+                                 list while max_open = 0): at most max_voxels without heading
+                                 costs, up to 27x that with them */
   uint32_t max_path;        /**< voxels in one grid path (4 + 24 bytes each) */
   uint32_t max_clear_cells; /**< offsets in the clearance stencil: (2K+1)^3 with
                                  K = ceil(clearance/res + 0.5) covers a clearance (12 bytes each) */
@@ -54,6 +54,10 @@ typedef struct tdo_capacity {
                                  1: not stored, verified and measured in streaming passes (same
                                  numbers), read with tdo_planner_each_sample (trajectory.h,
                                  tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 0 */
+  uint32_t max_open;        /**< search open-list items per direction (16 bytes each, plus 27 of
+                                 slack); 0 = max_nodes (never full). Too small:
+                                 TDO_ERR_OPEN_CAPACITY; tdo_search_output.peak_open measures a
+                                 query's need. tdo_capacity_for_grid sets 0 */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */
