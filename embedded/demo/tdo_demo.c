@@ -314,6 +314,9 @@ int tdo_demo_run(tdo_demo_info* info) {
   cfg.cap.max_profile = TDO_DEMO_MAX_PROFILE;
   cfg.cap.stream_samples = TDO_DEMO_STREAM_SAMPLES;
   cfg.cap.max_open = TDO_DEMO_MAX_OPEN;
+  /* the longest axis sizes the distance field's line scratch (max_voxels by default) */
+  cfg.cap.max_axis = (uint32_t)(desc.nx > desc.ny ? (desc.nx > desc.nz ? desc.nx : desc.nz)
+                                                  : (desc.ny > desc.nz ? desc.ny : desc.nz));
 
   info->arena_bytes = sizeof(tdo_demo_arena);
   info->footprint = tdo_planner_footprint(&cfg);

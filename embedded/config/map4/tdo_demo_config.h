@@ -19,6 +19,6 @@
 /* speed-profile pieces (8 per path segment + 1; Map4's path has 52 segments) */
 #define TDO_DEMO_MAX_PROFILE 1025u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (25760u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (25504u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

@@ -58,6 +58,10 @@ typedef struct tdo_capacity {
                                  slack); 0 = max_nodes (never full). Too small:
                                  TDO_ERR_OPEN_CAPACITY; tdo_search_output.peak_open measures a
                                  query's need. tdo_capacity_for_grid sets 0 */
+  uint32_t max_axis;        /**< voxels along the longest grid axis; sizes the distance field's
+                                 line scratch (8 bytes each). 0 = max_voxels (never too small). A
+                                 grid with a longer axis: tdo_grid_reset returns
+                                 TDO_ERR_MAP_CAPACITY. tdo_capacity_for_grid sets 0 */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */
