@@ -180,7 +180,43 @@ static void emit_point(const char* prefix, uint32_t i, tdo_vec3 p) {
 
 /* ---- The demo ---------------------------------------------------------------------------- */
 
-static void print_result(const tdo_plan_request* req, const tdo_plan_result* r) {
+/* State of one pass over the samples (tdo_planner_each_sample). */
+typedef struct sample_pass {
+  fnv f;           /* checksum pass */
+  uint32_t stride; /* print pass: every stride-th sample */
+  uint32_t n;      /* print pass: number of samples (the last one is printed too) */
+} sample_pass;
+
+static void checksum_sample(void* user, uint32_t index, const tdo_sample* q) {
+  sample_pass* pass = (sample_pass*)user;
+  (void)index;
+  fnv_double(&pass->f, q->t);
+  fnv_vec(&pass->f, q->p);
+  fnv_vec(&pass->f, q->v);
+  fnv_vec(&pass->f, q->a);
+}
+
+static void print_sample(void* user, uint32_t index, const tdo_sample* q) {
+  const sample_pass* pass = (const sample_pass*)user;
+  line_buf l = {{0}, 0};
+  if (index % pass->stride == 0u) {
+    put_str(&l, "  sample t ");
+    put_fixed(&l, q->t, 9);
+    put_str(&l, " p ");
+    put_vec(&l, q->p);
+    emit(&l);
+  }
+  if (index + 1u == pass->n) {
+    put_str(&l, "  last   t ");
+    put_fixed(&l, q->t, 9);
+    put_str(&l, " p ");
+    put_vec(&l, q->p);
+    emit(&l);
+  }
+}
+
+static void print_result(const tdo_planner* planner, const tdo_plan_request* req,
+                         const tdo_plan_result* r) {
   emit_u32("expansions", r->search.expansions);
   emit_fixed("search_cost_m", r->search.cost, 9);
   emit_fixed("search_penalized_cost_m", r->search.penalized_cost, 9);
@@ -210,32 +246,19 @@ static void print_result(const tdo_plan_request* req, const tdo_plan_result* r) 
     emit_fixed("path_length_m", r->path.length, 9);
   }
   if (r->reached >= TDO_PLAN_TRAJECTORY && r->n_samples > 0u) {
-    f = fnv_start();
-    for (uint32_t i = 0; i < r->n_samples; ++i) {
-      const tdo_sample* q = &r->samples[i];
-      fnv_double(&f, q->t);
-      fnv_vec(&f, q->p);
-      fnv_vec(&f, q->v);
-      fnv_vec(&f, q->a);
-    }
-    emit_checksum("samples", r->n_samples, f, 1);
+    /* The samples through tdo_planner_each_sample: stored or, with TDO_DEMO_STREAM_SAMPLES,
+     * regenerated bit for bit; two passes (checksum first, then the printed ones). */
+    sample_pass pass;
+    pass.f = fnv_start();
+    pass.stride = 0u;
+    tdo_planner_each_sample(planner, checksum_sample, &pass);
+    emit_checksum("samples", r->n_samples, pass.f, 1);
     emit_u32("samples", r->n_samples);
     /* every 2 s of flight and the last sample: t, position */
     const uint32_t stride = (uint32_t)(2.0 / req->params.dt + 0.5);
-    for (uint32_t i = 0; i<r->n_samples; i += stride> 0u ? stride : 1u) {
-      line_buf l = {{0}, 0};
-      put_str(&l, "  sample t ");
-      put_fixed(&l, r->samples[i].t, 9);
-      put_str(&l, " p ");
-      put_vec(&l, r->samples[i].p);
-      emit(&l);
-    }
-    line_buf l = {{0}, 0};
-    put_str(&l, "  last   t ");
-    put_fixed(&l, r->samples[r->n_samples - 1u].t, 9);
-    put_str(&l, " p ");
-    put_vec(&l, r->samples[r->n_samples - 1u].p);
-    emit(&l);
+    pass.stride = stride > 0u ? stride : 1u;
+    pass.n = r->n_samples;
+    tdo_planner_each_sample(planner, print_sample, &pass);
 
     const tdo_feasibility* fe = &r->feasibility;
     emit_u32("feasible", (uint32_t)fe->ok);
@@ -289,6 +312,11 @@ int tdo_demo_run(tdo_demo_info* info) {
   cfg.cap.max_path = TDO_DEMO_MAX_PATH;
   cfg.cap.max_samples = TDO_DEMO_MAX_SAMPLES;
   cfg.cap.max_profile = TDO_DEMO_MAX_PROFILE;
+  cfg.cap.stream_samples = TDO_DEMO_STREAM_SAMPLES;
+  cfg.cap.max_open = TDO_DEMO_MAX_OPEN;
+  /* the longest axis sizes the distance field's line scratch (max_voxels by default) */
+  cfg.cap.max_axis = (uint32_t)(desc.nx > desc.ny ? (desc.nx > desc.nz ? desc.nx : desc.nz)
+                                                  : (desc.ny > desc.nz ? desc.ny : desc.nz));
 
   info->arena_bytes = sizeof(tdo_demo_arena);
   info->footprint = tdo_planner_footprint(&cfg);
@@ -359,7 +387,7 @@ int tdo_demo_run(tdo_demo_info* info) {
   put_str(&l, "status ");
   put_str(&l, tdo_status_str(st));
   emit(&l);
-  if (st == TDO_OK || st == TDO_ERR_INFEASIBLE) print_result(&req, &res);
+  if (st == TDO_OK || st == TDO_ERR_INFEASIBLE) print_result(planner, &req, &res);
   tdo_demo_write("end\n");
   return st == TDO_OK ? 0 : 1;
 }

@@ -242,7 +242,7 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base,
 void build_distance_field(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
   const int32_t n_axis[3] = {d.nx, d.ny, d.nz};
-  const uint32_t line_cap = df_line_capacity(g->cap.max_voxels);
+  const uint32_t line_cap = df_line_capacity(g->cap);
   g->df_valid = 1;
   for (int a = 0; a < 3; ++a)
     if (static_cast<uint32_t>(n_axis[a]) > line_cap) g->df_valid = 0;
@@ -394,7 +394,7 @@ uint32_t box_ref_capacity(const GridCapacity& cap) {
 }
 
 size_t grid_footprint(const GridCapacity& cap) {
-  const size_t line = df_line_capacity(cap.max_voxels);
+  const size_t line = df_line_capacity(cap);
   return tdo_arena_round(sizeof(tdo_grid)) + tdo_arena_round(static_cast<size_t>(cap.max_voxels)) +
          tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(tdo_box) + 1u) +
@@ -422,7 +422,7 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
       tdo_arena_alloc(arena, cap.max_clear_cells * 3u * sizeof(int32_t) + 1u));
   if (g->flags == nullptr || g->moves == nullptr || g->boxes == nullptr || g->stencil == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
-  const size_t line = df_line_capacity(cap.max_voxels);
+  const size_t line = df_line_capacity(cap);
   g->df = static_cast<float*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(float)));
   g->df_f = static_cast<uint32_t*>(tdo_arena_alloc(arena, line * sizeof(uint32_t)));
   g->df_v = static_cast<int32_t*>(tdo_arena_alloc(arena, line * sizeof(int32_t)));
@@ -452,6 +452,11 @@ extern "C" tdo_status tdo_grid_reset(tdo_grid* g, const tdo_grid_desc* desc) {
   const uint64_t n = static_cast<uint64_t>(desc->nx) * static_cast<uint64_t>(desc->ny) *
                      static_cast<uint64_t>(desc->nz);
   if (n > g->cap.max_voxels) return TDO_ERR_MAP_CAPACITY;
+  const uint32_t axis = g->cap.max_axis;
+  if (axis > 0u &&
+      (static_cast<uint32_t>(desc->nx) > axis || static_cast<uint32_t>(desc->ny) > axis ||
+       static_cast<uint32_t>(desc->nz) > axis))
+    return TDO_ERR_MAP_CAPACITY;
   g->desc = *desc;
   g->nvox = static_cast<uint32_t>(n);
   g->stride_y = desc->nx;

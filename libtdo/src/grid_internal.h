@@ -20,6 +20,7 @@ struct GridCapacity {
   uint32_t max_boxes;
   uint32_t max_clear_cells;
   uint32_t max_box_refs = 0;  // bucket index entries; 0 = max_boxes * kRefsPerBoxDefault
+  uint32_t max_axis = 0;      // voxels along the longest axis; 0 = not limited (max_voxels)
 };
 
 // Distance field and box buckets (collision queries, built by tdo_grid_finish).
@@ -33,9 +34,11 @@ constexpr uint32_t kRefsPerBoxDefault = kLargeBoxCells;  // so a derived capacit
 
 // Cells of the bucket index a grid of max_voxels may need (the cell edge grows until it fits).
 inline uint32_t bucket_cell_capacity(uint32_t max_voxels) { return max_voxels / 16u + 64u; }
-// Entries of the line scratch of the exact EDT.
-inline uint32_t df_line_capacity(uint32_t max_voxels) {
-  return max_voxels < kDfMaxAxis ? max_voxels : kDfMaxAxis;
+// Entries of the line scratch of the exact EDT: the longest axis a grid of this capacity can have.
+inline uint32_t df_line_capacity(const GridCapacity& cap) {
+  const uint32_t n =
+      cap.max_axis > 0u && cap.max_axis < cap.max_voxels ? cap.max_axis : cap.max_voxels;
+  return n < kDfMaxAxis ? n : kDfMaxAxis;
 }
 // Bucket index entries: the configured capacity, or the derived default when it is 0.
 uint32_t box_ref_capacity(const GridCapacity& cap);

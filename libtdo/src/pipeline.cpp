@@ -92,8 +92,10 @@ tdo_status check_end_points(const tdo_grid* grid, const tdo_plan_request& req, d
   return TDO_OK;
 }
 
-void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path,
-                const tdo_plan_params& p) {
+// `traj`: the trajectory stage's output when samples were streamed (not stored): the energy and
+// flight time come from its streaming pass (the same sums over the same samples).
+void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const tdo_plan_params& p,
+                const tdo_traj_output* traj = nullptr) {
   tdo_metrics_input mi;
   memset(&mi, 0, sizeof(mi));
   if (r->reached >= TDO_PLAN_CORRECT) {
@@ -110,6 +112,10 @@ void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path,
   mi.grid = pl->grid;
   mi.clearance_cap = 10.0;
   tdo_metrics_compute(&mi, &r->metrics);
+  if (traj != nullptr && traj->samples == nullptr && traj->n_samples >= 2u) {
+    r->metrics.energy = traj->energy;
+    r->metrics.flight_time_s = traj->duration;  // last t - first t, the first t being 0
+  }
 }
 
 }  // namespace
@@ -128,8 +134,8 @@ tdo_smooth_config smooth_cfg(const tdo_capacity& c) {
   return tdo_smooth_config{c.max_path + 2u, 3u * c.max_path + 7u, c.max_shrinks};
 }
 tdo_traj_config traj_cfg(const tdo_capacity& c) {
-  return tdo_traj_config{c.max_samples, 3u * c.max_path + 7u, c.max_profile, c.max_violations,
-                         c.max_refinements};
+  return tdo_traj_config{c.max_samples,    3u * c.max_path + 7u, c.max_profile,
+                         c.max_violations, c.max_refinements,    c.stream_samples};
 }
 
 size_t pipeline_footprint(const tdo_planner_config* cfg) {
@@ -203,6 +209,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
                                        tdo_plan_result* out) {
   if (pl == nullptr || req == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
   memset(out, 0, sizeof(*out));
+  pl->have_samples = 0;
   const tdo_plan_params& p = req->params;
   out->status = check_params(p);
   if (out->status != TDO_OK) return out->status;
@@ -277,6 +284,8 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   mi.j_max = p.j_max;
   mi.stop_angle = p.stop_angle;
   const uint32_t rounds = p.depth == TDO_PLAN_TRAJECTORY ? 3u : 1u;
+  tdo_traj_output to;
+  memset(&to, 0, sizeof(to));
   for (uint32_t round = 0; round < rounds; ++round) {
     tdo_smooth_output so;
     out->status = tdo_smooth_run(pl->smooth, &mi, &so);
@@ -294,7 +303,6 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
     ti.j_max = p.j_max;
     ti.a_lat_max = p.a_lat_max;
     ti.dt = p.dt;
-    tdo_traj_output to;
     out->status = tdo_traj_run(pl->traj, &ti, &to);
     out->feasibility = to.report;
     out->refinements += to.refinements;
@@ -305,10 +313,18 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
     mi.k *= 1.5;
   }
   if (out->status != TDO_OK && out->status != TDO_ERR_INFEASIBLE) return out->status;
-  metrics_of(pl, out, &out->path, p);
+  metrics_of(pl, out, &out->path, p, out->reached == TDO_PLAN_TRAJECTORY ? &to : nullptr);
   if (out->status == TDO_ERR_INFEASIBLE) {  // never hand out a violating trajectory as usable
     out->samples = nullptr;
     out->n_samples = 0;
   }
+  pl->have_samples = out->status == TDO_OK && out->n_samples > 0u ? 1 : 0;
   return out->status;
+}
+
+extern "C" tdo_status tdo_planner_each_sample(const tdo_planner* pl, tdo_sample_fn fn, void* user) {
+  if (pl == nullptr || fn == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (pl->traj == nullptr) return TDO_ERR_NOT_CONFIGURED;
+  if (!pl->have_samples) return TDO_ERR_INVALID_ARGUMENT;
+  return tdo_traj_each_sample(pl->traj, fn, user);
 }

@@ -15,12 +15,13 @@ bool valid(const tdo_planner_config* cfg) {
 
 GridCapacity grid_cap(const tdo_planner_config& cfg) {
   return GridCapacity{cfg.cap.max_voxels, cfg.cap.max_boxes, cfg.cap.max_clear_cells,
-                      cfg.cap.max_box_refs};
+                      cfg.cap.max_box_refs, cfg.cap.max_axis};
 }
 
 tdo_search_config search_cfg(const tdo_planner_config& cfg) {
   return tdo_search_config{cfg.cap.max_voxels,     cfg.cap.max_nodes,      cfg.cap.max_path,
-                           cfg.cap.max_expansions, cfg.cap.dense_headings, cfg.cap.exact_heuristic};
+                           cfg.cap.max_expansions, cfg.cap.dense_headings, cfg.cap.exact_heuristic,
+                           cfg.cap.max_open};
 }
 
 }  // namespace

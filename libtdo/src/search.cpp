@@ -116,6 +116,7 @@ struct Side {
 
 struct tdo_search {
   tdo_search_config cfg;
+  uint32_t max_open;  // open-list items per side before TDO_ERR_OPEN_CAPACITY (see open_entries)
   tdo_internal::Side side[2];                                           // 0 forward, 1 backward
   tdo_voxel* path;                                                      // max_path voxels
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
@@ -157,6 +158,7 @@ struct Query {
   double best;
   uint32_t meet[2];
   uint32_t expansions;
+  uint32_t peak_open;  // largest open list (heap plus later buckets) of a side before its expansion
 };
 
 // Offsets of the steps as a table: the voxel-state relaxation reads them instead of dividing.
@@ -1047,6 +1049,11 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     }
     if (q.expansions >= q.budget) return TDO_ERR_BUDGET;
     Side& s = ctx->side[back];
+    // Open-list capacity (max_open): checked before each expansion, which adds at most
+    // kOpenSlack items, so the list never outgrows the max_open + kOpenSlack entries carved.
+    const uint32_t n_queued = s.n_open + s.n_future;
+    if (n_queued > q.peak_open) q.peak_open = n_queued;
+    if (n_queued > ctx->max_open) return TDO_ERR_OPEN_CAPACITY;
     uint32_t ui;
     if (s.n_stack > 0) {
       --s.n_stack;
@@ -1181,6 +1188,18 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
                             : 0u;
 }
 
+// Open-list items one expansion adds at most: 26 neighbours and one item of deferred pivots.
+constexpr uint32_t kOpenSlack = kNumDirs + 1u;
+
+// Open-list entries carved per side. The list never holds more items than states (each open state
+// once, each deferred-pivot item stands for an expanded state), so max_nodes always suffices; a
+// smaller max_open gets max_open + kOpenSlack (the check in search_loop).
+uint32_t open_entries(const tdo_search_config& cfg) {
+  if (cfg.max_open == 0u || static_cast<uint64_t>(cfg.max_open) + kOpenSlack >= cfg.max_nodes)
+    return cfg.max_nodes;
+  return cfg.max_open + kOpenSlack;
+}
+
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint32_t)) +
          (cfg.exact_heuristic
@@ -1188,7 +1207,7 @@ size_t side_bytes(const tdo_search_config& cfg) {
               : 0u) +
          tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
-         tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(OpenItem));
+         tdo_arena_round(static_cast<size_t>(open_entries(cfg)) * sizeof(OpenItem));
 }
 
 bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
@@ -1217,6 +1236,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   memset(ctx, 0, sizeof(*ctx));
   ctx->cfg = *cfg;
   if (ctx->cfg.max_expansions == 0) ctx->cfg.max_expansions = 0xFFFFFFFFu;
+  ctx->max_open = cfg->max_open != 0u ? cfg->max_open : 0xFFFFFFFFu;  // 0: max_nodes bounds it
   ctx->turn_lambda = -1.0;
   ctx->cand_theta = -1.0;
   for (int a = 0; a < kNumDirs; ++a) {
@@ -1258,7 +1278,8 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
       if (s.heading_index == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     }
     s.nodes = static_cast<Node*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(Node)));
-    s.open = static_cast<OpenItem*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(OpenItem)));
+    s.open = static_cast<OpenItem*>(
+        tdo_arena_alloc(arena, static_cast<size_t>(open_entries(*cfg)) * sizeof(OpenItem)));
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     memset(s.slot, 0xFF, cfg->max_voxels * sizeof(uint32_t));  // kNil: no states
@@ -1336,6 +1357,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
     const tdo_status st = run_search<false>(ctx, q);
     out->expansions = q.expansions;
+    out->peak_open = q.peak_open;
     if (st != TDO_OK) return st;
     return write_path(ctx, q, out);
   }
@@ -1354,13 +1376,15 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
     st = run_search<true>(ctx, q);
-    const bool retry = t < retries && q.expansions < budget &&
-                       (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY);
+    const bool retry =
+        t < retries && q.expansions < budget &&
+        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY || st == TDO_ERR_OPEN_CAPACITY);
     if (!retry) break;
     if (t == 0) {
       for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
         if (!exact_lower_bounds(ctx, g, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
           out->expansions = q.expansions;
+          out->peak_open = q.peak_open;
           return TDO_ERR_NO_PATH;
         }
         ctx->side[k].hx = ctx->hdist[k];
@@ -1375,6 +1399,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     out->fallback = static_cast<uint32_t>(t + 1);
   }
   out->expansions = q.expansions;
+  out->peak_open = q.peak_open;
   if (st != TDO_OK) return st;
   return write_path(ctx, q, out);
 }

@@ -46,6 +46,8 @@ extern "C" const char* tdo_status_str(tdo_status status) {
       return "clearance_capacity";
     case TDO_ERR_NOT_CONFIGURED:
       return "not_configured";
+    case TDO_ERR_OPEN_CAPACITY:
+      return "open_capacity";
     case TDO_STATUS_COUNT:
       break;
   }

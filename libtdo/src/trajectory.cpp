@@ -112,8 +112,8 @@ struct Phase {
 
 struct tdo_traj {
   tdo_traj_config cfg;
-  tdo_sample* samples;              // max_samples
-  uint32_t* owner;                  // max_samples: plateau of each sample
+  tdo_sample* samples;              // max_samples; nullptr with stream_samples
+  uint32_t* owner;                  // max_samples: plateau of each sample; nullptr when streamed
   tdo_violation* violations;        // max_violations
   tdo_internal::Plateau* plateaus;  // max_segments
   tdo_internal::Boundary* bounds;   // max_segments + 1
@@ -122,6 +122,10 @@ struct tdo_traj {
   uint32_t n_plateaus;
   uint32_t n_phases;
   double total;  // m, path length
+  // The samples of the last run (tdo_traj_each_sample): their number (0: none), path and dt.
+  uint32_t n_last;
+  const tdo_path_segment* last_segs;
+  double last_dt;
 };
 
 namespace tdo_internal {
@@ -585,55 +589,124 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Sampling: Beziers by the cursor, lines and arcs by tdo_segment_eval.
 
-tdo_status sample(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t* n_out) {
+/** Samples of the current profile at dt; TDO_ERR_SAMPLE_CAPACITY beyond max_samples. */
+tdo_status sample_count(const tdo_traj* ctx, double dt, uint32_t* n_out) {
   const Phase& last = ctx->phases[ctx->n_phases - 1];
   const double t_end = last.t0 + last.dur;
-  const double steps = ceil(t_end / lim.dt - kAlignSlack);
+  const double steps = ceil(t_end / dt - kAlignSlack);
   if (!(steps + 1.0 <= static_cast<double>(ctx->cfg.max_samples))) return TDO_ERR_SAMPLE_CAPACITY;
-  const uint32_t n = static_cast<uint32_t>(steps) + 1u;
-  const tdo_path_segment* segs = in->path.seg;
-  uint32_t ph = 0, q = 0;
-  BezierCursor cursor;
-  memset(&cursor, 0, sizeof(cursor));
-  cursor.seg = 0xFFFFFFFFu;
-  for (uint32_t i = 0; i < n; ++i) {
-    const double t = lim.dt * i;
-    while (ph + 1u < ctx->n_phases && ctx->phases[ph + 1u].t0 <= t) ++ph;
-    const Phase& f = ctx->phases[ph];
-    double tau = t - f.t0;
-    if (tau < 0.0) tau = 0.0;
-    if (tau > f.dur) tau = f.dur;
-    double s = f.s0 + tau * (f.v0 + tau * (0.5 * f.a0 + tau * f.j / 6.0));
-    double sd = f.v0 + tau * (f.a0 + 0.5 * tau * f.j);
-    double sdd = f.a0 + tau * f.j;
-    if (i + 1u == n) {  // exactly at the goal, at rest
-      s = ctx->total;
-      sd = 0.0;
-      sdd = 0.0;
-    }
-    if (sd < 0.0) sd = 0.0;  // rounding at the end of a deceleration
-    while (q + 1u < ctx->n_plateaus && s >= ctx->plateaus[q + 1u].s0) ++q;
-    const Plateau& p = ctx->plateaus[q];
-    double local = s - p.s0;
-    if (local < 0.0) local = 0.0;
-    if (local > p.len || i + 1u == n) local = p.len;
-    tdo_segment_state st;
-    if (segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
-      if (cursor.seg != p.seg) cursor_reset(&cursor, segs[p.seg], p.seg);
-      cursor_eval(&cursor, local, &st);
-    } else {
-      tdo_segment_eval(&segs[p.seg], local, &st);
-    }
-    tdo_sample& out = ctx->samples[i];
-    out.t = t;
-    out.p = st.p;
-    out.v = tv(mul(mk(st.t), sd));
-    out.a = tv(add(mul(mk(st.t), sdd), mul(mk(st.kn), sd * sd)));
-    ctx->owner[i] = q;
-  }
-  *n_out = n;
+  *n_out = static_cast<uint32_t>(steps) + 1u;
   return TDO_OK;
 }
+
+/** Generates samples 0, 1, ..., n-1 of the current profile in order (the only sampling code). */
+struct Sampler {
+  const tdo_traj* ctx;
+  const tdo_path_segment* segs;
+  double dt;
+  uint32_t n;
+  uint32_t i;  // next sample
+  uint32_t ph, q;
+  BezierCursor cursor;
+};
+
+void sampler_start(Sampler* g, const tdo_traj* ctx, const tdo_path_segment* segs, double dt,
+                   uint32_t n) {
+  g->ctx = ctx;
+  g->segs = segs;
+  g->dt = dt;
+  g->n = n;
+  g->i = 0;
+  g->ph = 0;
+  g->q = 0;
+  memset(&g->cursor, 0, sizeof(g->cursor));
+  g->cursor.seg = 0xFFFFFFFFu;
+}
+
+/** Sample g->i (< g->n) and the plateau it lies on; then the next one. */
+void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
+  const tdo_traj* ctx = g->ctx;
+  const uint32_t i = g->i++;
+  const uint32_t n = g->n;
+  const double t = g->dt * i;
+  while (g->ph + 1u < ctx->n_phases && ctx->phases[g->ph + 1u].t0 <= t) ++g->ph;
+  const Phase& f = ctx->phases[g->ph];
+  double tau = t - f.t0;
+  if (tau < 0.0) tau = 0.0;
+  if (tau > f.dur) tau = f.dur;
+  double s = f.s0 + tau * (f.v0 + tau * (0.5 * f.a0 + tau * f.j / 6.0));
+  double sd = f.v0 + tau * (f.a0 + 0.5 * tau * f.j);
+  double sdd = f.a0 + tau * f.j;
+  if (i + 1u == n) {  // exactly at the goal, at rest
+    s = ctx->total;
+    sd = 0.0;
+    sdd = 0.0;
+  }
+  if (sd < 0.0) sd = 0.0;  // rounding at the end of a deceleration
+  while (g->q + 1u < ctx->n_plateaus && s >= ctx->plateaus[g->q + 1u].s0) ++g->q;
+  const uint32_t q = g->q;
+  const Plateau& p = ctx->plateaus[q];
+  double local = s - p.s0;
+  if (local < 0.0) local = 0.0;
+  if (local > p.len || i + 1u == n) local = p.len;
+  tdo_segment_state st;
+  if (g->segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
+    if (g->cursor.seg != p.seg) cursor_reset(&g->cursor, g->segs[p.seg], p.seg);
+    cursor_eval(&g->cursor, local, &st);
+  } else {
+    tdo_segment_eval(&g->segs[p.seg], local, &st);
+  }
+  out->t = t;
+  out->p = st.p;
+  out->v = tv(mul(mk(st.t), sd));
+  out->a = tv(add(mul(mk(st.t), sdd), mul(mk(st.kn), sd * sd)));
+  *owner = q;
+}
+
+/** Stored samples: all of them into the context's arrays. */
+void sample(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n) {
+  Sampler g;
+  sampler_start(&g, ctx, in->path.seg, lim.dt, n);
+  for (uint32_t i = 0; i < n; ++i) sampler_next(&g, &ctx->samples[i], &ctx->owner[i]);
+}
+
+/** Sample source of the verification: the stored arrays. */
+struct StoredSamples {
+  const tdo_sample* samples;
+  const uint32_t* owners;
+  void rewind() {}
+  const tdo_sample& at(uint32_t i) { return samples[i]; }
+  uint32_t owner(uint32_t i) { return owners[i]; }
+};
+
+/** Sample source of the verification without storage: a generator and a window of the last kWindow
+ *  samples. The verification reads samples at most 3 behind and 2 ahead of its position, so every
+ *  sample is generated once per pass. */
+struct StreamedSamples {
+  static constexpr uint32_t kWindow = 8;  // a power of two > 3 + 1 + 2
+  Sampler gen;
+  const tdo_traj* ctx;
+  const tdo_path_segment* segs;
+  double dt;
+  uint32_t n;
+  tdo_sample ring[kWindow];
+  uint32_t owners[kWindow];
+  void rewind() { sampler_start(&gen, ctx, segs, dt, n); }
+  void reach(uint32_t i) {
+    while (gen.i <= i && gen.i < n) {  // bounded by n
+      const uint32_t k = gen.i & (kWindow - 1u);
+      sampler_next(&gen, &ring[k], &owners[k]);
+    }
+  }
+  const tdo_sample& at(uint32_t i) {
+    reach(i);
+    return ring[i & (kWindow - 1u)];
+  }
+  uint32_t owner(uint32_t i) {
+    reach(i);
+    return owners[i & (kWindow - 1u)];
+  }
+};
 
 // ---------------------------------------------------------------------------------------------
 // Verification (eq. 15-19) on the sampled positions only.
@@ -653,43 +726,58 @@ void add_violation(Report* r, double t, tdo_quantity what, double value, double 
   if (what != TDO_QUANTITY_CLEARANCE) ++r->dynamic;
 }
 
-void mark(tdo_traj* ctx, uint32_t n, uint32_t first, uint32_t last) {
+template <typename Src>
+void mark(tdo_traj* ctx, Src& src, uint32_t n, uint32_t first, uint32_t last) {
   const uint32_t a = first > 0u ? first - 1u : 0u;
   const uint32_t b = last + 1u < n ? last + 1u : n - 1u;
-  for (uint32_t i = a; i <= b; ++i) ctx->hit[ctx->owner[i]] = 1u;
+  for (uint32_t i = a; i <= b; ++i) ctx->hit[src.owner(i)] = 1u;
 }
 
-uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
-                tdo_feasibility* rep) {
+/** m^2/s^4 times s: one trapezoid of integral |a|^2 dt, as tdo_metrics_compute sums it. */
+inline double energy_step(const tdo_sample& a, const tdo_sample& b) {
+  const double qa = dot(mk(a.a), mk(a.a));
+  const double qb = dot(mk(b.a), mk(b.a));
+  return 0.5 * (qa + qb) * (b.t - a.t);
+}
+
+/** Two passes over the samples of `src` (dynamic limits and energy, then clearance), so the
+ *  violations are listed in the same order whether the samples are stored or streamed. */
+template <typename Src>
+uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n, Src& src,
+                tdo_feasibility* rep, double* energy) {
   memset(rep, 0, sizeof(*rep));
   rep->violations = ctx->violations;
   rep->min_turn_radius = HUGE_VAL;
   rep->min_clearance = HUGE_VAL;
   Report r{rep, ctx->cfg.max_violations, ctx->violations, 0u};
   memset(ctx->hit, 0, ctx->n_plateaus);
-  const tdo_sample* sm = ctx->samples;
   const double dt = lim.dt;
   const double v_lim = lim.v_max * (1.0 + kTolerance);
   const double a_lim = lim.a_max * (1.0 + kTolerance);
   const double j_lim = lim.j_max * (1.0 + kTolerance);
+  *energy = 0.0;
+  src.rewind();
   // Rolling finite differences: v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt,
   // j_i = (a_{i+1} - a_i)/dt.
   V3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
   for (uint32_t i = 0; i + 1u < n; ++i) {
-    const V3 v = mul(sub(mk(sm[i + 1u].p), mk(sm[i].p)), 1.0 / dt);
+    const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
+    const tdo_sample& s0 = src.at(i);
+    *energy += energy_step(s0, s1);
+    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), 1.0 / dt);
     const double speed = norm(v);
     rep->max_speed = dmax(rep->max_speed, speed);
     if (speed > v_lim) {
-      add_violation(&r, sm[i].t + 0.5 * dt, TDO_QUANTITY_SPEED, speed, lim.v_max);
-      mark(ctx, n, i, i + 1u);
+      add_violation(&r, s0.t + 0.5 * dt, TDO_QUANTITY_SPEED, speed, lim.v_max);
+      mark(ctx, src, n, i, i + 1u);
     }
     if (i >= 1u) {  // a_{i-1} from v_{i-1} and v_i: centred at sample i
       const V3 a = mul(sub(v, v_prev), 1.0 / dt);
       const double acc = norm(a);
       rep->max_acc = dmax(rep->max_acc, acc);
       if (acc > a_lim) {
-        add_violation(&r, sm[i].t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
-        mark(ctx, n, i - 1u, i + 1u);
+        add_violation(&r, src.at(i).t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
+        mark(ctx, src, n, i - 1u, i + 1u);
       }
       // Turn radius at sample i with the centred velocity (eq. 19).
       const V3 vc = mul(add(v, v_prev), 0.5);
@@ -699,14 +787,14 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
         const double ap = norm(sub(a, mul(u, dot(a, u))));
         // Below the rounding noise of a second difference of these positions the path is
         // straight (near rest that noise alone would give any radius).
-        const double noise = kRadiusNoise * (norm(mk(sm[i].p)) + 1.0) / (dt * dt);
+        const double noise = kRadiusNoise * (norm(mk(src.at(i).p)) + 1.0) / (dt * dt);
         if (ap > noise) {
           const double radius = vn * vn / ap;
           rep->min_turn_radius = dmin(rep->min_turn_radius, radius);
           const double need = vn * vn / lim.a_max;
           if (radius * (1.0 + kTolerance) < need) {
-            add_violation(&r, sm[i].t, TDO_QUANTITY_TURN_RADIUS, radius, need);
-            mark(ctx, n, i - 1u, i + 1u);
+            add_violation(&r, src.at(i).t, TDO_QUANTITY_TURN_RADIUS, radius, need);
+            mark(ctx, src, n, i - 1u, i + 1u);
           }
         }
       }
@@ -714,8 +802,8 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
         const double jerk = norm(mul(sub(a, a_prev), 1.0 / dt));
         rep->max_jerk = dmax(rep->max_jerk, jerk);
         if (jerk > j_lim) {
-          add_violation(&r, sm[i].t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
-          mark(ctx, n, i - 2u, i + 1u);
+          add_violation(&r, src.at(i).t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
+          mark(ctx, src, n, i - 2u, i + 1u);
         }
       }
       a_prev = a;
@@ -730,16 +818,20 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     const double cap = in->clearance + kClearanceCapExtra;
     const double floor_ok = in->clearance - kClearanceSlack;
     double ref = -HUGE_VAL, moved = 0.0;
+    src.rewind();
+    tdo_vec3 prev{0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < n; ++i) {
-      if (i > 0u) moved += norm(sub(mk(sm[i].p), mk(sm[i - 1u].p)));
+      const tdo_sample& si = src.at(i);
+      if (i > 0u) moved += norm(sub(mk(si.p), mk(prev)));
+      prev = si.p;
       const double lb = ref - moved - kLipschitzSlack;
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
-      const double d = tdo_collision_point_distance(in->grid, sm[i].p, cap);
+      const double d = tdo_collision_point_distance(in->grid, si.p, cap);
       ref = d;
       moved = 0.0;
       rep->min_clearance = dmin(rep->min_clearance, d);
       if (d < in->clearance - kClearanceSlack)
-        add_violation(&r, sm[i].t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
+        add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
     }
   }
   rep->ok = rep->n_violations_total == 0u ? 1 : 0;
@@ -754,7 +846,7 @@ using namespace tdo_internal;
 extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
     return 0;
-  const size_t ns = cfg->max_samples, nseg = cfg->max_segments;
+  const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = cfg->max_segments;
   return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
          tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
@@ -767,15 +859,20 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
   if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_traj_footprint(cfg) == 0)
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
-  if (cfg->max_segments >= 0xFFFFFFFFu || cfg->max_samples > 0x7FFFFFFFu)
+  if (cfg->max_segments >= 0xFFFFFFFFu || cfg->max_samples > 0x7FFFFFFFu ||
+      cfg->stream_samples > 1u)
     return TDO_ERR_INVALID_ARGUMENT;
   tdo_traj* ctx = static_cast<tdo_traj*>(tdo_arena_alloc(arena, sizeof(tdo_traj)));
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   memset(ctx, 0, sizeof(*ctx));
   ctx->cfg = *cfg;
-  const size_t ns = cfg->max_samples, nseg = cfg->max_segments;
-  ctx->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
-  ctx->owner = static_cast<uint32_t*>(tdo_arena_alloc(arena, ns * sizeof(uint32_t)));
+  const size_t nseg = cfg->max_segments;
+  if (!cfg->stream_samples) {
+    const size_t ns = cfg->max_samples;
+    ctx->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
+    ctx->owner = static_cast<uint32_t*>(tdo_arena_alloc(arena, ns * sizeof(uint32_t)));
+    if (ctx->samples == nullptr || ctx->owner == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  }
   ctx->violations = static_cast<tdo_violation*>(
       tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)));
   ctx->plateaus = static_cast<Plateau*>(tdo_arena_alloc(arena, nseg * sizeof(Plateau)));
@@ -783,9 +880,8 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
   ctx->hit = static_cast<uint8_t*>(tdo_arena_alloc(arena, nseg));
   ctx->phases = static_cast<Phase*>(
       tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_profile) * sizeof(Phase)));
-  if (ctx->samples == nullptr || ctx->owner == nullptr || ctx->violations == nullptr ||
-      ctx->plateaus == nullptr || ctx->bounds == nullptr || ctx->hit == nullptr ||
-      ctx->phases == nullptr)
+  if (ctx->violations == nullptr || ctx->plateaus == nullptr || ctx->bounds == nullptr ||
+      ctx->hit == nullptr || ctx->phases == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   *out = ctx;
   return TDO_OK;
@@ -797,6 +893,7 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
   out->report.min_turn_radius = HUGE_VAL;
   out->report.min_clearance = HUGE_VAL;
   out->report.violations = ctx->violations;
+  ctx->n_last = 0;
   tdo_status st = validate(ctx, in);
   if (st != TDO_OK) return st;
   const Limits lim{in->v_max, in->a_max, in->j_max, in->a_lat_max, in->dt};
@@ -804,15 +901,33 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
   if (st != TDO_OK) return st;
   const uint32_t rounds = ctx->cfg.max_refinements;
   for (uint32_t round = 0; round <= rounds; ++round) {
+    ctx->n_last = 0;  // the profile changes: the samples of a previous round are gone
     st = build_profile(ctx, lim);
     if (st != TDO_OK) return st;
     uint32_t n = 0;
-    st = sample(ctx, in, lim, &n);
+    st = sample_count(ctx, lim.dt, &n);
     if (st != TDO_OK) return st;
-    const uint32_t dynamic = verify(ctx, in, lim, n, &out->report);
-    out->samples = ctx->samples;
+    uint32_t dynamic;
+    if (ctx->cfg.stream_samples) {
+      StreamedSamples src;
+      src.ctx = ctx;
+      src.segs = in->path.seg;
+      src.dt = lim.dt;
+      src.n = n;
+      dynamic = verify(ctx, in, lim, n, src, &out->report, &out->energy);
+      out->samples = nullptr;
+      out->duration = lim.dt * (n - 1u);  // the last sample's t, as the generator computes it
+    } else {
+      sample(ctx, in, lim, n);
+      StoredSamples src{ctx->samples, ctx->owner};
+      dynamic = verify(ctx, in, lim, n, src, &out->report, &out->energy);
+      out->samples = ctx->samples;
+      out->duration = ctx->samples[n - 1u].t;
+    }
+    ctx->n_last = n;
+    ctx->last_segs = in->path.seg;
+    ctx->last_dt = lim.dt;
     out->n_samples = n;
-    out->duration = ctx->samples[n - 1u].t;
     out->refinements = round;
     if (out->report.ok) return TDO_OK;
     // Clearance violations are geometry: a slower flight does not move the path.
@@ -822,4 +937,22 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
       if (ctx->hit[k]) ctx->plateaus[k].scale *= kRefineFactor;
   }
   return TDO_ERR_INFEASIBLE;
+}
+
+extern "C" tdo_status tdo_traj_each_sample(const tdo_traj* ctx, tdo_sample_fn fn, void* user) {
+  if (ctx == nullptr || fn == nullptr || ctx->n_last == 0u) return TDO_ERR_INVALID_ARGUMENT;
+  const uint32_t n = ctx->n_last;
+  if (!ctx->cfg.stream_samples) {
+    for (uint32_t i = 0; i < n; ++i) fn(user, i, &ctx->samples[i]);
+    return TDO_OK;
+  }
+  Sampler g;
+  sampler_start(&g, ctx, ctx->last_segs, ctx->last_dt, n);
+  for (uint32_t i = 0; i < n; ++i) {
+    tdo_sample smp;
+    uint32_t owner;
+    sampler_next(&g, &smp, &owner);
+    fn(user, i, &smp);
+  }
+  return TDO_OK;
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <iomanip>
 #include <limits>
 #include <set>
@@ -595,6 +596,44 @@ TEST(GridCapacity, GivenAMapLargerThanMaxVoxels_WhenReset_ThenMapCapacity) {
   const int32_t big = std::numeric_limits<int32_t>::max();
   const tdo_grid_desc huge{big, big, big, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
   EXPECT_EQ(tdo_grid_reset(pl.grid(), &huge), TDO_ERR_MAP_CAPACITY);
+}
+
+// max_axis sizes the distance field's line scratch: a longer axis is refused by name, and a grid
+// within it answers every query exactly as an unlimited one.
+TEST(GridCapacity, GivenAnAxisLongerThanMaxAxis_WhenReset_ThenMapCapacityElseTheSameDistances) {
+  tdo_capacity cap = tdo_test::make_cap(1000, 1000, 100);
+  tdo_planner_config loose{}, tight{};
+  loose.cap = cap;
+  cap.max_axis = 12;
+  tight.cap = cap;
+  // 1000 voxels of line scratch (8 bytes each) became 12
+  EXPECT_EQ(tdo_planner_footprint(&loose) - tdo_planner_footprint(&tight), 8u * (1000u - 12u));
+  TestPlanner a(loose.cap), b(tight.cap);
+  ASSERT_EQ(a.status(), TDO_OK);
+  ASSERT_EQ(b.status(), TDO_OK);
+  for (const tdo_grid_desc& d : {tdo_grid_desc{13, 1, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0}},
+                                 tdo_grid_desc{1, 13, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0}},
+                                 tdo_grid_desc{2, 2, 13, 1.0, tdo_vec3{0.0, 0.0, 0.0}}}) {
+    EXPECT_EQ(tdo_grid_reset(b.grid(), &d), TDO_ERR_MAP_CAPACITY);
+    EXPECT_EQ(tdo_grid_reset(a.grid(), &d), TDO_OK);
+  }
+  const tdo_grid_desc d{12, 10, 8, 0.5, tdo_vec3{-1.0, 2.0, 0.5}};
+  tdo_test::Rng rng(77);
+  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_reset(g, &d), TDO_OK);
+  for (int n = 0; n < 6; ++n) {
+    const tdo_vec3 lo{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const tdo_box box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 1.5), lo.y + rng.uniform(0.1, 1.5),
+                                   lo.z + rng.uniform(0.1, 1.5)}};
+    for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_add_box(g, &box), TDO_OK);
+  }
+  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_finish(g, 0.4), TDO_OK);
+  EXPECT_EQ(tdo_grid_blocked_count(a.grid()), tdo_grid_blocked_count(b.grid()));
+  for (int n = 0; n < 500; ++n) {
+    const tdo_vec3 p{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const double da = tdo_collision_point_distance(a.grid(), p, 3.0);
+    const double db = tdo_collision_point_distance(b.grid(), p, 3.0);
+    EXPECT_EQ(std::memcmp(&da, &db, sizeof da), 0) << n;
+  }
 }
 
 TEST(GridCapacity, GivenMoreBoxesThanMaxBoxes_WhenAdded_ThenBoxCapacity) {

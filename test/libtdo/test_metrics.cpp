@@ -269,7 +269,7 @@ TEST(Metrics, GivenTrajectoryFromStageFiveThenEnergyMatchesIndependentSum) {
                                            bezier({7, 0, 0}, {10, 0, 0}, {10, 0, 0}, {10, 3, 0}),
                                            line({10, 3, 0}, {10, 8, 0})};
   const tdo_path path = make_path(segs);
-  tdo_traj_config cfg{10000, 8, 8 * TDO_TRAJ_PIECES_PER_SEGMENT + 1, 8, 4};
+  tdo_traj_config cfg{10000, 8, 8 * TDO_TRAJ_PIECES_PER_SEGMENT + 1, 8, 4, 0};
   std::vector<unsigned char> mem(tdo_traj_footprint(&cfg) + 64);
   tdo_arena arena;
   tdo_arena_init(&arena, mem.data(), mem.size());

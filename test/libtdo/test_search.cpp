@@ -675,6 +675,58 @@ TEST(SearchCapacity, GivenATinyNodePool_WhenSearchingFar_ThenNodeCapacity) {
     }
 }
 
+// max_open: the peak a search reports is exactly what it needs. With max_open = peak the result is
+// the unlimited one bit for bit, one less stops with TDO_ERR_OPEN_CAPACITY (the planners live in
+// exactly footprint-sized blocks, so ASan sees any write past the smaller open list).
+TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapacityElseTheSame) {
+  Rng rng(31);
+  int checked = 0;
+  uint32_t largest = 0;
+  for (int round = 0; round < 12; ++round) {
+    const Case c = random_case(rng, 12, 6);
+    for (tdo_search_kind kind : kKinds)
+      for (double lambda : {0.0, 50.0}) {
+        const uint32_t nodes = 27u * 12u * 12u * 6u;
+        tdo_capacity cap = make_cap(12u * 12u * 6u, nodes, 1000);
+        TestPlanner free_pl(cap);
+        ASSERT_EQ(free_pl.status(), TDO_OK);
+        ASSERT_EQ(tdo_test::load_voxels(free_pl.grid(), c.map), TDO_OK);
+        const Result full =
+            run(free_pl.search(), make_input(free_pl.grid(), c.ps, c.pg, kind, lambda, lambda));
+        if (full.status != TDO_OK) continue;
+        const uint32_t peak = full.out.peak_open;
+        if (peak < 2u) continue;  // a one-step query never holds more than the root
+        SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
+                                          << " lambda " << lambda << " peak " << peak);
+        for (uint32_t max_open : {peak, peak - 1u}) {
+          cap.max_open = max_open;
+          TestPlanner pl(cap);
+          ASSERT_EQ(pl.status(), TDO_OK);
+          ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+          const Result r =
+              run(pl.search(), make_input(pl.grid(), c.ps, c.pg, kind, lambda, lambda));
+          if (max_open == peak) {
+            EXPECT_TRUE(identical(full, r));
+            EXPECT_EQ(r.out.peak_open, peak);
+          } else {
+            EXPECT_EQ(r.status, TDO_ERR_OPEN_CAPACITY) << tdo_status_str(r.status);
+          }
+        }
+        largest = peak > largest ? peak : largest;
+        ++checked;
+      }
+  }
+  EXPECT_GE(checked, 20);
+  EXPECT_GE(largest, 100u);  // some queries had a real open list
+  // The open list is carved for max_open + 27 items only.
+  tdo_planner_config a{}, b{};
+  a.cap = make_cap(1000, 27000, 100);
+  b.cap = a.cap;
+  b.cap.max_open = 1000;
+  EXPECT_EQ(tdo_planner_footprint(&a) - tdo_planner_footprint(&b), 2u * 16u * (27000u - 1027u))
+      << "two directions of 16-byte items";
+}
+
 TEST(SearchCapacity, GivenAPathBufferOneShort_WhenSearching_ThenPathCapacityElseItFitsExactly) {
   // A straight corridor of 12 voxels: the only path has 12 voxels.
   const VoxelMap m(12, 1, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});

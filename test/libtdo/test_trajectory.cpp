@@ -572,6 +572,38 @@ TEST(Trajectory, GivenTooFewSamplesOrProfilePiecesThenSampleCapacity) {
   EXPECT_EQ(tdo_traj_run(c.ctx(), &in, &out), TDO_OK);
 }
 
+TEST(Trajectory, GivenStreamedSamplesThenMaxSamplesStillBoundsThemWithSampleCapacity) {
+  const std::vector<tdo_path_segment> segs{line({0, 0, 0}, {30, 0, 0})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_config cfg = default_config();
+  cfg.stream_samples = 1;
+  // GIVEN streamed samples: none is stored, so the footprint drops by at least 84 bytes each
+  tdo_traj_config stored = default_config();
+  EXPECT_GE(tdo_traj_footprint(&stored), tdo_traj_footprint(&cfg) + 84u * cfg.max_samples);
+  Traj ref(cfg);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(ref.ctx(), &in, &out), TDO_OK);
+  EXPECT_EQ(out.samples, nullptr);
+  const uint32_t need = out.n_samples;
+  ASSERT_GT(need, 1000u);  // > 10 s at 0.01 s
+  // WHEN max_samples is exactly the count, or one less
+  cfg.max_samples = need;
+  Traj exact(cfg);
+  EXPECT_EQ(tdo_traj_run(exact.ctx(), &in, &out), TDO_OK);
+  cfg.max_samples = need - 1u;
+  Traj small(cfg);
+  // THEN one less is the named status, and nothing is left to read
+  EXPECT_EQ(tdo_traj_run(small.ctx(), &in, &out), TDO_ERR_SAMPLE_CAPACITY);
+  EXPECT_EQ(tdo_traj_each_sample(
+                small.ctx(), [](void*, uint32_t, const tdo_sample*) {}, nullptr),
+            TDO_ERR_INVALID_ARGUMENT);
+  tdo_traj_config bad = default_config();
+  bad.stream_samples = 2;
+  Traj b(bad);
+  EXPECT_EQ(b.status(), TDO_ERR_INVALID_ARGUMENT);
+}
+
 TEST(Trajectory, GivenMoreSegmentsThanConfiguredThenPathCapacity) {
   tdo_traj_config cfg = default_config();
   cfg.max_segments = 2;
@@ -787,6 +819,94 @@ TEST_F(TrajectoryClearance, GivenPathTooCloseToAnObstacleThenInfeasibleWithoutRe
   EXPECT_NEAR(out.report.min_clearance, 0.3, 1e-9);
   // AND the dynamics of the returned attempt are fine: only the geometry fails
   EXPECT_TRUE(within_limits(out, in));
+}
+
+// Streamed samples (tdo_traj_config.stream_samples) against stored ones, on a run with jerk
+// violations (the peaked corner without refinement) and clearance violations (a box beside its
+// end): the same report, violation list order included, the same energy and the same sample bits.
+void expect_same_run(const tdo_traj_output& a, const tdo_traj_output& b) {
+  EXPECT_EQ(a.n_samples, b.n_samples);
+  EXPECT_EQ(std::memcmp(&a.duration, &b.duration, sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof(double)), 0);
+  EXPECT_EQ(a.refinements, b.refinements);
+  EXPECT_EQ(a.report.ok, b.report.ok);
+  for (const auto field :
+       {&tdo_feasibility::max_speed, &tdo_feasibility::max_acc, &tdo_feasibility::max_jerk,
+        &tdo_feasibility::min_turn_radius, &tdo_feasibility::min_clearance})
+    EXPECT_EQ(std::memcmp(&(a.report.*field), &(b.report.*field), sizeof(double)), 0);
+  EXPECT_EQ(a.report.n_violations_total, b.report.n_violations_total);
+  ASSERT_EQ(a.report.n_violations, b.report.n_violations);
+  for (uint32_t i = 0; i < a.report.n_violations; ++i) {  // field by field (padding differs)
+    const tdo_violation& va = a.report.violations[i];
+    const tdo_violation& vb = b.report.violations[i];
+    EXPECT_EQ(va.what, vb.what) << "violation " << i;
+    for (const auto field : {&tdo_violation::t, &tdo_violation::value, &tdo_violation::limit})
+      EXPECT_EQ(std::memcmp(&(va.*field), &(vb.*field), sizeof(double)), 0) << "violation " << i;
+  }
+}
+
+std::vector<tdo_sample> each_sample(const tdo_traj* ctx) {
+  std::vector<tdo_sample> v;
+  EXPECT_EQ(tdo_traj_each_sample(
+                ctx,
+                [](void* user, uint32_t, const tdo_sample* s) {
+                  static_cast<std::vector<tdo_sample>*>(user)->push_back(*s);
+                },
+                &v),
+            TDO_OK);
+  return v;
+}
+
+TEST_F(TrajectoryClearance, GivenStreamedSamplesThenReportEnergyAndSamplesAreTheStoredOnes) {
+  // GIVEN the peaked corner (jerk violations without refinement) ending 0.2 m below a box
+  load_box(-0.3, 0.0);
+  std::vector<tdo_path_segment> segs = peaked_path();
+  for (int k = 0; k < 4; ++k) segs[0].p[k] = segs[0].p[k] + tdo_vec3{6.0, -2.5, 2.0};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.grid = pl_.grid();
+  in.clearance = 0.5;
+  for (uint32_t refinements : {0u, 8u}) {
+    for (uint32_t listed : {1000u, 4u}) {
+      tdo_traj_config cfg = default_config();
+      cfg.max_refinements = refinements;
+      cfg.max_violations = listed;
+      Traj stored(cfg);
+      cfg.stream_samples = 1;
+      Traj streamed(cfg);
+      tdo_traj_output a{}, b{};
+      // WHEN both run
+      const tdo_status sa = tdo_traj_run(stored.ctx(), &in, &a);
+      ASSERT_EQ(tdo_traj_run(streamed.ctx(), &in, &b), sa);
+      ASSERT_EQ(sa, TDO_ERR_INFEASIBLE);
+      // THEN the runs agree in every number
+      expect_same_run(a, b);
+      if (refinements == 0u && listed == 1000u) {  // both kinds are listed, dynamic ones first
+        ASSERT_GT(a.report.n_violations, 1u);
+        EXPECT_EQ(a.report.violations[0].what, TDO_QUANTITY_JERK);
+        EXPECT_EQ(a.report.violations[a.report.n_violations - 1u].what, TDO_QUANTITY_CLEARANCE);
+      }
+      // AND the energy is the one the metrics compute from the stored samples
+      tdo_metrics_input mi{};
+      const tdo_vec3 ends[2] = {segs[0].p[0], segs[0].p[3]};
+      mi.waypoints = ends;
+      mi.n_waypoints = 2;
+      mi.samples = a.samples;
+      mi.n_samples = a.n_samples;
+      mi.dt = in.dt;
+      tdo_metrics m{};
+      ASSERT_EQ(tdo_metrics_compute(&mi, &m), TDO_OK);
+      EXPECT_EQ(std::memcmp(&m.energy, &b.energy, sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(&m.flight_time_s, &b.duration, sizeof(double)), 0);
+      // AND the streamed samples, regenerated, are the stored ones bit for bit
+      const std::vector<tdo_sample> sa_v = each_sample(stored.ctx());
+      const std::vector<tdo_sample> sb_v = each_sample(streamed.ctx());
+      ASSERT_EQ(sa_v.size(), a.n_samples);
+      ASSERT_EQ(sb_v.size(), a.n_samples);
+      EXPECT_EQ(std::memcmp(sa_v.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0);
+      EXPECT_EQ(std::memcmp(sb_v.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0);
+    }
+  }
 }
 
 }  // namespace

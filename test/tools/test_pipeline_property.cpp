@@ -484,9 +484,10 @@ struct Seen {
 
 class Planner {
  public:
-  Planner(const tdo_io::Map& map, double clearance, uint32_t node_cap) {
+  Planner(const tdo_io::Map& map, double clearance, uint32_t node_cap, uint32_t stream = 0u) {
     cfg_.cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
     cfg_.cap.exact_heuristic = 1u;  // the obstacle-aware retry: geb079 G4 and G5 need it
+    cfg_.cap.stream_samples = stream;
     bytes_ = tdo_planner_footprint(&cfg_);
     mem_.reset(new unsigned char[bytes_]);
     status_ = tdo_planner_init(&planner_, mem_.get(), bytes_, &cfg_);
@@ -704,6 +705,87 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
   std::printf("maps 1-5: %d queries, A* ok %d, tdo ok %d\n", tally.queries, tally.astar_ok,
               tally.tdo_ok);
   EXPECT_GE(tally.tdo_ok, 5);
+}
+
+// tdo_capacity.stream_samples: the same plans, feasibility reports, metrics and samples (bit for
+// bit) as with stored samples, on the paper's maps (Map4 left out: 150 MB per planner) and a few
+// random queries each, which include infeasible and failed ones.
+std::vector<tdo_sample> collect_samples(const tdo_planner* pl) {
+  std::vector<tdo_sample> out;
+  const tdo_status st = tdo_planner_each_sample(
+      pl,
+      [](void* user, uint32_t index, const tdo_sample* s) {
+        auto* v = static_cast<std::vector<tdo_sample>*>(user);
+        EXPECT_EQ(index, v->size());
+        v->push_back(*s);
+      },
+      &out);
+  if (st != TDO_OK) out.clear();
+  return out;
+}
+
+TEST(PipelineStreaming,
+     GivenStreamedSamplesWhenPlannedThenReportMetricsAndSamplesAreTheStoredOnes) {
+  int compared = 0;
+  for (int n : {1, 2, 3, 5}) {
+    const std::string name = "map" + std::to_string(n);
+    const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
+    Planner stored(map, 0.5, 0u), streamed(map, 0.5, 0u, 1u);
+    ASSERT_EQ(stored.status(), TDO_OK) << name;
+    ASSERT_EQ(streamed.status(), TDO_OK) << name;
+    TestRng rng(300u + static_cast<uint64_t>(n));
+    for (int q = 0; q < 4; ++q) {
+      tdo_plan_request req{};
+      req.start = q == 0 ? map.start : random_point(rng, map.desc);
+      req.goal = q == 0 ? map.goal : random_point(rng, map.desc);
+      tdo_plan_params_default(&req.params);
+      tdo_plan_result a{}, b{};
+      const tdo_status sa = tdo_planner_plan(stored.get(), &req, &a);
+      const tdo_status sb = tdo_planner_plan(streamed.get(), &req, &b);
+      const std::string what = name + " query " + std::to_string(q);
+      ASSERT_EQ(sa, sb) << what;
+      EXPECT_EQ(b.samples, nullptr) << what;
+      EXPECT_EQ(a.n_samples, b.n_samples) << what;
+      EXPECT_EQ(a.refinements, b.refinements) << what;
+      // The reports field by field (the violation lists by value), the metrics bit for bit.
+      const tdo_feasibility& fa = a.feasibility;
+      const tdo_feasibility& fb = b.feasibility;
+      EXPECT_EQ(fa.ok, fb.ok) << what;
+      EXPECT_EQ(std::memcmp(&fa.max_speed, &fb.max_speed, sizeof(double)), 0) << what;
+      EXPECT_EQ(std::memcmp(&fa.max_acc, &fb.max_acc, sizeof(double)), 0) << what;
+      EXPECT_EQ(std::memcmp(&fa.max_jerk, &fb.max_jerk, sizeof(double)), 0) << what;
+      EXPECT_EQ(std::memcmp(&fa.min_turn_radius, &fb.min_turn_radius, sizeof(double)), 0) << what;
+      EXPECT_EQ(std::memcmp(&fa.min_clearance, &fb.min_clearance, sizeof(double)), 0) << what;
+      EXPECT_EQ(fa.n_violations_total, fb.n_violations_total) << what;
+      ASSERT_EQ(fa.n_violations, fb.n_violations) << what;
+      for (uint32_t i = 0; i < fa.n_violations; ++i) {  // field by field (padding differs)
+        const tdo_violation& va = fa.violations[i];
+        const tdo_violation& vb = fb.violations[i];
+        EXPECT_EQ(va.what, vb.what) << what;
+        for (const auto field : {&tdo_violation::t, &tdo_violation::value, &tdo_violation::limit})
+          EXPECT_EQ(std::memcmp(&(va.*field), &(vb.*field), sizeof(double)), 0) << what;
+      }
+      const tdo_metrics& ma = a.metrics;
+      const tdo_metrics& mb = b.metrics;
+      EXPECT_EQ(ma.turns, mb.turns) << what;
+      EXPECT_EQ(ma.curvature_continuous, mb.curvature_continuous) << what;
+      for (const auto field :
+           {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
+            &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::energy,
+            &tdo_metrics::flight_time_s})
+        EXPECT_EQ(std::memcmp(&(ma.*field), &(mb.*field), sizeof(double)), 0) << what;
+      if (sa != TDO_OK || a.n_samples == 0u) continue;
+      ++compared;
+      EXPECT_GT(b.metrics.energy, 0.0) << what;  // the streamed energy is there, not left at 0
+      const std::vector<tdo_sample> via_a = collect_samples(stored.get());
+      const std::vector<tdo_sample> via_b = collect_samples(streamed.get());
+      ASSERT_EQ(via_a.size(), a.n_samples) << what;
+      ASSERT_EQ(via_b.size(), a.n_samples) << what;
+      EXPECT_EQ(std::memcmp(via_a.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+      EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+    }
+  }
+  EXPECT_GE(compared, 4);  // at least the four maps' own queries
 }
 
 // geb079 voxelized at 0.2 m, clearance 0.3 m: the checked pairs G1-G5 of maps/octomap/README.md

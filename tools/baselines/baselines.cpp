@@ -51,7 +51,7 @@ std::unique_ptr<Environment> Environment::create(const tdo_io::Map& map, double 
   // Contexts for measuring raw polylines: corner-free smoothing and an unrefined trajectory.
   const tdo_smooth_config sc{kMaxPolyline, 3u * kMaxPolyline + 7u, 0u};
   const uint32_t segs = 3u * kMaxPolyline + 7u;
-  const tdo_traj_config tc{kMaxSamples, segs, TDO_TRAJ_PIECES_PER_SEGMENT * segs + 1u, 16u, 0u};
+  const tdo_traj_config tc{kMaxSamples, segs, TDO_TRAJ_PIECES_PER_SEGMENT * segs + 1u, 16u, 0u, 0u};
   const size_t extra = tdo_smooth_footprint(&sc) + tdo_traj_footprint(&tc);
   env->extra_.reset(new (std::nothrow) unsigned char[extra]);
   if (!env->extra_ || extra == 0) {

@@ -40,6 +40,7 @@ struct Options {
   double clearance = 0.0; /**< m; default depends on the map kind */
   long long max_expansions = 0;
   long long max_nodes = 4000000;
+  long long max_open = 0; /**< open-list items per direction; 0 = max_nodes */
   std::string scen_path;
   long long limit = 0;
   double lambda = 0.0;     /**< m of cost per (turn/pi)^2 */
@@ -128,6 +129,9 @@ void validate(const Options& o) {
   if (o.max_nodes <= 0 || o.max_nodes > 0xFFFFFFF0LL) {
     throw BadInput{"--max-nodes must be in [1, 4294967280], got " + std::to_string(o.max_nodes)};
   }
+  if (o.max_open < 0 || o.max_open > 0xFFFFFFF0LL) {
+    throw BadInput{"--max-open must be in [0, 4294967280], got " + std::to_string(o.max_open)};
+  }
   if (o.max_voxels <= 0 || o.max_voxels > 0xFFFFFFF0LL) {
     throw BadInput{"--max-voxels must be in [1, 4294967280], got " + std::to_string(o.max_voxels)};
   }
@@ -177,6 +181,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   cfg.cap.exact_heuristic = o.retry == "on" ? 1u : 0u;
+  cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
   if (nvox > static_cast<double>(vcap) || cfg.cap.max_voxels > vcap) {
@@ -271,6 +276,8 @@ std::string explain_no_plan(tdo_status st, uint32_t budget) {
              " exhausted (--max-expansions)";
     case TDO_ERR_NODE_CAPACITY:
       return name + ": search node pool full (--max-nodes)";
+    case TDO_ERR_OPEN_CAPACITY:
+      return name + ": search open list full (--max-open)";
     case TDO_ERR_PATH_CAPACITY:
       return name + ": path longer than the path buffer";
     default:
@@ -541,6 +548,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       }
     }
     std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
+    std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", res.search.peak_open);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
@@ -642,6 +650,10 @@ int run(int argc, char** argv) {
                  "expansion budget of one search (0 = the default, 2 x --max-nodes)")
       ->capture_default_str();
   app.add_option("--max-nodes", o.max_nodes, "search states per direction (sizes the arena)")
+      ->capture_default_str();
+  app.add_option("--max-open", o.max_open,
+                 "open-list items per direction (0 = --max-nodes); the text output's "
+                 "open_list_peak is a query's need")
       ->capture_default_str();
   auto* scen = app.add_option("--scen", o.scen_path,
                               "MovingAI .3dscen: plan its queries, compare costs (1e-4)");

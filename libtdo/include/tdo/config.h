@@ -20,8 +20,9 @@ typedef struct tdo_capacity {
                                  (5 bytes per voxel) and the per-voxel search slots (4 bytes per
                                  voxel and search direction). */
   uint32_t max_boxes;       /**< obstacle boxes kept for exact distance queries (48 bytes each) */
-  uint32_t max_nodes;       /**< search states per direction (56 bytes each): at most
-                                 max_voxels without heading costs, up to 27x that with them */
+  uint32_t max_nodes;       /**< search states per direction (32 bytes each, plus 16 for the open
+                                 list while max_open = 0): at most max_voxels without heading
+                                 costs, up to 27x that with them */
   uint32_t max_path;        /**< voxels in one grid path (4 + 24 bytes each) */
   uint32_t max_clear_cells; /**< offsets in the clearance stencil: (2K+1)^3 with
                                  K = ceil(clearance/res + 0.5) covers a clearance (12 bytes each) */
@@ -44,10 +45,23 @@ typedef struct tdo_capacity {
                                  tdo_capacity_for_grid sets 1 for 27 headings, else 0 */
   uint32_t max_checks;      /**< segment clearance checks of one inflection correction (budget) */
   uint32_t max_shrinks;     /**< radius reductions per corner when smoothing (budget) */
-  uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (80 bytes each) */
+  uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (84 bytes each when
+                                 stored, 0 with stream_samples) */
   uint32_t max_profile;     /**< speed-profile pieces: 8 per path segment + 1 (see trajectory.h) */
   uint32_t max_violations;  /**< violations listed in a feasibility report (40 bytes each) */
   uint32_t max_refinements; /**< feasibility refinement rounds before TDO_ERR_INFEASIBLE */
+  uint32_t stream_samples;  /**< 0: trajectory samples are stored (tdo_plan_result.samples);
+                                 1: not stored, verified and measured in streaming passes (same
+                                 numbers), read with tdo_planner_each_sample (trajectory.h,
+                                 tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 0 */
+  uint32_t max_open;        /**< search open-list items per direction (16 bytes each, plus 27 of
+                                 slack); 0 = max_nodes (never full). Too small:
+                                 TDO_ERR_OPEN_CAPACITY; tdo_search_output.peak_open measures a
+                                 query's need. tdo_capacity_for_grid sets 0 */
+  uint32_t max_axis;        /**< voxels along the longest grid axis; sizes the distance field's
+                                 line scratch (8 bytes each). 0 = max_voxels (never too small). A
+                                 grid with a longer axis: tdo_grid_reset returns
+                                 TDO_ERR_MAP_CAPACITY. tdo_capacity_for_grid sets 0 */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */

@@ -31,7 +31,8 @@ typedef struct tdo_grid_desc {
 /**
  * @brief Start a new map: clears all obstacles. The grid is not plannable until tdo_grid_finish.
  * @return TDO_ERR_INVALID_ARGUMENT for non-positive or non-finite sizes,
- *         TDO_ERR_MAP_CAPACITY when nx*ny*nz exceeds max_voxels.
+ *         TDO_ERR_MAP_CAPACITY when nx*ny*nz exceeds max_voxels or an axis exceeds a non-zero
+ *         max_axis (config.h).
  */
 tdo_status tdo_grid_reset(tdo_grid* grid, const tdo_grid_desc* desc);
 

@@ -80,7 +80,8 @@ typedef struct tdo_plan_result {
   uint32_t n_waypoints;
   uint32_t n_safety_critical; /**< waypoints kept for clearance */
   tdo_path path;              /**< stage 3 */
-  const tdo_sample* samples;  /**< stage 5, every dt */
+  const tdo_sample* samples;  /**< stage 5, every dt; NULL when the planner streams them
+                                  (tdo_capacity.stream_samples): tdo_planner_each_sample */
   uint32_t n_samples;
   tdo_feasibility feasibility; /**< stage 5 report (also when infeasible) */
   uint32_t refinements;        /**< feasibility refinement rounds */
@@ -102,6 +103,14 @@ typedef struct tdo_plan_result {
  */
 tdo_status tdo_planner_plan(tdo_planner* planner, const tdo_plan_request* req,
                             tdo_plan_result* out);
+
+/**
+ * @brief Hand every sample of the last plan's trajectory to `fn` in order (stored, or regenerated
+ *        bit for bit when the planner streams samples). Allocates nothing; n_samples calls.
+ * @return TDO_ERR_NOT_CONFIGURED without a trajectory stage; TDO_ERR_INVALID_ARGUMENT for null
+ *         pointers or when the last plan returned no trajectory (not TDO_OK, or not that deep).
+ */
+tdo_status tdo_planner_each_sample(const tdo_planner* planner, tdo_sample_fn fn, void* user);
 
 #ifdef __cplusplus
 }

@@ -36,6 +36,11 @@ typedef struct tdo_search_config {
                                  direction) for turn-penalised searches; 0: per-voxel chains */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the retry of a
                                  flooding turn-penalised search (tdo_search_output.fallback) */
+  uint32_t max_open;        /**< open-list items per direction (16 bytes each, plus 27 entries of
+                                 slack: one expansion's worth); a search whose open list holds
+                                 more before an expansion stops with TDO_ERR_OPEN_CAPACITY
+                                 (tdo_search_output.peak_open measures the need). 0 = max_nodes,
+                                 which can never overflow */
 } tdo_search_config;
 
 /** One query. */
@@ -75,6 +80,9 @@ typedef struct tdo_search_output {
   uint32_t pivots;       /**< pivots (sharp turns in place) on the returned path */
   uint32_t n_path;       /**< voxels in path, start voxel first, goal voxel last */
   const tdo_voxel* path; /**< the voxel path */
+  uint32_t peak_open;    /**< most open-list items (states waiting for expansion and deferred
+                              pivot items) a direction held before one of its expansions, every
+                              try counted: the smallest max_open this query runs with */
   uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
                               1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
@@ -95,7 +103,8 @@ tdo_status tdo_search_init(tdo_search** ctx, tdo_arena* arena, const tdo_search_
  * @brief Plan on the grid. Allocates nothing.
  * @return TDO_ERR_START_OUT_OF_BOUNDS / TDO_ERR_GOAL_OUT_OF_BOUNDS, TDO_ERR_START_BLOCKED /
  *         TDO_ERR_GOAL_BLOCKED, TDO_ERR_START_EQUALS_GOAL, TDO_ERR_NO_PATH, TDO_ERR_NODE_CAPACITY,
- *         TDO_ERR_PATH_CAPACITY, TDO_ERR_BUDGET, TDO_ERR_MAP_NOT_READY, TDO_ERR_INVALID_ARGUMENT.
+ *         TDO_ERR_OPEN_CAPACITY, TDO_ERR_PATH_CAPACITY, TDO_ERR_BUDGET, TDO_ERR_MAP_NOT_READY,
+ * TDO_ERR_INVALID_ARGUMENT.
  */
 tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in, tdo_search_output* out);
 

@@ -34,7 +34,8 @@ typedef enum tdo_status {
   TDO_ERR_CLEARANCE_CAPACITY =
       20,                      /**< clearance reaches further than the configured voxel radius */
   TDO_ERR_NOT_CONFIGURED = 21, /**< a pipeline stage was asked for but its capacities are zero */
-  TDO_STATUS_COUNT = 22        /**< number of statuses (not a status) */
+  TDO_ERR_OPEN_CAPACITY = 22,  /**< search open list full (tdo_search_config.max_open) */
+  TDO_STATUS_COUNT = 23        /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

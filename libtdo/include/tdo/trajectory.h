@@ -77,6 +77,11 @@ typedef struct tdo_traj_config {
                                  at most TDO_TRAJ_PIECES_PER_SEGMENT * segments + 1 (>= 1) */
   uint32_t max_violations;  /**< violations listed in the report (0: only counted) */
   uint32_t max_refinements; /**< refinement rounds before TDO_ERR_INFEASIBLE (0: none) */
+  uint32_t stream_samples;  /**< 0: the samples are stored (84 bytes each, max_samples of them);
+                                 1: not stored (0 bytes): verification and the energy evaluate them
+                                 in streaming passes, with the same numbers, and
+                                 tdo_traj_each_sample regenerates them on demand. max_samples still
+                                 bounds their number (TDO_ERR_SAMPLE_CAPACITY) */
 } tdo_traj_config;
 
 /** Input. */
@@ -96,12 +101,18 @@ typedef struct tdo_traj_input {
 /** Output; storage in the context, valid until the next run. */
 typedef struct tdo_traj_output {
   const tdo_sample* samples; /**< every dt from t = 0 (at start, at rest) to the end (exactly at
-                                  the goal, at rest); a sample falls on every stop point */
+                                  the goal, at rest); a sample falls on every stop point. NULL
+                                  with stream_samples (n_samples still counts them) */
   uint32_t n_samples;
   double duration;        /**< s, (n_samples - 1) * dt */
   uint32_t refinements;   /**< refinement rounds used (0: the first profile passed) */
   tdo_feasibility report; /**< of the returned samples */
+  double energy;          /**< m^2/s^3, integral |a|^2 dt over the samples by the trapezoid rule on
+                               their a, as tdo_metrics_compute computes it from `samples` */
 } tdo_traj_output;
+
+/** Receives sample `index` (0 first) of a trajectory; `user` is the caller's pointer. */
+typedef void (*tdo_sample_fn)(void* user, uint32_t index, const tdo_sample* sample);
 
 /** @return arena bytes tdo_traj_init carves for `cfg`; 0 for an invalid configuration. */
 size_t tdo_traj_footprint(const tdo_traj_config* cfg);
@@ -131,6 +142,15 @@ tdo_status tdo_traj_init(tdo_traj** ctx, tdo_arena* arena, const tdo_traj_config
  *         consecutive segments whose end points are more than 1e-6 m apart.
  */
 tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_traj_output* out);
+
+/**
+ * @brief Hand every sample of the last run's trajectory to `fn`, in order: the stored samples, or
+ *        with stream_samples the same samples (same bits) regenerated from the profile. Needs the
+ *        path given to that run unchanged. Allocates nothing; at most max_samples calls.
+ * @return TDO_ERR_INVALID_ARGUMENT for null pointers or when the last run produced no samples
+ *         (an error before sampling, or no run yet).
+ */
+tdo_status tdo_traj_each_sample(const tdo_traj* ctx, tdo_sample_fn fn, void* user);
 
 #ifdef __cplusplus
 }
