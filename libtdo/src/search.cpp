@@ -116,12 +116,10 @@ struct tdo_search {
   tdo_internal::Side side[2];                                           // 0 forward, 1 backward
   tdo_voxel* path;                                                      // max_path voxels
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
-  double turn_lambda;                       // lambda the turn table was built for
-  double step_len[tdo_internal::kNumDirs];  // m
-  int64_t offset[tdo_internal::kNumDirs];   // linear index offset of each step
-  double unit[tdo_internal::kNumDirs][3];   // unit vector of each step
-  // combo[a][b]: direction of step a followed by step b when that is one step (kCombo* otherwise)
-  uint8_t combo[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
+  double turn_lambda;                         // lambda the turn table was built for
+  double step_len[tdo_internal::kNumDirs];    // m
+  int64_t offset[tdo_internal::kNumDirs];     // linear index offset of each step
+  double unit[tdo_internal::kNumDirs][3];     // unit vector of each step
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
@@ -170,8 +168,64 @@ constexpr StepDelta make_step_delta() {
 }
 constexpr StepDelta kStepDelta = make_step_delta();
 
-constexpr uint8_t kComboBack = 26;   // b undoes a
-constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
+// Parent-step pruning of voxel-state expansions as bit operations: a neighbour u + e of state u,
+// reached from its parent p = u - s over search-sense step s, was offered by p already when
+// u + e = p + c for a legal step c of p (or u + e = p). The legal steps of p as a mask of the 27
+// cells of p's 3x3x3 block, moved by s (one shift: cell index steps are 1, 3 and 9 per axis),
+// are then cells of u's block; `keep[s]` drops the cells that wrapped around (outside u's block).
+struct PruneTable {
+  uint32_t keep[kNumDirs];  // cells o of u's block with o + s inside p's block
+  uint8_t shift[kNumDirs];  // 13 + cell index offset of s (right shift of the mask << 13)
+  uint32_t back[kNumDirs];  // direction bit of -s (u + e = p)
+};
+constexpr PruneTable make_prune_table() {
+  PruneTable t{};
+  for (int s = 0; s < kNumDirs; ++s) {
+    const int dx = dir_dx(s), dy = dir_dy(s), dz = dir_dz(s);
+    t.shift[s] = static_cast<uint8_t>(13 + dx + 3 * dy + 9 * dz);
+    t.keep[s] = 0;
+    for (int z = -1; z <= 1; ++z)
+      for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+          if (x + dx >= -1 && x + dx <= 1 && y + dy >= -1 && y + dy <= 1 && z + dz >= -1 &&
+              z + dz <= 1)
+            t.keep[s] |= 1u << cell_of(x, y, z);
+    t.back[s] = 1u << dir_opposite(s);
+  }
+  return t;
+}
+constexpr PruneTable kPrune = make_prune_table();
+
+// Direction mask (bit d = direction d) to cell mask (bit c = cell c, the centre 13 clear) and back.
+constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13) << 14); }
+constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
+
+// Steps of u that its parent (search-sense step s away, legal steps p_moves) offered already.
+constexpr uint32_t pruned_steps(int s, uint32_t p_moves) {
+  const uint64_t moved = (static_cast<uint64_t>(cells_of_dirs(p_moves)) << 13) >> kPrune.shift[s];
+  return dirs_of_cells(static_cast<uint32_t>(moved) & kPrune.keep[s]) | kPrune.back[s];
+}
+
+// The same set step by step: e is pruned when s then e undoes s, or is one step c of p's mask.
+// Bitwise, so checking every single-bit mask checks them all (compile time).
+constexpr bool prune_table_ok() {
+  for (int s = 0; s < kNumDirs; ++s)
+    for (int c = 0; c <= kNumDirs; ++c) {
+      const uint32_t p_moves = c < kNumDirs ? 1u << c : 0u;
+      uint32_t want = 0;
+      for (int e = 0; e < kNumDirs; ++e) {
+        const int x = dir_dx(s) + dir_dx(e), y = dir_dy(s) + dir_dy(e), z = dir_dz(s) + dir_dz(e);
+        if (x == 0 && y == 0 && z == 0)
+          want |= 1u << e;
+        else if (x >= -1 && x <= 1 && y >= -1 && y <= 1 && z >= -1 && z <= 1 &&
+                 ((p_moves >> dir_of_cell(cell_of(x, y, z))) & 1u) != 0)
+          want |= 1u << e;
+      }
+      if (pruned_steps(s, p_moves) != want) return false;
+    }
+  return true;
+}
+static_assert(prune_table_ok(), "parent-step pruning mask");
 
 inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
   (void)ctx;
@@ -677,11 +731,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   if (u.parent != kNil) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-    for (uint32_t m = mask; m != 0; m &= m - 1u) {
-      const int e = __builtin_ctz(m);
-      const uint8_t c = ctx->combo[s_in][e];
-      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) mask &= ~(1u << e);
-    }
+    mask &= ~pruned_steps(s_in, p_moves);
   }
   uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
   for (uint32_t m = mask; m != 0; m &= m - 1u) {
@@ -1137,17 +1187,6 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   if (ctx->cfg.max_expansions == 0) ctx->cfg.max_expansions = 0xFFFFFFFFu;
   ctx->turn_lambda = -1.0;
   ctx->cand_theta = -1.0;
-  for (int a = 0; a < kNumDirs; ++a) {
-    for (int b = 0; b < kNumDirs; ++b) {
-      const int x = dir_dx(a) + dir_dx(b), y = dir_dy(a) + dir_dy(b), z = dir_dz(a) + dir_dz(b);
-      if (x == 0 && y == 0 && z == 0)
-        ctx->combo[a][b] = kComboBack;
-      else if (x < -1 || x > 1 || y < -1 || y > 1 || z < -1 || z > 1)
-        ctx->combo[a][b] = kComboFar;
-      else
-        ctx->combo[a][b] = static_cast<uint8_t>(dir_of_cell(cell_of(x, y, z)));
-    }
-  }
   for (int a = 0; a < kNumDirs; ++a) {
     double c[kNumDirs];
     for (int b = 0; b < kNumDirs; ++b) {
