@@ -6,6 +6,7 @@
 #include "tdo/search.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "directions.h"
@@ -37,8 +38,8 @@ static_assert(sizeof(Node) == 32, "Node layout");
 
 struct OpenItem {
   double f;       // m, g + h (+ mu * deviation)
-  float h;        // m, heuristic; smaller h wins ties of f
   uint32_t node;  // node index; smaller wins ties of f and h (deterministic allocation order)
+  float h;        // m, heuristic; smaller h wins ties of f
 };
 static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
 constexpr uint32_t kArity =
@@ -259,14 +260,26 @@ struct Key {
 inline Key key_of(const OpenItem& a) {
   Key k;
   memcpy(&k.hi, &a.f, sizeof(k.hi));
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  // node then h in memory: one load gives h << 32 | node
+  static_assert(offsetof(OpenItem, h) == offsetof(OpenItem, node) + 4, "OpenItem layout");
+  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + offsetof(OpenItem, node),
+         sizeof(k.lo));
+#else
   uint32_t h;
   memcpy(&h, &a.h, sizeof(h));
   k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+#endif
   return k;
 }
 
 inline bool less(const Key& a, const Key& b) {
+#if defined(__SIZEOF_INT128__)
+  __extension__ typedef unsigned __int128 U128;
+  return ((static_cast<U128>(a.hi) << 64) | a.lo) < ((static_cast<U128>(b.hi) << 64) | b.lo);
+#else
   return (a.hi < b.hi) | ((a.hi == b.hi) & (a.lo < b.lo));
+#endif
 }
 
 inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a), key_of(b)); }
@@ -978,12 +991,16 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   if (n.parent != kNil)  // the parent's move mask, for the pruning in expand_voxel
     prefetch(q.grid->moves +
              (static_cast<int64_t>(v) - ctx->offset[back ? dir_opposite(n.heading) : n.heading]));
+  // Rows outside the pool (a voxel on the grid's faces) are clamped to its ends: no branches.
   const int64_t sy = q.grid->stride_y, sz = q.grid->stride_z;
-  for (int64_t dz = -sz; dz <= sz; dz += sz)
-    for (int64_t dy = -sy; dy <= sy; dy += sy) {
-      const int64_t w = static_cast<int64_t>(v) + dz + dy;
-      if (w >= 1 && w + 1 < static_cast<int64_t>(ctx->cfg.max_voxels)) prefetch(s.slot + w);
-    }
+  const int64_t last = static_cast<int64_t>(ctx->cfg.max_voxels) - 1;
+  const int64_t row[9] = {-sz - sy, -sz, -sz + sy, -sy, 0, sy, sz - sy, sz, sz + sy};
+  for (int k = 0; k < 9; ++k) {
+    int64_t w = static_cast<int64_t>(v) + row[k];
+    w = w < 0 ? 0 : w;
+    w = w > last ? last : w;
+    prefetch(s.slot + w);
+  }
 }
 
 template <bool kHeaded>
