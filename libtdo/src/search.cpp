@@ -69,9 +69,9 @@ constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stac
 // (kBucketHeadBase + ring slot) at the head), in a ring of kRing: no memory beyond the heap's.
 // Every item of a later bucket has a larger f than every heap item, so the pop order is the heap's.
 // Bounded ring: an item is queued while its parent, whose f lies at most at the end of the current
-// bucket, is expanded, and a step raises f by at most 2 sqrt(3) res (step length plus the change of
-// the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead; decrease-key
-// only lowers f.
+// bucket, is expanded, and a step raises f by at most 2 sqrt(3) voxel edges (step length plus the
+// change of the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead;
+// decrease-key only lowers f.
 constexpr uint32_t kRing = 64;                // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
 constexpr double kWidth = 0.0625;             // bucket width per res
 constexpr uint32_t kBucketBit = 0x80000000u;  // Node::heap of a state in a later bucket
@@ -105,7 +105,7 @@ struct Side {
   int bucketed;
   uint32_t n_future;     // items in later buckets
   uint64_t cur;          // current bucket
-  double inv_width;      // 1/m
+  double inv_width;      // 1/voxel edge (f of voxel-state searches is in voxel edges)
   uint32_t head[kRing];  // first item of each later bucket, kNil when empty
 };
 
@@ -117,10 +117,11 @@ struct tdo_search {
   tdo_internal::Side side[2];                                           // 0 forward, 1 backward
   tdo_voxel* path;                                                      // max_path voxels
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
-  double turn_lambda;                         // lambda the turn table was built for
-  double step_len[tdo_internal::kNumDirs];    // m
-  int64_t offset[tdo_internal::kNumDirs];     // linear index offset of each step
-  double unit[tdo_internal::kNumDirs][3];     // unit vector of each step
+  double turn_lambda;                       // lambda the turn table was built for
+  double step_len[tdo_internal::kNumDirs];  // m
+  double step_q[tdo_internal::kNumDirs];    // voxel edges, rounded (kSqrt2Q): voxel-state searches
+  int64_t offset[tdo_internal::kNumDirs];   // linear index offset of each step
+  double unit[tdo_internal::kNumDirs][3];   // unit vector of each step
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
@@ -438,16 +439,34 @@ inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res)
                 (kSqrt3 - kSqrt2) * static_cast<double>(c));
 }
 
-// octile() of the voxel-state searches without a branch per comparison: the same sorted
-// differences and the same arithmetic, so the same value bit for bit.
-inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+// Voxel-state searches (no heading costs) count g, h and f in voxel edges with the step lengths
+// sqrt 2 and sqrt 3 rounded to multiples of 2^-kQuantBits: every g, h and f is then such a multiple
+// below 2^(53 - kQuantBits), so the doubles add exactly (up to paths of 2^21 voxel edges; beyond,
+// ordinary rounding). Equal sums of steps are equal bit for bit, whatever the order: a step towards
+// the target along the octile path keeps f exactly, and such children take the LIFO stack rather
+// than the heap (with real-valued sums rounding made f rise or fall by an ulp at random). The
+// rounded lengths differ from the true ones by at most 2^-33 relative, so the path found is
+// optimal for the true lengths within 2^-32 voxel edges per step; the reported costs are summed
+// from the path with the true lengths.
+constexpr int kQuantBits = 32;
+constexpr double kQuant = 4294967296.0;  // 2^kQuantBits
+constexpr double kSqrt2Q =
+    static_cast<double>(static_cast<uint64_t>(kSqrt2 * kQuant + 0.5)) / kQuant;
+constexpr double kSqrt3Q =
+    static_cast<double>(static_cast<uint64_t>(kSqrt3 * kQuant + 0.5)) / kQuant;
+static_assert(kQuantBits == 32, "kQuant");
+
+// Octile distance of the voxel-state searches in voxel edges with the rounded lengths, without a
+// branch per comparison: (hi - mid) face steps, (mid - lo) edge diagonals, lo corner diagonals,
+// each term exact (at most 17 + 33 significant bits).
+inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z) {
   const int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
   const int32_t ab_max = a > b ? a : b, ab_min = a > b ? b : a;
   const int32_t hi = ab_max > c ? ab_max : c;
   const int32_t lo = ab_min < c ? ab_min : c;
   const int32_t mid = a + b + c - hi - lo;
-  return res * (static_cast<double>(hi) + (kSqrt2 - 1.0) * static_cast<double>(mid) +
-                (kSqrt3 - kSqrt2) * static_cast<double>(lo));
+  return static_cast<double>(hi - mid) + kSqrt2Q * static_cast<double>(mid - lo) +
+         kSqrt3Q * static_cast<double>(lo);
 }
 
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
@@ -511,7 +530,7 @@ template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
   const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
-                           : octile_voxel(s, n.x, n.y, n.z, q.grid->desc.res);
+                           : octile_voxel(s, n.x, n.y, n.z);
   *h_out = static_cast<float>(h);
   if (!kHeaded) return n.g + h;
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
@@ -761,7 +780,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
-                                      u.g + ctx->step_len[e], state[e]);
+                                      u.g + ctx->step_q[e], state[e]);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -965,7 +984,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   s.use_stack = !q.bidir || q.first_meet;
   s.bucketed = !q.bidir && !headed && ctx->cfg.max_nodes <= kBucketMaxNodes;
   s.n_future = 0;
-  s.inv_width = 1.0 / (kWidth * q.grid->desc.res);
+  s.inv_width = 1.0 / kWidth;  // buckets are of voxel-state searches: f in voxel edges
   for (uint32_t k = 0; k < kRing; ++k) s.head[k] = kNil;
   if (s.bucketed) {
     float h;
@@ -1123,6 +1142,7 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
     const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
     const int order = dir_order(d);
     ctx->step_len[d] = g->desc.res * (order == 3 ? kSqrt3 : order == 2 ? kSqrt2 : 1.0);
+    ctx->step_q[d] = order == 3 ? kSqrt3Q : order == 2 ? kSqrt2Q : 1.0;
     ctx->offset[d] = dx + dy * g->stride_y + dz * g->stride_z;
     const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
     ctx->unit[d][0] = dx / n;
@@ -1310,7 +1330,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     const tdo_status st = run_search<false>(ctx, q);
     out->expansions = q.expansions;
     if (st != TDO_OK) return st;
-    return write_path(ctx, q, out);
+    const tdo_status wp = write_path(ctx, q, out);
+    out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
+    return wp;
   }
   // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
   // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
