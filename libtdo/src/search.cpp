@@ -119,9 +119,10 @@ struct tdo_search {
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
   double turn_lambda;                       // lambda the turn table was built for
   double step_len[tdo_internal::kNumDirs];  // m
-  double step_q[tdo_internal::kNumDirs];    // voxel edges, rounded (kSqrt2Q): voxel-state searches
-  int64_t offset[tdo_internal::kNumDirs];   // linear index offset of each step
-  double unit[tdo_internal::kNumDirs][3];   // unit vector of each step
+  int64_t block_row[9];  // linear index offsets of the 9 rows of three of a 3x3x3 block (centre)
+  double step_q[tdo_internal::kNumDirs];   // voxel edges, rounded (kSqrt2Q): voxel-state searches
+  int64_t offset[tdo_internal::kNumDirs];  // linear index offset of each step
+  double unit[tdo_internal::kNumDirs][3];  // unit vector of each step
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
@@ -1011,11 +1012,9 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
     prefetch(q.grid->moves +
              (static_cast<int64_t>(v) - ctx->offset[back ? dir_opposite(n.heading) : n.heading]));
   // Rows outside the pool (a voxel on the grid's faces) are clamped to its ends: no branches.
-  const int64_t sy = q.grid->stride_y, sz = q.grid->stride_z;
   const int64_t last = static_cast<int64_t>(ctx->cfg.max_voxels) - 1;
-  const int64_t row[9] = {-sz - sy, -sz, -sz + sy, -sy, 0, sy, sz - sy, sz, sz + sy};
   for (int k = 0; k < 9; ++k) {
-    int64_t w = static_cast<int64_t>(v) + row[k];
+    int64_t w = static_cast<int64_t>(v) + ctx->block_row[k];
     w = w < 0 ? 0 : w;
     w = w > last ? last : w;
     prefetch(s.slot + w);
@@ -1138,6 +1137,8 @@ tdo_status write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
 }
 
 void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double theta_max) {
+  for (int k = 0; k < 9; ++k)
+    ctx->block_row[k] = (k / 3 - 1) * g->stride_z + (k % 3 - 1) * g->stride_y;
   for (int d = 0; d < kNumDirs; ++d) {
     const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
     const int order = dir_order(d);
