@@ -460,14 +460,16 @@ static_assert(kQuantBits == 32, "kQuant");
 // Octile distance of the voxel-state searches in voxel edges with the rounded lengths, without a
 // branch per comparison: (hi - mid) face steps, (mid - lo) edge diagonals, lo corner diagonals,
 // each term exact (at most 17 + 33 significant bits).
+// Written as sum + (K2 - 2) (mid + lo) + (K3 - 2 K2 + 1) lo, which needs the largest and the
+// smallest difference but not the middle one: the same exact value.
 inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z) {
   const int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
   const int32_t ab_max = a > b ? a : b, ab_min = a > b ? b : a;
   const int32_t hi = ab_max > c ? ab_max : c;
   const int32_t lo = ab_min < c ? ab_min : c;
-  const int32_t mid = a + b + c - hi - lo;
-  return static_cast<double>(hi - mid) + kSqrt2Q * static_cast<double>(mid - lo) +
-         kSqrt3Q * static_cast<double>(lo);
+  const int32_t sum = a + b + c;
+  return static_cast<double>(sum) + (kSqrt2Q - 2.0) * static_cast<double>(sum - hi) +
+         (kSqrt3Q - 2.0 * kSqrt2Q + 1.0) * static_cast<double>(lo);
 }
 
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
