@@ -71,9 +71,9 @@ constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stac
 // (kBucketHeadBase + ring slot) at the head), in a ring of kRing: no memory beyond the heap's.
 // Every item of a later bucket has a larger f than every heap item, so the pop order is the heap's.
 // Bounded ring: an item is queued while its parent, whose f lies at most at the end of the current
-// bucket, is expanded, and a step raises f by at most 2 sqrt(3) res (step length plus the change of
-// the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead; decrease-key
-// only lowers f.
+// bucket, is expanded, and a step raises f by at most 2 sqrt(3) voxel edges (step length plus the
+// change of the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead;
+// decrease-key only lowers f.
 constexpr uint32_t kRing = 64;                // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
 constexpr double kWidth = 0.0625;             // bucket width per res
 constexpr uint32_t kBucketBit = 0x80000000u;  // Node::heap of a state in a later bucket
@@ -107,7 +107,7 @@ struct Side {
   int bucketed;
   uint32_t n_future;     // items in later buckets
   uint64_t cur;          // current bucket
-  double inv_width;      // 1/m
+  double inv_width;      // 1/voxel edge (f of voxel-state searches is in voxel edges)
   uint32_t head[kRing];  // first item of each later bucket, kNil when empty
 };
 
@@ -122,10 +122,10 @@ struct tdo_search {
   double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
   double turn_lambda;                       // lambda the turn table was built for
   double step_len[tdo_internal::kNumDirs];  // m
-  int64_t offset[tdo_internal::kNumDirs];   // linear index offset of each step
-  double unit[tdo_internal::kNumDirs][3];   // unit vector of each step
-  // combo[a][b]: direction of step a followed by step b when that is one step (kCombo* otherwise)
-  uint8_t combo[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
+  int64_t block_row[9];  // linear index offsets of the 9 rows of three of a 3x3x3 block (centre)
+  double step_q[tdo_internal::kNumDirs];   // voxel edges, rounded (kSqrt2Q): voxel-state searches
+  int64_t offset[tdo_internal::kNumDirs];  // linear index offset of each step
+  double unit[tdo_internal::kNumDirs][3];  // unit vector of each step
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
@@ -176,8 +176,64 @@ constexpr StepDelta make_step_delta() {
 }
 constexpr StepDelta kStepDelta = make_step_delta();
 
-constexpr uint8_t kComboBack = 26;   // b undoes a
-constexpr uint8_t kComboFar = 0xFF;  // a then b leaves the 3x3x3 block
+// Parent-step pruning of voxel-state expansions as bit operations: a neighbour u + e of state u,
+// reached from its parent p = u - s over search-sense step s, was offered by p already when
+// u + e = p + c for a legal step c of p (or u + e = p). The legal steps of p as a mask of the 27
+// cells of p's 3x3x3 block, moved by s (one shift: cell index steps are 1, 3 and 9 per axis),
+// are then cells of u's block; `keep[s]` drops the cells that wrapped around (outside u's block).
+struct PruneTable {
+  uint32_t keep[kNumDirs];  // cells o of u's block with o + s inside p's block
+  uint8_t shift[kNumDirs];  // 13 + cell index offset of s (right shift of the mask << 13)
+  uint32_t back[kNumDirs];  // direction bit of -s (u + e = p)
+};
+constexpr PruneTable make_prune_table() {
+  PruneTable t{};
+  for (int s = 0; s < kNumDirs; ++s) {
+    const int dx = dir_dx(s), dy = dir_dy(s), dz = dir_dz(s);
+    t.shift[s] = static_cast<uint8_t>(13 + dx + 3 * dy + 9 * dz);
+    t.keep[s] = 0;
+    for (int z = -1; z <= 1; ++z)
+      for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x)
+          if (x + dx >= -1 && x + dx <= 1 && y + dy >= -1 && y + dy <= 1 && z + dz >= -1 &&
+              z + dz <= 1)
+            t.keep[s] |= 1u << cell_of(x, y, z);
+    t.back[s] = 1u << dir_opposite(s);
+  }
+  return t;
+}
+constexpr PruneTable kPrune = make_prune_table();
+
+// Direction mask (bit d = direction d) to cell mask (bit c = cell c, the centre 13 clear) and back.
+constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13) << 14); }
+constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
+
+// Steps of u that its parent (search-sense step s away, legal steps p_moves) offered already.
+constexpr uint32_t pruned_steps(int s, uint32_t p_moves) {
+  const uint64_t moved = (static_cast<uint64_t>(cells_of_dirs(p_moves)) << 13) >> kPrune.shift[s];
+  return dirs_of_cells(static_cast<uint32_t>(moved) & kPrune.keep[s]) | kPrune.back[s];
+}
+
+// The same set step by step: e is pruned when s then e undoes s, or is one step c of p's mask.
+// Bitwise, so checking every single-bit mask checks them all (compile time).
+constexpr bool prune_table_ok() {
+  for (int s = 0; s < kNumDirs; ++s)
+    for (int c = 0; c <= kNumDirs; ++c) {
+      const uint32_t p_moves = c < kNumDirs ? 1u << c : 0u;
+      uint32_t want = 0;
+      for (int e = 0; e < kNumDirs; ++e) {
+        const int x = dir_dx(s) + dir_dx(e), y = dir_dy(s) + dir_dy(e), z = dir_dz(s) + dir_dz(e);
+        if (x == 0 && y == 0 && z == 0)
+          want |= 1u << e;
+        else if (x >= -1 && x <= 1 && y >= -1 && y <= 1 && z >= -1 && z <= 1 &&
+                 ((p_moves >> dir_of_cell(cell_of(x, y, z))) & 1u) != 0)
+          want |= 1u << e;
+      }
+      if (pruned_steps(s, p_moves) != want) return false;
+    }
+  return true;
+}
+static_assert(prune_table_ok(), "parent-step pruning mask");
 
 inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
   (void)ctx;
@@ -212,8 +268,10 @@ inline Key key_of(const OpenItem& a) {
   Key k;
   memcpy(&k.hi, &a.f, sizeof(k.hi));
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-  static_assert(offsetof(OpenItem, node) == 8 && offsetof(OpenItem, h) == 12, "OpenItem layout");
-  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + 8, sizeof(k.lo));  // node, h: 1 load
+  // node then h in memory: one load gives h << 32 | node
+  static_assert(offsetof(OpenItem, h) == offsetof(OpenItem, node) + 4, "OpenItem layout");
+  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + offsetof(OpenItem, node),
+         sizeof(k.lo));
 #else
   uint32_t h;
   memcpy(&h, &a.h, sizeof(h));
@@ -223,7 +281,12 @@ inline Key key_of(const OpenItem& a) {
 }
 
 inline bool less(const Key& a, const Key& b) {
+#if defined(__SIZEOF_INT128__)
+  __extension__ typedef unsigned __int128 U128;
+  return ((static_cast<U128>(a.hi) << 64) | a.lo) < ((static_cast<U128>(b.hi) << 64) | b.lo);
+#else
   return (a.hi < b.hi) | ((a.hi == b.hi) & (a.lo < b.lo));
+#endif
 }
 
 inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a), key_of(b)); }
@@ -382,16 +445,36 @@ inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res)
                 (kSqrt3 - kSqrt2) * static_cast<double>(c));
 }
 
-// octile() of the voxel-state searches without a branch per comparison: the same sorted
-// differences and the same arithmetic, so the same value bit for bit.
-inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+// Voxel-state searches (no heading costs) count g, h and f in voxel edges with the step lengths
+// sqrt 2 and sqrt 3 rounded to multiples of 2^-kQuantBits: every g, h and f is then such a multiple
+// below 2^(53 - kQuantBits), so the doubles add exactly (up to paths of 2^21 voxel edges; beyond,
+// ordinary rounding). Equal sums of steps are equal bit for bit, whatever the order: a step towards
+// the target along the octile path keeps f exactly, and such children take the LIFO stack rather
+// than the heap (with real-valued sums rounding made f rise or fall by an ulp at random). The
+// rounded lengths differ from the true ones by at most 2^-33 relative, so the path found is
+// optimal for the true lengths within 2^-32 voxel edges per step; the reported costs are summed
+// from the path with the true lengths.
+constexpr int kQuantBits = 32;
+constexpr double kQuant = 4294967296.0;  // 2^kQuantBits
+constexpr double kSqrt2Q =
+    static_cast<double>(static_cast<uint64_t>(kSqrt2 * kQuant + 0.5)) / kQuant;
+constexpr double kSqrt3Q =
+    static_cast<double>(static_cast<uint64_t>(kSqrt3 * kQuant + 0.5)) / kQuant;
+static_assert(kQuantBits == 32, "kQuant");
+
+// Octile distance of the voxel-state searches in voxel edges with the rounded lengths, without a
+// branch per comparison: (hi - mid) face steps, (mid - lo) edge diagonals, lo corner diagonals,
+// each term exact (at most 17 + 33 significant bits).
+// Written as sum + (K2 - 2) (mid + lo) + (K3 - 2 K2 + 1) lo, which needs the largest and the
+// smallest difference but not the middle one: the same exact value.
+inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z) {
   const int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
   const int32_t ab_max = a > b ? a : b, ab_min = a > b ? b : a;
   const int32_t hi = ab_max > c ? ab_max : c;
   const int32_t lo = ab_min < c ? ab_min : c;
-  const int32_t mid = a + b + c - hi - lo;
-  return res * (static_cast<double>(hi) + (kSqrt2 - 1.0) * static_cast<double>(mid) +
-                (kSqrt3 - kSqrt2) * static_cast<double>(lo));
+  const int32_t sum = a + b + c;
+  return static_cast<double>(sum) + (kSqrt2Q - 2.0) * static_cast<double>(sum - hi) +
+         (kSqrt3Q - 2.0 * kSqrt2Q + 1.0) * static_cast<double>(lo);
 }
 
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
@@ -463,7 +546,7 @@ template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
   const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
-                           : octile_voxel(s, n.x, n.y, n.z, q.grid->desc.res);
+                           : octile_voxel(s, n.x, n.y, n.z);
   *h_out = static_cast<float>(h);
   if (!kHeaded) return n.g + h;
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
@@ -750,11 +833,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   if (u.parent != kNil) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-    for (uint32_t m = mask; m != 0; m &= m - 1u) {
-      const int e = __builtin_ctz(m);
-      const uint8_t c = ctx->combo[s_in][e];
-      if (c == kComboBack || (c != kComboFar && ((p_moves >> c) & 1u) != 0)) mask &= ~(1u << e);
-    }
+    mask &= ~pruned_steps(s_in, p_moves);
   }
   uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
   for (uint32_t m = mask; m != 0; m &= m - 1u) {
@@ -771,7 +850,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
-                                      u.g + ctx->step_len[e], state[e]);
+                                      u.g + ctx->step_q[e], state[e]);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -986,7 +1065,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   s.use_stack = !q.bidir || q.first_meet;
   s.bucketed = !q.bidir && !headed && ctx->cfg.max_nodes <= kBucketMaxNodes;
   s.n_future = 0;
-  s.inv_width = 1.0 / (kWidth * q.grid->desc.res);
+  s.inv_width = 1.0 / kWidth;  // buckets are of voxel-state searches: f in voxel edges
   for (uint32_t k = 0; k < kRing; ++k) s.head[k] = kNil;
   if (s.bucketed) {
     float h;
@@ -1012,12 +1091,14 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   if (n.parent != kNil)  // the parent's move mask, for the pruning in expand_voxel
     prefetch(q.grid->moves +
              (static_cast<int64_t>(v) - ctx->offset[back ? dir_opposite(n.heading) : n.heading]));
-  const int64_t sy = q.grid->stride_y, sz = q.grid->stride_z;
-  for (int64_t dz = -sz; dz <= sz; dz += sz)
-    for (int64_t dy = -sy; dy <= sy; dy += sy) {
-      const int64_t w = static_cast<int64_t>(v) + dz + dy;
-      if (w >= 1 && w + 1 < static_cast<int64_t>(ctx->cfg.max_voxels)) prefetch(s.slot + w);
-    }
+  // Rows outside the pool (a voxel on the grid's faces) are clamped to its ends: no branches.
+  const int64_t last = static_cast<int64_t>(ctx->cfg.max_voxels) - 1;
+  for (int k = 0; k < 9; ++k) {
+    int64_t w = static_cast<int64_t>(v) + ctx->block_row[k];
+    w = w < 0 ? 0 : w;
+    w = w > last ? last : w;
+    prefetch(s.slot + w);
+  }
 }
 
 template <bool kHeaded>
@@ -1141,10 +1222,13 @@ tdo_status write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
 }
 
 void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double theta_max) {
+  for (int k = 0; k < 9; ++k)
+    ctx->block_row[k] = (k / 3 - 1) * g->stride_z + (k % 3 - 1) * g->stride_y;
   for (int d = 0; d < kNumDirs; ++d) {
     const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
     const int order = dir_order(d);
     ctx->step_len[d] = g->desc.res * (order == 3 ? kSqrt3 : order == 2 ? kSqrt2 : 1.0);
+    ctx->step_q[d] = order == 3 ? kSqrt3Q : order == 2 ? kSqrt2Q : 1.0;
     ctx->offset[d] = dx + dy * g->stride_y + dz * g->stride_z;
     const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
     ctx->unit[d][0] = dx / n;
@@ -1239,17 +1323,6 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   ctx->max_open = cfg->max_open != 0u ? cfg->max_open : 0xFFFFFFFFu;  // 0: max_nodes bounds it
   ctx->turn_lambda = -1.0;
   ctx->cand_theta = -1.0;
-  for (int a = 0; a < kNumDirs; ++a) {
-    for (int b = 0; b < kNumDirs; ++b) {
-      const int x = dir_dx(a) + dir_dx(b), y = dir_dy(a) + dir_dy(b), z = dir_dz(a) + dir_dz(b);
-      if (x == 0 && y == 0 && z == 0)
-        ctx->combo[a][b] = kComboBack;
-      else if (x < -1 || x > 1 || y < -1 || y > 1 || z < -1 || z > 1)
-        ctx->combo[a][b] = kComboFar;
-      else
-        ctx->combo[a][b] = static_cast<uint8_t>(dir_of_cell(cell_of(x, y, z)));
-    }
-  }
   for (int a = 0; a < kNumDirs; ++a) {
     double c[kNumDirs];
     for (int b = 0; b < kNumDirs; ++b) {
@@ -1359,7 +1432,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     out->expansions = q.expansions;
     out->peak_open = q.peak_open;
     if (st != TDO_OK) return st;
-    return write_path(ctx, q, out);
+    const tdo_status wp = write_path(ctx, q, out);
+    out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
+    return wp;
   }
   // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
   // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
