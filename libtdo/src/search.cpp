@@ -583,21 +583,25 @@ inline double priority_at(const tdo_search* ctx, const Query& q, int back, doubl
   return g + q.h_weight * (t.h + turn_bound(ctx, q, dev)) + q.mu * dev;
 }
 
+// The A* fast path: a child whose f does not exceed the expanded state's goes on the LIFO stack
+// (unidirectional A* only, while there is room). Returns false when the open list must take it.
+inline bool push_stack(Side& s, uint32_t idx, double f) {
+  if (!s.use_stack || f > s.f_cur || s.n_stack >= kStackCap) return false;
+  s.stack[s.n_stack].f = f;
+  s.stack[s.n_stack].node = idx;
+  s.stack[s.n_stack].pad = 0;
+  ++s.n_stack;
+  s.nodes[idx].heap = kInStack;
+  return true;
+}
+
 // push() of a turn-penalised state whose f and h are known.
 inline void push_headed(Side& s, uint32_t idx, double f, double h) {
   OpenItem it;
   it.node = idx;
   it.f = f;
   it.h = static_cast<float>(h);
-  if (s.use_stack && !(it.f > s.f_cur) && s.n_stack < kStackCap) {
-    s.stack[s.n_stack].f = it.f;
-    s.stack[s.n_stack].node = idx;
-    s.stack[s.n_stack].pad = 0;
-    ++s.n_stack;
-    s.nodes[idx].heap = kInStack;
-    return;
-  }
-  enqueue(s, it);
+  if (!push_stack(s, idx, it.f)) enqueue(s, it);
 }
 
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
@@ -605,16 +609,11 @@ void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool
   it.node = idx;
   it.f = headed ? priority<true>(ctx, q, s, back, s.nodes[idx], &it.h)
                 : priority<false>(ctx, q, s, back, s.nodes[idx], &it.h);
-  if (s.use_stack && !(it.f > s.f_cur) && s.n_stack < kStackCap) {
-    s.stack[s.n_stack].f = it.f;
-    s.stack[s.n_stack].node = idx;
-    s.stack[s.n_stack].pad = 0;
-    ++s.n_stack;
-    s.nodes[idx].heap = kInStack;
-    if (!headed) prefetch(q.grid->moves + s.nodes[idx].voxel);  // expanded soon
-    return;
+  if (!push_stack(s, idx, it.f)) {
+    enqueue(s, it);
+  } else if (!headed) {
+    prefetch(q.grid->moves + s.nodes[idx].voxel);  // expanded soon
   }
-  enqueue(s, it);
 }
 
 // A pivot state turned in place: its parent holds the same voxel.
