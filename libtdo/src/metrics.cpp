@@ -18,6 +18,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sample_energy.h"
 #include "tdo/collision.h"
 
 namespace tdo_internal {
@@ -382,13 +383,8 @@ extern "C" tdo_status tdo_metrics_compute(const tdo_metrics_input* in, tdo_metri
 
   if (in->samples != nullptr && in->n_samples >= 2u) {
     double energy = 0.0;
-    for (uint32_t i = 1; i < in->n_samples; ++i) {
-      const tdo_sample& a = in->samples[i - 1u];
-      const tdo_sample& b = in->samples[i];
-      const double qa = dot(mk(a.a), mk(a.a));
-      const double qb = dot(mk(b.a), mk(b.a));
-      energy += 0.5 * (qa + qb) * (b.t - a.t);
-    }
+    for (uint32_t i = 1; i < in->n_samples; ++i)
+      energy += tdo_internal::energy_step(in->samples[i - 1u], in->samples[i]);
     out->energy = energy;
     out->flight_time_s = in->samples[in->n_samples - 1u].t - in->samples[0].t;
   }

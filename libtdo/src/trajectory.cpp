@@ -26,6 +26,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sample_energy.h"
 #include "tdo/collision.h"
 
 namespace tdo_internal {
@@ -731,13 +732,6 @@ void mark(tdo_traj* ctx, Src& src, uint32_t n, uint32_t first, uint32_t last) {
   const uint32_t a = first > 0u ? first - 1u : 0u;
   const uint32_t b = last + 1u < n ? last + 1u : n - 1u;
   for (uint32_t i = a; i <= b; ++i) ctx->hit[src.owner(i)] = 1u;
-}
-
-/** m^2/s^4 times s: one trapezoid of integral |a|^2 dt, as tdo_metrics_compute sums it. */
-inline double energy_step(const tdo_sample& a, const tdo_sample& b) {
-  const double qa = dot(mk(a.a), mk(a.a));
-  const double qb = dot(mk(b.a), mk(b.a));
-  return 0.5 * (qa + qb) * (b.t - a.t);
 }
 
 /** Two passes over the samples of `src` (dynamic limits and energy, then clearance), so the

@@ -1,0 +1,19 @@
+// One trapezoid of the energy integral over trajectory samples (internal). The trajectory stage's
+// streaming pass and tdo_metrics_compute sum the same steps, so streamed and stored samples give
+// the same energy bit for bit.
+#ifndef TDO_SRC_SAMPLE_ENERGY_H
+#define TDO_SRC_SAMPLE_ENERGY_H
+
+#include "tdo/trajectory.h"
+#include "vec3.h"
+
+namespace tdo_internal {
+
+/** m^2/s^4 times s: integral |a|^2 dt from sample a to sample b by the trapezoid rule. */
+inline double energy_step(const tdo_sample& a, const tdo_sample& b) {
+  return 0.5 * (dot(a.a, a.a) + dot(b.a, b.a)) * (b.t - a.t);
+}
+
+}  // namespace tdo_internal
+
+#endif  // TDO_SRC_SAMPLE_ENERGY_H
