@@ -235,16 +235,13 @@ constexpr bool prune_table_ok() {
 }
 static_assert(prune_table_ok(), "parent-step pruning mask");
 
-inline uint32_t slot_first(const tdo_search* ctx, const Side& s, uint32_t v) {
-  (void)ctx;
+// First state of voxel v's chain (the kSlotClosed bit dropped), kNil when it has none.
+inline uint32_t slot_first(const Side& s, uint32_t v) {
   const uint32_t i = s.slot[v];
   return i == kNil ? kNil : (i & kSlotIndex);
 }
 
-inline void slot_set(const tdo_search* ctx, Side& s, uint32_t v, uint32_t idx) {
-  (void)ctx;
-  s.slot[v] = idx;
-}
+inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = idx; }
 
 // Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
 // this query, whose other entries are cleared first.
@@ -633,7 +630,7 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
   const Side& me = ctx->side[a];
   const Side& other = ctx->side[1 - a];
   const Node& n = me.nodes[idx];
-  for (uint32_t o = slot_first(ctx, other, n.voxel); o != kNil; o = other.nodes[o].next) {
+  for (uint32_t o = slot_first(other, n.voxel); o != kNil; o = other.nodes[o].next) {
     const Node& m = other.nodes[o];
     double c = n.g + m.g;
     if (kHeaded) {
@@ -680,7 +677,7 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
 inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
                         int step, double ng, const Target* t) {
   Side& s = ctx->side[back];
-  const uint32_t first = slot_first(ctx, s, w);
+  const uint32_t first = slot_first(s, w);
   uint32_t idx = first;
   if (s.heading_index != nullptr) {
     if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
@@ -709,7 +706,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
                     step >= 0 ? dir_dz(step) : 0, heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
-    slot_set(ctx, s, w, idx);
+    slot_set(s, w, idx);
     if (t != nullptr)
       push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
     else
@@ -813,7 +810,7 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
     idx = new_state(ctx, s, ui, w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1], kStepDelta.d[e][2],
                     d, kNil);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
-    slot_set(ctx, s, w, idx);
+    slot_set(s, w, idx);
     push(ctx, q, s, back, idx, false);
   }
   if (q.bidir) meet<false>(ctx, q, back, idx);
@@ -1071,7 +1068,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
     s.cur = bucket_of(s, priority<false>(ctx, q, s, back, n, &h));
   }
   index_state(s, n.voxel, kHeadingNone, 0, true);
-  slot_set(ctx, s, n.voxel, 0);
+  slot_set(s, n.voxel, 0);
   push(ctx, q, s, back, 0, headed);
 }
 
