@@ -267,37 +267,6 @@ inline double step_length(double res, const tdo_voxel& a, const tdo_voxel& b) {
   return res * std::sqrt(static_cast<double>(step_order(a, b)));
 }
 
-/** Optimal MovingAI cost from s to g (plain Dijkstra over voxels); +inf when unreachable. */
-inline double reference_cost(const VoxelMap& m, const tdo_voxel& s, const tdo_voxel& g) {
-  if (!m.is_free(s) || !m.is_free(g)) return kInf;
-  std::vector<double> dist(m.size(), kInf);
-  using Item = std::pair<double, size_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-  dist[m.idx(s)] = 0.0;
-  open.push(Item{0.0, m.idx(s)});
-  const size_t goal = m.idx(g);
-  while (!open.empty()) {
-    const Item top = open.top();
-    open.pop();
-    if (top.first > dist[top.second]) continue;
-    if (top.second == goal) return top.first;
-    const tdo_voxel u = m.voxel(top.second);
-    for (int32_t dz = -1; dz <= 1; ++dz)
-      for (int32_t dy = -1; dy <= 1; ++dy)
-        for (int32_t dx = -1; dx <= 1; ++dx) {
-          const tdo_voxel w{u.i + dx, u.j + dy, u.k + dz};
-          if (!legal_step(m, u, w)) continue;
-          const double nd = top.first + step_length(m.res, u, w);
-          const size_t wi = m.idx(w);
-          if (nd < dist[wi]) {
-            dist[wi] = nd;
-            open.push(Item{nd, wi});
-          }
-        }
-  }
-  return kInf;
-}
-
 /**
  * Optimal turn-penalised cost from s to g: Dijkstra over (voxel, last step) states, every legal
  * step allowed (no direction constraint), cost = length + lambda * (angle between consecutive
@@ -347,6 +316,12 @@ inline double reference_penalised_cost(const VoxelMap& m, const tdo_voxel& s, co
         }
   }
   return kInf;
+}
+
+/** Optimal MovingAI cost from s to g (the Dijkstra above without turn costs); +inf when
+ *  unreachable. */
+inline double reference_cost(const VoxelMap& m, const tdo_voxel& s, const tdo_voxel& g) {
+  return reference_penalised_cost(m, s, g, 0.0);
 }
 
 inline bool near_rel(double a, double b, double rel = 1e-9) {
