@@ -733,6 +733,13 @@ class TrajectoryClearance : public ::testing::Test {
     obs_.boxes = {tdo_box{tdo_vec3{6, y0, 0}, tdo_vec3{9, y0 + 1.5, 4}}};
     ASSERT_EQ(tdo_test::load_obstacles(pl_.grid(), map_, obs_, clearance), TDO_OK);
   }
+  /** make_input on this fixture's grid, checked at a clearance of 0.5 m. */
+  tdo_traj_input input_on_grid(const tdo_path& path) {
+    tdo_traj_input in = make_input(path);
+    in.grid = pl_.grid();
+    in.clearance = 0.5;
+    return in;
+  }
   tdo_test::TestPlanner pl_;
   tdo_test::VoxelMap map_;
   tdo_test::Obstacles obs_;
@@ -744,9 +751,7 @@ TEST_F(TrajectoryClearance, GivenPathClearOfObstaclesThenOkAndMinClearanceIsExac
   Traj t;
   const std::vector<tdo_path_segment> segs{line({1, 0, 2}, {15, 0, 2})};
   const tdo_path path = make_path(segs);
-  tdo_traj_input in = make_input(path);
-  in.grid = pl_.grid();
-  in.clearance = 0.5;
+  tdo_traj_input in = input_on_grid(path);
   tdo_traj_output out{};
   ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
   // THEN the report's minimum clearance is the exact minimum over the samples
@@ -767,9 +772,7 @@ TEST_F(TrajectoryClearance, GivenPathDippingTwiceTowardsABoxThenEveryCloseSample
       line({6.5, -3, 2}, {7.0, 0.0, 2}), line({7.0, 0.0, 2}, {7.5, -3, 2}),
       line({7.5, -3, 2}, {8.0, -0.15, 2}), line({8.0, -0.15, 2}, {8.5, -3, 2})};
   const tdo_path path = make_path(segs);
-  tdo_traj_input in = make_input(path);
-  in.grid = pl_.grid();
-  in.clearance = 0.5;
+  tdo_traj_input in = input_on_grid(path);
   tdo_traj_output out{};
   ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
   // THEN the minimum is the exact minimum over all samples, and every sample closer than the
@@ -799,9 +802,7 @@ TEST_F(TrajectoryClearance, GivenPathTooCloseToAnObstacleThenInfeasibleWithoutRe
   Traj t;
   const std::vector<tdo_path_segment> segs{line({1, 0, 2}, {15, 0, 2})};
   const tdo_path path = make_path(segs);
-  tdo_traj_input in = make_input(path);
-  in.grid = pl_.grid();
-  in.clearance = 0.5;
+  tdo_traj_input in = input_on_grid(path);
   tdo_traj_output out{};
   ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
   // THEN the violations are all clearance ones, at the samples beside the box, and no round of
@@ -863,9 +864,7 @@ TEST_F(TrajectoryClearance, GivenStreamedSamplesThenReportEnergyAndSamplesAreThe
   std::vector<tdo_path_segment> segs = peaked_path();
   for (int k = 0; k < 4; ++k) segs[0].p[k] = segs[0].p[k] + tdo_vec3{6.0, -2.5, 2.0};
   const tdo_path path = make_path(segs);
-  tdo_traj_input in = make_input(path);
-  in.grid = pl_.grid();
-  in.clearance = 0.5;
+  tdo_traj_input in = input_on_grid(path);
   for (uint32_t refinements : {0u, 8u}) {
     for (uint32_t listed : {1000u, 4u}) {
       tdo_traj_config cfg = default_config();
