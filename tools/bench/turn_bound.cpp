@@ -1,6 +1,7 @@
 // tdo-turn-bound: the fewest turns any path from a map's start to its goal can have while keeping
-// the clearance, as far as it can be proved with 0 or 1 turn. It answers whether issue 3's quality
-// goal (tdo turns <= 10 % of raw A* turns) is reachable at all on a map; docs/performance.md.
+// the clearance, as far as it can be proved with 0 or 1 turn, or by the walls a path must cross. It
+// answers whether issue 3's quality goal (tdo turns <= 10 % of raw A* turns) is reachable at all on
+// a map; docs/performance.md.
 //
 //   tdo-turn-bound [--maps-dir DIR] [--map NAME]... [--clearance M] [--cell M] [--max-cells N]
 //
@@ -13,7 +14,9 @@
 // a centre with c(P) >= clearance is a 1-turn path (found); other boxes split in 8 down to --cell.
 // Result per map: "0" (the straight segment keeps the clearance), "1" (a witness P), ">= 2"
 // (every box dropped: proved), or "undecided" (boxes left at the smallest size or the cell budget
-// spent). Exit status 0, 2 on bad arguments or unreadable maps.
+// spent). The last two columns add the walls bound of wall_links.h: a lower bound on the turns of
+// any path through full-height walls with doors (Map4), which this branch and bound cannot reach
+// beyond ">= 2". Exit status 0, 2 on bad arguments or unreadable maps.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +26,7 @@
 
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
+#include "wall_links.h"
 
 namespace {
 
@@ -133,8 +137,9 @@ int main(int argc, char** argv) {
   std::printf("clearance %.3f m, smallest box %.4f m, budget %.0f boxes per map\n\n", clearance,
               cell, max_cells);
   std::printf(
-      "| map | fewest turns | boxes | best 1-turn clearance at a box centre m | witness |\n");
-  std::printf("|---|---|---:|---:|---|\n");
+      "| map | fewest turns | boxes | best 1-turn clearance at a box centre m | witness | walls "
+      "crossed | walls bound |\n");
+  std::printf("|---|---|---:|---:|---|---:|---|\n");
   for (const std::string& name : names) {
     const std::string path =
         name.find('/') != std::string::npos ? name : dir + "/" + name + ".tdomap";
@@ -162,8 +167,11 @@ int main(int argc, char** argv) {
                     r.witness.z);
     char best[32] = "-";
     if (r.verdict != Verdict::Zero) std::snprintf(best, sizeof best, "%.3f", r.best);
-    std::printf("| %s | %s | %llu | %s | %s |\n", name.c_str(), verdict,
-                static_cast<unsigned long long>(r.cells), best, witness);
+    const tdo_bench::WallLinks wl = tdo_bench::wall_links(map, clearance);
+    char walls[48] = "-";
+    if (wl.axis >= 0) std::snprintf(walls, sizeof walls, ">= %d turns", wl.segments - 1);
+    std::printf("| %s | %s | %llu | %s | %s | %zu | %s |\n", name.c_str(), verdict,
+                static_cast<unsigned long long>(r.cells), best, witness, wl.bands.size(), walls);
   }
   return 0;
 }
