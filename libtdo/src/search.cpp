@@ -15,54 +15,73 @@
 namespace tdo_internal {
 namespace {
 
-constexpr uint32_t kNil = 0xFFFFFFFFu;
+// Index widths. Built with TDO_SEARCH_INDEX16 (small configurations: docs/embedded.md) the search
+// stores state indices, voxel indices and per-voxel slots in 16 bits and voxel coordinates in 8:
+// a state takes 20 bytes instead of 32, an open-list item 14 instead of 16, a slot 2 instead of 4,
+// for max_nodes < 2^15 per direction, max_voxels < 2^16 and grid axes < 256 (tdo_search_init and
+// tdo_search_run check them). The code is the same for both widths; only these types change.
+#if defined(TDO_SEARCH_INDEX16)
+typedef uint16_t Index;    // state index, open-list position, per-voxel slot
+typedef uint16_t VoxelId;  // linear voxel index
+typedef uint8_t Coord;     // voxel coordinate
+#define TDO_SEARCH_PACKED(align) __attribute__((packed, aligned(align)))
+#else
+typedef uint32_t Index;
+typedef uint32_t VoxelId;
+typedef uint16_t Coord;
+#define TDO_SEARCH_PACKED(align)
+#endif
+// "No state": all ones of an Index (every index and position stays below it). The voxel arrays of
+// exact_lower_bounds use it too (voxel indices stay below it as well: kMaxVoxels).
+constexpr uint32_t kNil = static_cast<Index>(~0u);
+constexpr uint32_t kTopBit = (kNil >> 1) + 1u;  // flag bit of an Index (kSlotClosed, kPivotItem)
+constexpr uint64_t kMaxVoxels = static_cast<VoxelId>(~0u);  // max_voxels at most this
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrt2 = 1.41421356237309504880;
 constexpr double kSqrt3 = 1.73205080756887729353;
-constexpr int32_t kMaxAxis = 0xFFFF;  // node coordinates are 16-bit
+constexpr int32_t kMaxAxis = static_cast<Coord>(~0u);  // node coordinates are Coord
 // Smallest angle between two different step directions: acos(sqrt(2/3)), face to edge diagonal
 // and edge to corner diagonal (rad).
 constexpr double kMinTurn = 0.61547970867038734;
 
-struct Node {
-  double g;          // m, cost from this side's root: length plus turn penalties
-  uint32_t parent;   // node towards this side's root, kNil at the root
-  uint32_t voxel;    // linear voxel index
-  uint32_t next;     // next state of the same voxel, kNil at the end of the chain
-  uint32_t heap;     // position in the open list, kNil when closed
-  uint16_t x, y, z;  // voxel coordinates
-  uint8_t heading;   // forward-sense step direction into (forward) / out of (backward) the voxel
-  uint8_t closed;    // 1 once expanded
+struct TDO_SEARCH_PACKED(4) Node {
+  double g;         // m, cost from this side's root: length plus turn penalties
+  Index parent;     // node towards this side's root, kNil at the root
+  VoxelId voxel;    // linear voxel index
+  Index next;       // next state of the same voxel, kNil at the end of the chain
+  Index heap;       // position in the open list (or kInStack, kBucketBit | ...), kNil once closed
+  Coord x, y, z;    // voxel coordinates
+  uint8_t heading;  // forward-sense step direction into (forward) / out of (backward) the voxel
 };
-static_assert(sizeof(Node) == 32, "Node layout");
+static_assert(sizeof(Node) == (sizeof(Index) == 2 ? 20 : 32), "Node layout");
 
-// node before h: bytes 8-15 read as one little-endian word are (h bits << 32 | node), the key's
-// low half (key_of).
-struct OpenItem {
-  double f;       // m, g + h (+ mu * deviation)
-  uint32_t node;  // node index; smaller wins ties of f and h (deterministic allocation order)
-  float h;        // m, heuristic; smaller h wins ties of f
+// node before h: the 8 bytes that end with h, read as one little-endian word and shifted right by
+// kKeyShift bits, are (h bits << (8 * sizeof(Index)) | node), the key's low half (key_of).
+struct TDO_SEARCH_PACKED(2) OpenItem {
+  double f;    // m, g + h (+ mu * deviation)
+  Index node;  // node index; smaller wins ties of f and h (deterministic allocation order)
+  float h;     // m, heuristic; smaller h wins ties of f
 };
-static_assert(sizeof(OpenItem) == 16, "OpenItem layout");
+static_assert(sizeof(OpenItem) == (sizeof(Index) == 2 ? 14 : 16), "OpenItem layout");
 constexpr uint32_t kArity =
     4;  // 4-ary heap: half the depth of a binary heap, children share a line
 
-// Per-voxel slot: the first state of the voxel's chain in the low 31 bits, kNil when the voxel has
-// none, and kSlotClosed once the voxel's only state is expanded (searches without heading costs),
-// so closed neighbours are skipped without touching the node pool. A search ends by setting the
-// slots of its states' voxels back to kNil (run_search), so no generation stamp is needed and a
-// slot takes 4 bytes.
-constexpr uint32_t kSlotClosed = 0x80000000u;
-constexpr uint32_t kSlotIndex = 0x7FFFFFFFu;
+// Per-voxel slot: the first state of the voxel's chain in the bits below kTopBit, kNil when the
+// voxel has none, and kSlotClosed once the voxel's only state is expanded (searches without heading
+// costs), so closed neighbours are skipped without touching the node pool. A search ends by setting
+// the slots of its states' voxels back to kNil (run_search), so no generation stamp is needed and a
+// slot takes one Index.
+constexpr uint32_t kSlotClosed = kTopBit;
+constexpr uint32_t kSlotIndex = kTopBit - 1u;
 // Open-list item that stands for the deferred pivots of an expanded state (partial expansion):
 // its f is a lower bound of every pivot's f, so most are never popped.
-constexpr uint32_t kPivotItem = 0x80000000u;
+constexpr uint32_t kPivotItem = kTopBit;
 
 // Unidirectional A* keeps children whose f does not exceed their parent's on a small LIFO stack
 // instead of the heap: they are expanded next anyway (f <= fmin keeps A* optimal), which skips a
 // heap push and pop for most states on open ground. Full stack: the heap takes the child.
 constexpr uint32_t kStackCap = 1024;
-constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stack
+constexpr uint32_t kInStack = kNil - 1u;  // Node::heap of a state on the stack
 
 // Open list of unidirectional voxel-state A* (plain A*, consistent octile heuristic): buckets by
 // floor(f / width). Only the current bucket (and every item whose bucket is not above it) is in
@@ -74,25 +93,24 @@ constexpr uint32_t kInStack = 0xFFFFFFFEu;  // Node::heap of a state on the stac
 // bucket, is expanded, and a step raises f by at most 2 sqrt(3) voxel edges (step length plus the
 // change of the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead;
 // decrease-key only lowers f.
-constexpr uint32_t kRing = 64;                // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
-constexpr double kWidth = 0.0625;             // bucket width per res
-constexpr uint32_t kBucketBit = 0x80000000u;  // Node::heap of a state in a later bucket
-constexpr uint32_t kBucketHeadBase = 0x7FFFFF00u;      // list head: kBucketBit | (this + ring slot)
+constexpr uint32_t kRing = 64;            // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
+constexpr double kWidth = 0.0625;         // bucket width per res
+constexpr uint32_t kBucketBit = kTopBit;  // Node::heap of a state in a later bucket
+constexpr uint32_t kBucketHeadBase = kTopBit - 256u;   // list head: kBucketBit | (this + ring slot)
 constexpr uint32_t kBucketMaxNodes = kBucketHeadBase;  // larger pools keep the plain heap
 static_assert((kRing & (kRing - 1u)) == 0 && kRing > 3.0 + 2.0 * kSqrt3 / kWidth,
               "bucket ring too small for the largest f step (one bucket of rounding margin)");
 
-struct StackItem {
-  double f;       // m, f when pushed (<= the f of every open heap state at that time)
-  uint32_t node;  // node index
-  uint32_t pad;
+struct TDO_SEARCH_PACKED(2) StackItem {
+  double f;    // m, f when pushed (<= the f of every open heap state at that time)
+  Index node;  // node index
 };
 
 struct Side {
-  uint32_t* slot;           // per voxel: see kSlotClosed
-  uint32_t* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
-  Node* nodes;              // state pool, max_nodes
-  OpenItem* open;           // binary min-heap, max_nodes
+  Index* slot;           // per voxel: see kSlotClosed
+  Index* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
+  Node* nodes;           // state pool, max_nodes
+  OpenItem* open;        // binary min-heap, max_nodes
   uint32_t n_nodes;
   uint32_t n_open;
   int32_t tx, ty, tz;          // target voxel of this side's heuristic
@@ -241,16 +259,16 @@ inline uint32_t slot_first(const Side& s, uint32_t v) {
   return i == kNil ? kNil : (i & kSlotIndex);
 }
 
-inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = idx; }
+inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = static_cast<Index>(idx); }
 
 // Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
 // this query, whose other entries are cleared first.
 inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
   if (s.heading_index == nullptr) return;
-  uint32_t* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  static_assert(kNil == 0xFFFFFFFFu, "memset fills kNil");
-  if (first) memset(row, 0xFF, kNumHeadings * sizeof(uint32_t));  // kNil
-  row[heading] = idx;
+  Index* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
+  static_assert(kNil == static_cast<Index>(~0u), "memset fills kNil");
+  if (first) memset(row, 0xFF, kNumHeadings * sizeof(Index));  // kNil
+  row[heading] = static_cast<Index>(idx);
 }
 
 // Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
@@ -265,14 +283,18 @@ inline Key key_of(const OpenItem& a) {
   Key k;
   memcpy(&k.hi, &a.f, sizeof(k.hi));
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-  // node then h in memory: one load gives h << 32 | node
-  static_assert(offsetof(OpenItem, h) == offsetof(OpenItem, node) + 4, "OpenItem layout");
-  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + offsetof(OpenItem, node),
-         sizeof(k.lo));
+  // node then h in memory, h last: one load of the 8 bytes ending with h gives h << 32 | node
+  // (32-bit Index) or h << 32 | node << 16 | two bytes of f (16-bit Index), shifted out.
+  constexpr size_t kLoAt = offsetof(OpenItem, h) + sizeof(float) - sizeof(uint64_t);
+  static_assert(offsetof(OpenItem, h) == offsetof(OpenItem, node) + sizeof(Index) &&
+                    offsetof(OpenItem, node) == sizeof(double),
+                "OpenItem layout");
+  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + kLoAt, sizeof(k.lo));
+  k.lo >>= 8u * (offsetof(OpenItem, node) - kLoAt);
 #else
   uint32_t h;
   memcpy(&h, &a.h, sizeof(h));
-  k.lo = (static_cast<uint64_t>(h) << 32) | a.node;
+  k.lo = (static_cast<uint64_t>(h) << (8u * sizeof(Index))) | a.node;
 #endif
   return k;
 }
@@ -290,7 +312,7 @@ inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a)
 
 inline void place(Side& s, uint32_t i, const OpenItem& it) {
   s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = i;
+  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = static_cast<Index>(i);
 }
 
 // Put item `it` at position i (a hole, or its old place) and move it up to where it belongs. The
@@ -367,9 +389,9 @@ inline void enqueue(Side& s, const OpenItem& it) {
   }
   const uint32_t r = static_cast<uint32_t>(b & (kRing - 1u));
   const uint32_t h = s.head[r];
-  s.nodes[it.node].next = h;
-  s.nodes[it.node].heap = kBucketBit | (kBucketHeadBase + r);
-  if (h != kNil) s.nodes[h].heap = kBucketBit | it.node;
+  s.nodes[it.node].next = static_cast<Index>(h);
+  s.nodes[it.node].heap = static_cast<Index>(kBucketBit | (kBucketHeadBase + r));
+  if (h != kNil) s.nodes[h].heap = static_cast<Index>(kBucketBit | it.node);
   s.head[r] = it.node;
   ++s.n_future;
 }
@@ -380,8 +402,8 @@ inline void unlink(Side& s, uint32_t i) {
   if (p >= kBucketHeadBase)
     s.head[p - kBucketHeadBase] = n;
   else
-    s.nodes[p].next = n;
-  if (n != kNil) s.nodes[n].heap = kBucketBit | p;
+    s.nodes[p].next = static_cast<Index>(n);
+  if (n != kNil) s.nodes[n].heap = static_cast<Index>(kBucketBit | p);
   --s.n_future;
 }
 
@@ -398,8 +420,10 @@ void advance(Side& s, Prio prio) {
     while (i != kNil) {  // bounded by the items queued
       const uint32_t after = s.nodes[i].next;
       OpenItem it;
-      it.node = i;
-      it.f = prio(s.nodes[i], &it.h);
+      float h;
+      it.node = static_cast<Index>(i);
+      it.f = prio(s.nodes[i], &h);
+      it.h = h;
       sift_up(s, s.n_open++, it);
       --s.n_future;
       i = after;
@@ -585,8 +609,7 @@ inline double priority_at(const tdo_search* ctx, const Query& q, int back, doubl
 inline bool push_stack(Side& s, uint32_t idx, double f) {
   if (!s.use_stack || f > s.f_cur || s.n_stack >= kStackCap) return false;
   s.stack[s.n_stack].f = f;
-  s.stack[s.n_stack].node = idx;
-  s.stack[s.n_stack].pad = 0;
+  s.stack[s.n_stack].node = static_cast<Index>(idx);
   ++s.n_stack;
   s.nodes[idx].heap = kInStack;
   return true;
@@ -595,7 +618,7 @@ inline bool push_stack(Side& s, uint32_t idx, double f) {
 // push() of a turn-penalised state whose f and h are known.
 inline void push_headed(Side& s, uint32_t idx, double f, double h) {
   OpenItem it;
-  it.node = idx;
+  it.node = static_cast<Index>(idx);
   it.f = f;
   it.h = static_cast<float>(h);
   if (!push_stack(s, idx, it.f)) enqueue(s, it);
@@ -603,9 +626,11 @@ inline void push_headed(Side& s, uint32_t idx, double f, double h) {
 
 void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
   OpenItem it;
-  it.node = idx;
-  it.f = headed ? priority<true>(ctx, q, s, back, s.nodes[idx], &it.h)
-                : priority<false>(ctx, q, s, back, s.nodes[idx], &it.h);
+  float h;
+  it.node = static_cast<Index>(idx);
+  it.f = headed ? priority<true>(ctx, q, s, back, s.nodes[idx], &h)
+                : priority<false>(ctx, q, s, back, s.nodes[idx], &h);
+  it.h = h;
   if (!push_stack(s, idx, it.f)) {
     enqueue(s, it);
   } else if (!headed) {
@@ -659,14 +684,13 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
   const uint32_t idx = s.n_nodes++;
   Node& n = s.nodes[idx];
   n.g = ng;
-  n.parent = ui;
-  n.voxel = w;
-  n.next = next;
-  n.x = static_cast<uint16_t>(u.x + dx);
-  n.y = static_cast<uint16_t>(u.y + dy);
-  n.z = static_cast<uint16_t>(u.z + dz);
+  n.parent = static_cast<Index>(ui);
+  n.voxel = static_cast<VoxelId>(w);
+  n.next = static_cast<Index>(next);
+  n.x = static_cast<Coord>(u.x + dx);
+  n.y = static_cast<Coord>(u.y + dy);
+  n.z = static_cast<Coord>(u.z + dz);
   n.heading = static_cast<uint8_t>(heading);
-  n.closed = 0;
   return idx;
 }
 
@@ -686,18 +710,20 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
   }
   if (idx != kNil) {
     Node& n = s.nodes[idx];
-    if (n.closed || !(ng < n.g)) return TDO_OK;
+    if (n.heap == kNil || !(ng < n.g)) return TDO_OK;  // closed, or no cheaper
     n.g = ng;
-    n.parent = ui;
+    n.parent = static_cast<Index>(ui);
     n.heading = static_cast<uint8_t>(heading);
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
-      it.node = idx;
+      it.node = static_cast<Index>(idx);
       if (t != nullptr) {
         it.f = priority_at(ctx, q, back, ng, heading, *t);
         it.h = static_cast<float>(t->h);
       } else {
-        it.f = priority<true>(ctx, q, s, back, n, &it.h);
+        float h;
+        it.f = priority<true>(ctx, q, s, back, n, &h);
+        it.h = h;
       }
       sift_up(s, n.heap, it);
     }
@@ -777,7 +803,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
     if (f < it.f) it.f = f;
   }
   it.h = static_cast<float>(h);
-  it.node = ui | kPivotItem;
+  it.node = static_cast<Index>(ui | kPivotItem);
   s.open[s.n_open] = it;
   sift_up(s, s.n_open++);
   return TDO_OK;
@@ -793,12 +819,14 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
     Node& n = s.nodes[idx];
     if (!(ng < n.g)) return TDO_OK;
     n.g = ng;
-    n.parent = ui;
+    n.parent = static_cast<Index>(ui);
     n.heading = static_cast<uint8_t>(d);
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
-      it.node = idx;
-      it.f = priority<false>(ctx, q, s, back, n, &it.h);
+      float h;
+      it.node = static_cast<Index>(idx);
+      it.f = priority<false>(ctx, q, s, back, n, &h);
+      it.h = h;
       if (n.heap >= kBucketBit) {  // in a later bucket (kNil and kInStack do not come here)
         unlink(s, idx);
         enqueue(s, it);
@@ -1045,13 +1073,12 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   Node& n = s.nodes[0];
   n.g = 0.0;
   n.parent = kNil;
-  n.voxel = q.voxel[back];
+  n.voxel = static_cast<VoxelId>(q.voxel[back]);
   n.next = kNil;
-  n.x = static_cast<uint16_t>(v.i);
-  n.y = static_cast<uint16_t>(v.j);
-  n.z = static_cast<uint16_t>(v.k);
+  n.x = static_cast<Coord>(v.i);
+  n.y = static_cast<Coord>(v.j);
+  n.z = static_cast<Coord>(v.k);
   n.heading = kHeadingNone;
-  n.closed = 0;
   s.n_nodes = 1;
   s.n_open = 0;
   s.n_stack = 0;
@@ -1149,8 +1176,8 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       if (st != TDO_OK) return st;
       continue;
     }
-    s.nodes[ui].closed = 1;
-    if (!kHeaded) s.slot[s.nodes[ui].voxel] |= kSlotClosed;
+    // ui is closed now: pop() and the stack set its heap position to kNil.
+    if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
     const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
     if (st != TDO_OK) return st;
   }
@@ -1161,7 +1188,7 @@ template <bool kHeaded>
 tdo_status run_search(tdo_search* ctx, Query& q) {
   const tdo_status st = search_loop<kHeaded>(ctx, q);
   for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-    uint32_t* slot = ctx->side[k].slot;
+    Index* slot = ctx->side[k].slot;
     const Node* nodes = ctx->side[k].nodes;
     const uint32_t n = ctx->side[k].n_nodes;
     for (uint32_t i = 0; i < n; ++i) slot[nodes[i].voxel] = kNil;
@@ -1264,7 +1291,7 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
 }
 
 size_t heading_index_bytes(const tdo_search_config& cfg) {
-  return cfg.dense_headings ? static_cast<size_t>(cfg.max_voxels) * kNumHeadings * sizeof(uint32_t)
+  return cfg.dense_headings ? static_cast<size_t>(cfg.max_voxels) * kNumHeadings * sizeof(Index)
                             : 0u;
 }
 
@@ -1281,7 +1308,7 @@ uint32_t open_entries(const tdo_search_config& cfg) {
 }
 
 size_t side_bytes(const tdo_search_config& cfg) {
-  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(uint32_t)) +
+  return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(Index)) +
          (cfg.exact_heuristic
               ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
               : 0u) +
@@ -1309,7 +1336,8 @@ extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
 extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
                                       const tdo_search_config* cfg) {
   if (out == nullptr || arena == nullptr || cfg == nullptr || cfg->max_voxels == 0 ||
-      cfg->max_nodes == 0 || cfg->max_path == 0 || cfg->max_nodes > kSlotIndex)
+      cfg->max_nodes == 0 || cfg->max_path == 0 || cfg->max_nodes > kSlotIndex ||
+      cfg->max_voxels > kMaxVoxels)
     return TDO_ERR_INVALID_ARGUMENT;
   tdo_search* ctx = static_cast<tdo_search*>(tdo_arena_alloc(arena, sizeof(tdo_search)));
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
@@ -1340,10 +1368,10 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   }
   for (int k = 0; k < 2; ++k) {
     Side& s = ctx->side[k];
-    s.slot = static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
+    s.slot = static_cast<Index*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(Index)));
     s.heading_index = nullptr;
     if (cfg->dense_headings) {
-      s.heading_index = static_cast<uint32_t*>(tdo_arena_alloc(arena, heading_index_bytes(*cfg)));
+      s.heading_index = static_cast<Index*>(tdo_arena_alloc(arena, heading_index_bytes(*cfg)));
       if (s.heading_index == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     }
     s.nodes = static_cast<Node*>(tdo_arena_alloc(arena, cfg->max_nodes * sizeof(Node)));
@@ -1351,7 +1379,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
         tdo_arena_alloc(arena, static_cast<size_t>(open_entries(*cfg)) * sizeof(OpenItem)));
     if (s.slot == nullptr || s.nodes == nullptr || s.open == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
-    memset(s.slot, 0xFF, cfg->max_voxels * sizeof(uint32_t));  // kNil: no states
+    memset(s.slot, 0xFF, cfg->max_voxels * sizeof(Index));  // kNil: no states
     s.hx = nullptr;
     ctx->hdist[k] = nullptr;
     if (cfg->exact_heuristic) {

@@ -509,7 +509,13 @@ TEST(SearchConstrained,
 TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
   const int32_t nx = 64, ny = 32, nz = 8;
   const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
+#if defined(TDO_SEARCH_INDEX16)
+  // 27 states per voxel are beyond 16-bit indices: the largest pool (a full pool starts the retry
+  // as a spent budget share does), so the retry's Dijkstra runs with 16-bit indices too
+  tdo_capacity cap = make_cap(n, 0x7FFFu, n + 1u);
+#else
   tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
+#endif
   cap.exact_heuristic = 1u;
   TestPlanner pl(cap);
   ASSERT_EQ(pl.status(), TDO_OK);
@@ -723,8 +729,15 @@ TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapa
   a.cap = make_cap(1000, 27000, 100);
   b.cap = a.cap;
   b.cap.max_open = 1000;
-  EXPECT_EQ(tdo_planner_footprint(&a) - tdo_planner_footprint(&b), 2u * 16u * (27000u - 1027u))
-      << "two directions of 16-byte items";
+#if defined(TDO_SEARCH_INDEX16)
+  constexpr size_t kItemBytes = 14u;  // 16-bit node index
+#else
+  constexpr size_t kItemBytes = 16u;
+#endif
+  // two directions, each array rounded up to the arena's 16-byte alignment
+  EXPECT_EQ(tdo_planner_footprint(&a) - tdo_planner_footprint(&b),
+            2u * (tdo_arena_round(kItemBytes * 27000u) - tdo_arena_round(kItemBytes * 1027u)))
+      << "two directions of " << kItemBytes << "-byte items";
 }
 
 TEST(SearchCapacity, GivenAPathBufferOneShort_WhenSearching_ThenPathCapacityElseItFitsExactly) {
@@ -826,6 +839,46 @@ TEST_F(SearchTest, GivenNegativeOrNonFiniteParameters_WhenSearching_ThenInvalidA
           << "goal.z " << bad;
     }
   }
+}
+
+// The index width bounds the capacities: 2^31 - 1 states per direction with 32-bit indices (one
+// bit flags pivot items and closed slots), 2^15 - 1 with 16-bit ones (tdo_index16), which also
+// need max_voxels < 2^16 and grid axes < 256. Beyond: a named status, at init or at the query.
+TEST(SearchCapacity, GivenCapacitiesAtAndBeyondTheIndexWidth_WhenInitialising_ThenRefusedBeyond) {
+#if defined(TDO_SEARCH_INDEX16)
+  const uint32_t max_nodes = 0x7FFFu, max_voxels = 0xFFFFu;
+#else
+  const uint32_t max_nodes = 0x7FFFFFFFu, max_voxels = 64u;  // no 2^32-voxel test
+#endif
+  const auto init = [](uint32_t voxels, uint32_t nodes) {
+    const tdo_search_config cfg{voxels, nodes, 16u, 0u, 0u, 0u, 1000u};
+    const size_t bytes = tdo_search_footprint(&cfg);
+    std::vector<unsigned char> memory(bytes > 0 && bytes < (size_t{1} << 27) ? bytes : 1u);
+    tdo_arena arena;
+    tdo_arena_init(&arena, memory.data(), memory.size());
+    tdo_search* s = nullptr;
+    return tdo_search_init(&s, &arena, &cfg);
+  };
+  if (max_nodes < 0x100000u) {  // a 2^31-state pool is not carved here: only its refusal is
+    EXPECT_EQ(init(max_voxels, max_nodes), TDO_OK);
+  }
+  EXPECT_EQ(init(max_voxels, max_nodes + 1u), TDO_ERR_INVALID_ARGUMENT);
+#if defined(TDO_SEARCH_INDEX16)
+  EXPECT_EQ(init(max_voxels + 1u, 64u), TDO_ERR_INVALID_ARGUMENT);
+  // 8-bit coordinates: an axis of 255 voxels is searched, one of 256 refused.
+  for (int32_t nx : {255, 256}) {
+    TestPlanner pl(make_cap(256, 256, 256));
+    ASSERT_EQ(pl.status(), TDO_OK);
+    const VoxelMap m(nx, 1, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+    const Result r = run(pl.search(), make_input(pl.grid(), tdo_vec3{0.5, 0.5, 0.5},
+                                                 tdo_vec3{nx - 0.5, 0.5, 0.5}, TDO_SEARCH_ASTAR));
+    EXPECT_EQ(r.status, nx < 256 ? TDO_OK : TDO_ERR_MAP_CAPACITY) << "nx " << nx;
+    if (nx < 256) {
+      EXPECT_EQ(r.out.n_path, 255u);
+    }
+  }
+#endif
 }
 
 TEST(SearchCapacity, GivenAGridLargerThanTheSearchContext_WhenSearching_ThenRefused) {

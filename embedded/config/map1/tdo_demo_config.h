@@ -20,6 +20,6 @@
 /* speed-profile pieces (8 per path segment + 1) */
 #define TDO_DEMO_MAX_PROFILE 257u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (829u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (606u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

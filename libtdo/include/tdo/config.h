@@ -21,7 +21,8 @@ typedef struct tdo_capacity {
                                  voxel and search direction). */
   uint32_t max_boxes;       /**< obstacle boxes kept for exact distance queries (48 bytes each) */
   uint32_t max_nodes;       /**< search states per direction (32 bytes each, plus 16 for the open
-                                 list while max_open = 0): at most max_voxels without heading
+                                 list while max_open = 0; 20 and 14 in the 16-bit index build
+                                 tdo_index16, see search.h): at most max_voxels without heading
                                  costs, up to 27x that with them */
   uint32_t max_path;        /**< voxels in one grid path (4 + 24 bytes each) */
   uint32_t max_clear_cells; /**< offsets in the clearance stencil: (2K+1)^3 with

@@ -29,18 +29,20 @@ typedef struct tdo_search tdo_search;
 /** Capacities of one search context. */
 typedef struct tdo_search_config {
   uint32_t max_voxels;      /**< largest grid it will search */
-  uint32_t max_nodes;       /**< states per direction */
+  uint32_t max_nodes;       /**< states per direction: < 2^31, or < 2^15 in the 16-bit index build
+                                 (library tdo_index16, which also needs max_voxels < 2^16 and grid
+                                 axes < 256); beyond: TDO_ERR_INVALID_ARGUMENT at init */
   uint32_t max_path;        /**< voxels in the returned path */
   uint32_t max_expansions;  /**< default budget when the input gives 0 */
   uint32_t dense_headings;  /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
                                  direction) for turn-penalised searches; 0: per-voxel chains */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the retry of a
                                  flooding turn-penalised search (tdo_search_output.fallback) */
-  uint32_t max_open;        /**< open-list items per direction (16 bytes each, plus 27 entries of
-                                 slack: one expansion's worth); a search whose open list holds
-                                 more before an expansion stops with TDO_ERR_OPEN_CAPACITY
-                                 (tdo_search_output.peak_open measures the need). 0 = max_nodes,
-                                 which can never overflow */
+  uint32_t max_open;        /**< open-list items per direction (16 bytes each, 14 in tdo_index16,
+                                 plus 27 entries of slack: one expansion's worth); a search whose
+                                 open list holds more before an expansion stops with
+                                 TDO_ERR_OPEN_CAPACITY (tdo_search_output.peak_open measures the
+                                 need). 0 = max_nodes, which can never overflow */
 } tdo_search_config;
 
 /** One query. */
