@@ -66,8 +66,13 @@ inline double point_box_d2(const double p[3], const double lo[3], const double h
 // crosses a slab face. Candidates: both ends, every breakpoint and the vertex of each piece's
 // quadratic when it lies inside the piece; every candidate is evaluated as the distance of an
 // actual point, so rounding can only make the result larger by rounding of that evaluation.
-double segment_box_d2(const double a[3], const double b[3], const double lo[3],
-                      const double hi[3]) {
+// With stop2 > 0 it returns as soon as the running minimum falls below stop2 (or to 0): a value
+// below stop2 then, the exact minimum otherwise (the minimum only falls).
+double segment_box_d2(const double a[3], const double b[3], const double lo[3], const double hi[3],
+                      double stop2 = -1.0) {
+  double best = point_box_d2(a, lo, hi);
+  if (!(best > 0.0)) return 0.0;
+  if (best < stop2) return best;
   double d[3];
   for (int i = 0; i < 3; ++i) d[i] = b[i] - a[i];
   double bp[8];
@@ -90,12 +95,11 @@ double segment_box_d2(const double a[3], const double b[3], const double lo[3],
     }
     bp[j + 1] = x;
   }
-  double best = point_box_d2(a, lo, hi);
-  if (!(best > 0.0)) return 0.0;
   double p[3];
   for (int k = 1; k < n; ++k) {
     seg_point(a, b, bp[k], p);
     best = dmin(best, point_box_d2(p, lo, hi));
+    if (!(best > 0.0) || best < stop2) return best;
     const double t0 = bp[k - 1], t1 = bp[k];
     if (!(t1 > t0)) continue;
     // The active slab faces on (t0, t1) are those of its midpoint.
@@ -113,6 +117,7 @@ double segment_box_d2(const double a[3], const double b[3], const double lo[3],
     if (tv > t0 && tv < t1) {
       seg_point(a, b, tv, p);
       best = dmin(best, point_box_d2(p, lo, hi));
+      if (!(best > 0.0) || best < stop2) return best;
     }
   }
   return best;
@@ -216,12 +221,28 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
   return true;
 }
 
-// 1 when box `b` keeps clearance c from [p0, p1].
-inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], double c) {
+// Bounding box of a segment piece [p0, p1], as far_apart computes it for every box.
+struct SpanBox {
+  double mn[3], mx[3];
+};
+inline SpanBox span_box(const double p0[3], const double p1[3]) {
+  SpanBox s;
+  for (int i = 0; i < 3; ++i) {
+    s.mn[i] = dmin(p0[i], p1[i]);
+    s.mx[i] = dmax(p0[i], p1[i]);
+  }
+  return s;
+}
+
+// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, then the
+// exact distance.
+inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
+                      double c) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  if (far_apart(p0, p1, lo, hi, c)) return true;
-  return !violates(segment_box_d2(p0, p1, lo, hi), c);
+  for (int i = 0; i < 3; ++i)
+    if (lo[i] - c > sb.mx[i] || hi[i] + c < sb.mn[i]) return true;
+  return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
 }
 
 // Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
@@ -235,16 +256,18 @@ inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], do
 
 bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (g->n_boxes == 0) return true;
+  const SpanBox whole = span_box(a, b);
   if (!(c <= g->bucket_reach)) {
     for (uint32_t k = 0; k < g->n_boxes; ++k)
-      if (!box_clear(g->boxes[k], a, b, c)) return false;
+      if (!box_clear(g->boxes[k], a, b, whole, c)) return false;
     return true;
   }
   for (uint32_t k = 0; k < g->n_large; ++k)
-    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, c)) return false;
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) return false;
   return for_each_cell_piece(g, a, b, [g, c](const double* p0, const double* p1, uint32_t cell) {
+    const SpanBox sb = span_box(p0, p1);
     for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-      if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, c)) return false;
+      if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) return false;
     return true;
   });
 }
@@ -371,7 +394,7 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
       const bool ok =
           for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
             if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
-            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi), c);
+            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
           });
       if (!ok) return false;
       continue;
@@ -420,10 +443,17 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }
 
 // Lower *best (m) to the distance of point p to box b when that is smaller.
+// The sum of squares is that of point_box_d2; it stops at the first axis whose gap alone reaches
+// *best (rounding is monotone, so then d2 >= gap^2 >= best^2 and nothing changes).
 inline void box_min_point(const tdo_box& b, const double p[3], double* best) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  const double d2 = point_box_d2(p, lo, hi);
+  double d2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = dmax(lo[i] - p[i], 0.0) + dmax(p[i] - hi[i], 0.0);
+    if (g >= *best) return;
+    d2 += g * g;
+  }
   if (d2 < *best * *best) *best = sqrt(d2);
 }
 
