@@ -16,6 +16,7 @@
 
 #include <math.h>
 
+#include "collision_internal.h"
 #include "grid_internal.h"
 
 namespace tdo_internal {
@@ -254,22 +255,54 @@ inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], do
   if (d2 < *best * *best) *best = sqrt(d2);
 }
 
-bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+// *hit = index of the box that failed (unchanged when every box keeps clearance).
+bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c, uint32_t* hit) {
   if (g->n_boxes == 0) return true;
   const SpanBox whole = span_box(a, b);
   if (!(c <= g->bucket_reach)) {
-    for (uint32_t k = 0; k < g->n_boxes; ++k)
-      if (!box_clear(g->boxes[k], a, b, whole, c)) return false;
+    for (uint32_t k = 0; k < g->n_boxes; ++k) {
+      if (!box_clear(g->boxes[k], a, b, whole, c)) {
+        *hit = k;
+        return false;
+      }
+    }
     return true;
   }
-  for (uint32_t k = 0; k < g->n_large; ++k)
-    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) return false;
-  return for_each_cell_piece(g, a, b, [g, c](const double* p0, const double* p1, uint32_t cell) {
-    const SpanBox sb = span_box(p0, p1);
-    for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-      if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) return false;
-    return true;
-  });
+  for (uint32_t k = 0; k < g->n_large; ++k) {
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) {
+      *hit = g->large_boxes[k];
+      return false;
+    }
+  }
+  return for_each_cell_piece(
+      g, a, b, [g, c, hit](const double* p0, const double* p1, uint32_t cell) {
+        const SpanBox sb = span_box(p0, p1);
+        for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r) {
+          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) {
+            *hit = g->box_refs[r];
+            return false;
+          }
+        }
+        return true;
+      });
+}
+
+// Margin (m) of the hinted test below: far above the rounding of piece end points (~1e-15 of the
+// coordinates), far below any clearance that matters.
+constexpr double kHintMargin = 1e-7;
+
+// True when box k is certainly closer than c to [a, b] (both inside the bounds), so that
+// boxes_clear finds a violation: the box is then within reach of the nearest point of the segment
+// and listed in that point's cell (or scanned whole), and the piece holding that point is, up to
+// rounding far below kHintMargin, at most as far from the box.
+bool box_certainly_violates(const tdo_grid* g, uint32_t k, const double a[3], const double b[3],
+                            double c) {
+  if (k >= g->n_boxes || !(c > kHintMargin)) return false;
+  double lo[3], hi[3];
+  box_bounds(g->boxes[k], lo, hi);
+  if (far_apart(a, b, lo, hi, c)) return false;
+  const double m = c - kHintMargin;
+  return segment_box_d2(a, b, lo, hi, m * m) < m * m;
 }
 
 // min(cap, distance from [a, b] to the boxes).
@@ -495,7 +528,8 @@ double point_distance(const tdo_grid* g, const double p[3], double cap) {
 
 bool segment_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (!inside_bounds(g, a) || !inside_bounds(g, b)) return false;
-  return boxes_clear(g, a, b, c) && cubes_clear(g, a, b, c);
+  uint32_t hit = 0;
+  return boxes_clear(g, a, b, c, &hit) && cubes_clear(g, a, b, c);
 }
 
 // Distance (m) from p to the segment [a, b].
@@ -541,6 +575,26 @@ extern "C" double tdo_collision_segment_distance(const tdo_grid* grid, tdo_vec3 
   load(b, pb);
   return segment_distance(grid, pa, pb, cap);
 }
+
+namespace tdo_internal {
+
+int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                         uint32_t* hint) {
+  if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
+    return 0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  if (*hint != 0u && box_certainly_violates(grid, *hint - 1u, pa, pb, clearance)) return 0;
+  uint32_t hit = 0xFFFFFFFFu;
+  const bool ok =
+      boxes_clear(grid, pa, pb, clearance, &hit) && cubes_clear(grid, pa, pb, clearance);
+  if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
+  return ok ? 1 : 0;
+}
+
+}  // namespace tdo_internal
 
 extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,
                                            double clearance) {
