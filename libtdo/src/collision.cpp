@@ -247,10 +247,12 @@ inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], 
 }
 
 // Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
-inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], double* best) {
+inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
+                    double* best) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  if (far_apart(p0, p1, lo, hi, *best)) return;
+  for (int i = 0; i < 3; ++i)  // far_apart with r = *best
+    if (lo[i] - *best > sb.mx[i] || hi[i] + *best < sb.mn[i]) return;
   const double d2 = segment_box_d2(p0, p1, lo, hi);
   if (d2 < *best * *best) *best = sqrt(d2);
 }
@@ -309,20 +311,23 @@ bool box_certainly_violates(const tdo_grid* g, uint32_t k, const double a[3], co
 double boxes_min(const tdo_grid* g, const double a[3], const double b[3], double cap, bool inside) {
   double best = cap;
   if (g->n_boxes == 0) return best;
+  const SpanBox whole = span_box(a, b);
   if (inside) {
     // Every box closer than bucket_reach to a point of the segment is listed in that point's cell:
     // a result below the reach (or a cap within it) is exact.
     const double reach = dmin(cap, g->bucket_reach);
     double near = reach;
-    for (uint32_t k = 0; k < g->n_large; ++k) box_min(g->boxes[g->large_boxes[k]], a, b, &near);
+    for (uint32_t k = 0; k < g->n_large; ++k)
+      box_min(g->boxes[g->large_boxes[k]], a, b, whole, &near);
     for_each_cell_piece(g, a, b, [g, &near](const double* p0, const double* p1, uint32_t cell) {
+      const SpanBox sb = span_box(p0, p1);
       for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-        box_min(g->boxes[g->box_refs[r]], p0, p1, &near);
+        box_min(g->boxes[g->box_refs[r]], p0, p1, sb, &near);
       return true;
     });
     if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
   }
-  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, &best);
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, &best);
   return best;
 }
 
