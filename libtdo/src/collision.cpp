@@ -599,6 +599,87 @@ int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cl
   return ok ? 1 : 0;
 }
 
+namespace {
+
+// Margins of the hinted point distance: the nearest box's distance must stay below the bound of
+// every other obstacle by more than this (relative and absolute), far above rounding.
+constexpr double kPointHintRel = 1e-6;
+constexpr double kPointHintAbs = 1e-9;  // m
+
+}  // namespace
+
+double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, PointHint* h) {
+  if (!ready(grid) || !finite3(pv) || !(cap >= 0.0)) return -1.0;
+  double p[3];
+  load(pv, p);
+  // The hint covers box-only maps and points inside the bounds (the bucket index answers).
+  if (grid->n_cubes != 0 || grid->n_boxes == 0 || !inside_bounds(grid, p)) {
+    h->valid = 0;
+    return point_distance(grid, p, cap);
+  }
+  const double reach = grid->bucket_reach;
+  const double near0 = dmin(cap, reach);
+  if (h->valid) {
+    double m2 = 0.0;
+    for (int i = 0; i < 3; ++i) m2 += (p[i] - h->q[i]) * (p[i] - h->q[i]);
+    // Every other obstacle is at least others - |p - q| away (1-Lipschitz).
+    const double lim = dmin(near0, h->others - sqrt(m2));
+    double lo[3], hi[3];
+    box_bounds(grid->boxes[h->box], lo, hi);
+    const double d = sqrt(point_box_d2(p, lo, hi));
+    // Then the full query's running minimum takes this box's value and keeps it: d^2 is below
+    // the start value and every other box's d^2 by far more than rounding.
+    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) return d;
+  }
+  // Full evaluation, as boxes_min_point does it (same running minimum, in the same order), also
+  // keeping the nearest box and the second smallest distance of the listed boxes.
+  const tdo_grid_desc& dsc = grid->desc;
+  const double o[3] = {dsc.origin.x, dsc.origin.y, dsc.origin.z};
+  const int32_t nc[3] = {grid->ncx, grid->ncy, grid->ncz};
+  int32_t cell[3];
+  for (int i = 0; i < 3; ++i) {
+    double c = floor((p[i] - o[i]) / grid->cell_edge);
+    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+    cell[i] = static_cast<int32_t>(c);
+  }
+  const uint32_t ci = static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+  double near = near0, first = HUGE_VAL, second = HUGE_VAL;
+  uint32_t nearest = 0xFFFFFFFFu;
+  const auto visit = [&](uint32_t k) {
+    double lo[3], hi[3];
+    box_bounds(grid->boxes[k], lo, hi);
+    // point_box_d2's sum; a partial sum already >= second changes neither the two smallest nor
+    // the running minimum (near^2 is at most first up to rounding, so at most a tie repeats it).
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double g = dmax(lo[i] - p[i], 0.0) + dmax(p[i] - hi[i], 0.0);
+      d2 += g * g;
+      if (d2 >= second) return;
+    }
+    if (d2 < near * near) near = sqrt(d2);
+    if (d2 < first) {
+      second = first;
+      first = d2;
+      nearest = k;
+    } else if (d2 < second) {
+      second = d2;
+    }
+  };
+  for (uint32_t k = 0; k < grid->n_large; ++k) visit(grid->large_boxes[k]);
+  for (uint32_t r = grid->cell_start[ci]; r < grid->cell_start[ci + 1]; ++r)
+    visit(grid->box_refs[r]);
+  if (!(near < reach || !(cap > reach))) {  // beyond the reach: boxes_min_point scans every box
+    h->valid = 0;
+    return point_distance(grid, p, cap);
+  }
+  // Boxes not listed in the cell are farther than the reach from every point of it.
+  h->valid = nearest != 0xFFFFFFFFu ? 1 : 0;
+  h->box = nearest;
+  h->others = dmin(sqrt(second), reach);
+  for (int i = 0; i < 3; ++i) h->q[i] = p[i];
+  return near;  // cubes_min adds nothing without cubes
+}
+
 }  // namespace tdo_internal
 
 extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,

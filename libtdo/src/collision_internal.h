@@ -18,6 +18,23 @@ namespace tdo_internal {
 int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
                          uint32_t* hint);
 
+/** State of point_distance_hinted between calls (valid = 0 to start). */
+struct PointHint {
+  double q[3];    // m, world frame: the last point evaluated in full
+  double others;  // m, lower bound of the distance from q to every obstacle but `box`
+  uint32_t box;   // index of the box nearest to q
+  int valid;      // 1 when the fields above hold
+};
+
+/**
+ * tdo_collision_point_distance for runs of nearby points (same result, bit for bit): when the box
+ * nearest to the last fully evaluated point q is still nearer to p than every other obstacle can
+ * be (their bound at q minus |p - q|, with a margin far above rounding), its distance is the
+ * answer; otherwise the full query runs and renews the hint. Box-only maps, points inside the
+ * bounds; anything else runs the full query.
+ */
+double point_distance_hinted(const tdo_grid* grid, tdo_vec3 p, double cap, PointHint* h);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

@@ -26,6 +26,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "collision_internal.h"
 #include "sample_energy.h"
 #include "tdo/collision.h"
 
@@ -878,6 +879,8 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     const double cap = in->clearance + kClearanceCapExtra;
     const double floor_ok = in->clearance - kClearanceSlack;
     double ref = -HUGE_VAL, moved = 0.0;
+    PointHint hint;
+    hint.valid = 0;
     src.rewind();
     tdo_vec3 prev{0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < n; ++i) {
@@ -886,7 +889,7 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
       prev = si.p;
       const double lb = ref - moved - kLipschitzSlack;
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
-      const double d = tdo_collision_point_distance(in->grid, si.p, cap);
+      const double d = point_distance_hinted(in->grid, si.p, cap, &hint);
       ref = d;
       moved = 0.0;
       rep->min_clearance = dmin(rep->min_clearance, d);

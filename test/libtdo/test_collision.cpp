@@ -637,4 +637,50 @@ TEST_F(CollisionTest,
   EXPECT_EQ(blocked, 40);
 }
 
+// The trajectory check's hinted point distance must give the plain query's value bit for bit:
+// walks of small steps (as samples move) with jumps, along box faces and near corners between
+// boxes, points on the bounds, several caps; box-only and box + cube maps (the latter always run
+// the full query).
+TEST_F(CollisionTest,
+       GivenWalksOfPoints_WhenPointDistanceIsHinted_ThenBitIdenticalToThePlainQuery) {
+  Rng rng(91);
+  int compared = 0, reused = 0;
+  for (int map = 0; map < 30; ++map) {
+    const double cube_density = map % 5 == 4 ? 0.02 : 0.0;
+    const World w = random_world(rng, 20, 16, 8, 0.5, 12 + map % 20, 1.2, cube_density);
+    ASSERT_EQ(load(grid(), w, 0.5), TDO_OK);
+    tdo_internal::PointHint hint;
+    hint.valid = 0;
+    tdo_vec3 p = random_point_in(rng, w.m);
+    const double cap = map % 3 == 0 ? 1.5 : (map % 3 == 1 ? 0.4 : 10.0);
+    for (int s = 0; s < 600; ++s) {
+      if (s % 97 == 0) {
+        p = random_point_in(rng, w.m);
+      } else if (s % 131 == 0 && !w.boxes.empty()) {  // just off a box face
+        const tdo_box& b = w.boxes[rng.below(static_cast<uint32_t>(w.boxes.size()))];
+        p = v3(0.5 * (b.min.x + b.max.x), b.max.y + rng.uniform(0.0, 0.6),
+               0.5 * (b.min.z + b.max.z));
+      } else {
+        const double step = s % 7 == 0 ? 0.2 : 0.03;
+        p = v3(p.x + rng.uniform(-step, step), p.y + rng.uniform(-step, step),
+               p.z + rng.uniform(-step, step));
+      }
+      if (s % 53 == 0) p.x = w.m.origin.x + w.m.nx * w.m.res;  // on the max face
+      const double before_q = hint.valid ? hint.q[0] : 0.0;
+      const int before_valid = hint.valid;
+      const double plain = tdo_collision_point_distance(grid(), p, cap);
+      const double got = tdo_internal::point_distance_hinted(grid(), p, cap, &hint);
+      ASSERT_EQ(std::memcmp(&got, &plain, sizeof got), 0)
+          << "map " << map << " step " << s << ": " << got << " vs " << plain;
+      ++compared;
+      // Answered from the hint: the fully evaluated point stayed, and it was not this one.
+      const bool same_q = std::memcmp(&hint.q[0], &before_q, sizeof before_q) == 0;
+      const bool here = std::memcmp(&p.x, &before_q, sizeof before_q) == 0;
+      if (before_valid && hint.valid && same_q && !here) ++reused;
+    }
+  }
+  EXPECT_EQ(compared, 30 * 600);
+  EXPECT_GT(reused, 1000);  // the hint answers a good share of the queries
+}
+
 }  // namespace
