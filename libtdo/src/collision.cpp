@@ -537,6 +537,17 @@ bool segment_clear(const tdo_grid* g, const double a[3], const double b[3], doub
   return boxes_clear(g, a, b, c, &hit) && cubes_clear(g, a, b, c);
 }
 
+// segment_clear with a hint (see segment_clear_hinted): the same answer.
+bool segment_clear_hint(const tdo_grid* g, const double a[3], const double b[3], double c,
+                        uint32_t* hint) {
+  if (!inside_bounds(g, a) || !inside_bounds(g, b)) return false;
+  if (*hint != 0u && box_certainly_violates(g, *hint - 1u, a, b, c)) return false;
+  uint32_t hit = 0xFFFFFFFFu;
+  const bool ok = boxes_clear(g, a, b, c, &hit) && cubes_clear(g, a, b, c);
+  if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
+  return ok;
+}
+
 // Distance (m) from p to the segment [a, b].
 double point_segment_distance(const double p[3], const double a[3], const double b[3]) {
   double d[3], w[3], dd = 0.0, wd = 0.0;
@@ -590,13 +601,7 @@ int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cl
   double pa[3], pb[3];
   load(a, pa);
   load(b, pb);
-  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
-  if (*hint != 0u && box_certainly_violates(grid, *hint - 1u, pa, pb, clearance)) return 0;
-  uint32_t hit = 0xFFFFFFFFu;
-  const bool ok =
-      boxes_clear(grid, pa, pb, clearance, &hit) && cubes_clear(grid, pa, pb, clearance);
-  if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
-  return ok ? 1 : 0;
+  return segment_clear_hint(grid, pa, pb, clearance, hint) ? 1 : 0;
 }
 
 namespace {
@@ -700,6 +705,7 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   for (int i = 0; i < 4; ++i)
     if (!finite3(c[i])) return 0;
   const double tol = dmax(tolerance, kMinTolerance);
+  uint32_t hint = 0;  // box that failed the last chord test (segment_clear_hint)
   Bezier stack[kBezierStackCap];
   int top = 0;
   for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
@@ -713,7 +719,7 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
                               point_segment_distance(bz.c[2], bz.c[0], bz.c[3]));
     bool in = true;
     for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
-    if (in && segment_clear(grid, bz.c[0], bz.c[3], clearance + bound)) continue;
+    if (in && segment_clear_hint(grid, bz.c[0], bz.c[3], clearance + bound, &hint)) continue;
     // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
     // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.
     if (!(bound > 0.5 * tol)) return 0;
