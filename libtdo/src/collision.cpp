@@ -627,8 +627,10 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
   if (h->valid) {
     double m2 = 0.0;
     for (int i = 0; i < 3; ++i) m2 += (p[i] - h->q[i]) * (p[i] - h->q[i]);
-    // Every other obstacle is at least others - |p - q| away (1-Lipschitz).
-    const double lim = dmin(near0, h->others - sqrt(m2));
+    // Every other obstacle is at least others - |p - q| away (1-Lipschitz). Below the reach
+    // the bucket pass of the full query ends with this box's value, beyond it the scan of every
+    // box does; below the cap either way.
+    const double lim = dmin(cap, h->others - sqrt(m2));
     double lo[3], hi[3];
     box_bounds(grid->boxes[h->box], lo, hi);
     const double d = sqrt(point_box_d2(p, lo, hi));
@@ -673,14 +675,22 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
   for (uint32_t k = 0; k < grid->n_large; ++k) visit(grid->large_boxes[k]);
   for (uint32_t r = grid->cell_start[ci]; r < grid->cell_start[ci + 1]; ++r)
     visit(grid->box_refs[r]);
-  if (!(near < reach || !(cap > reach))) {  // beyond the reach: boxes_min_point scans every box
-    h->valid = 0;
-    return point_distance(grid, p, cap);
+  double others;
+  if (near < reach || !(cap > reach)) {
+    // Boxes not listed in the cell are farther than the reach from every point of it.
+    others = dmin(sqrt(second), reach);
+  } else {
+    // Beyond the reach boxes_min_point scans every box from `cap`: the same, over all boxes.
+    near = cap;
+    first = HUGE_VAL;
+    second = HUGE_VAL;
+    nearest = 0xFFFFFFFFu;
+    for (uint32_t k = 0; k < grid->n_boxes; ++k) visit(k);
+    others = sqrt(second);
   }
-  // Boxes not listed in the cell are farther than the reach from every point of it.
   h->valid = nearest != 0xFFFFFFFFu ? 1 : 0;
   h->box = nearest;
-  h->others = dmin(sqrt(second), reach);
+  h->others = others;
   for (int i = 0; i < 3; ++i) h->q[i] = p[i];
   return near;  // cubes_min adds nothing without cubes
 }
