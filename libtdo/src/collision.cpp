@@ -16,6 +16,7 @@
 
 #include <math.h>
 
+#include "collision_internal.h"
 #include "grid_internal.h"
 
 namespace tdo_internal {
@@ -66,8 +67,13 @@ inline double point_box_d2(const double p[3], const double lo[3], const double h
 // crosses a slab face. Candidates: both ends, every breakpoint and the vertex of each piece's
 // quadratic when it lies inside the piece; every candidate is evaluated as the distance of an
 // actual point, so rounding can only make the result larger by rounding of that evaluation.
-double segment_box_d2(const double a[3], const double b[3], const double lo[3],
-                      const double hi[3]) {
+// With stop2 > 0 it returns as soon as the running minimum falls below stop2 (or to 0): a value
+// below stop2 then, the exact minimum otherwise (the minimum only falls).
+double segment_box_d2(const double a[3], const double b[3], const double lo[3], const double hi[3],
+                      double stop2 = -1.0) {
+  double best = point_box_d2(a, lo, hi);
+  if (!(best > 0.0)) return 0.0;
+  if (best < stop2) return best;
   double d[3];
   for (int i = 0; i < 3; ++i) d[i] = b[i] - a[i];
   double bp[8];
@@ -90,12 +96,11 @@ double segment_box_d2(const double a[3], const double b[3], const double lo[3],
     }
     bp[j + 1] = x;
   }
-  double best = point_box_d2(a, lo, hi);
-  if (!(best > 0.0)) return 0.0;
   double p[3];
   for (int k = 1; k < n; ++k) {
     seg_point(a, b, bp[k], p);
     best = dmin(best, point_box_d2(p, lo, hi));
+    if (!(best > 0.0) || best < stop2) return best;
     const double t0 = bp[k - 1], t1 = bp[k];
     if (!(t1 > t0)) continue;
     // The active slab faces on (t0, t1) are those of its midpoint.
@@ -113,6 +118,7 @@ double segment_box_d2(const double a[3], const double b[3], const double lo[3],
     if (tv > t0 && tv < t1) {
       seg_point(a, b, tv, p);
       best = dmin(best, point_box_d2(p, lo, hi));
+      if (!(best > 0.0) || best < stop2) return best;
     }
   }
   return best;
@@ -216,57 +222,112 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
   return true;
 }
 
-// 1 when box `b` keeps clearance c from [p0, p1].
-inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], double c) {
+// Bounding box of a segment piece [p0, p1], as far_apart computes it for every box.
+struct SpanBox {
+  double mn[3], mx[3];
+};
+inline SpanBox span_box(const double p0[3], const double p1[3]) {
+  SpanBox s;
+  for (int i = 0; i < 3; ++i) {
+    s.mn[i] = dmin(p0[i], p1[i]);
+    s.mx[i] = dmax(p0[i], p1[i]);
+  }
+  return s;
+}
+
+// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, then the
+// exact distance.
+inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
+                      double c) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  if (far_apart(p0, p1, lo, hi, c)) return true;
-  return !violates(segment_box_d2(p0, p1, lo, hi), c);
+  for (int i = 0; i < 3; ++i)
+    if (lo[i] - c > sb.mx[i] || hi[i] + c < sb.mn[i]) return true;
+  return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
 }
 
 // Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
-inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], double* best) {
+inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
+                    double* best) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  if (far_apart(p0, p1, lo, hi, *best)) return;
+  for (int i = 0; i < 3; ++i)  // far_apart with r = *best
+    if (lo[i] - *best > sb.mx[i] || hi[i] + *best < sb.mn[i]) return;
   const double d2 = segment_box_d2(p0, p1, lo, hi);
   if (d2 < *best * *best) *best = sqrt(d2);
 }
 
-bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+// *hit = index of the box that failed (unchanged when every box keeps clearance).
+bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c, uint32_t* hit) {
   if (g->n_boxes == 0) return true;
+  const SpanBox whole = span_box(a, b);
   if (!(c <= g->bucket_reach)) {
-    for (uint32_t k = 0; k < g->n_boxes; ++k)
-      if (!box_clear(g->boxes[k], a, b, c)) return false;
+    for (uint32_t k = 0; k < g->n_boxes; ++k) {
+      if (!box_clear(g->boxes[k], a, b, whole, c)) {
+        *hit = k;
+        return false;
+      }
+    }
     return true;
   }
-  for (uint32_t k = 0; k < g->n_large; ++k)
-    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, c)) return false;
-  return for_each_cell_piece(g, a, b, [g, c](const double* p0, const double* p1, uint32_t cell) {
-    for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-      if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, c)) return false;
-    return true;
-  });
+  for (uint32_t k = 0; k < g->n_large; ++k) {
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) {
+      *hit = g->large_boxes[k];
+      return false;
+    }
+  }
+  return for_each_cell_piece(
+      g, a, b, [g, c, hit](const double* p0, const double* p1, uint32_t cell) {
+        const SpanBox sb = span_box(p0, p1);
+        for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r) {
+          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) {
+            *hit = g->box_refs[r];
+            return false;
+          }
+        }
+        return true;
+      });
+}
+
+// Margin (m) of the hinted test below: far above the rounding of piece end points (~1e-15 of the
+// coordinates), far below any clearance that matters.
+constexpr double kHintMargin = 1e-7;
+
+// True when box k is certainly closer than c to [a, b] (both inside the bounds), so that
+// boxes_clear finds a violation: the box is then within reach of the nearest point of the segment
+// and listed in that point's cell (or scanned whole), and the piece holding that point is, up to
+// rounding far below kHintMargin, at most as far from the box.
+bool box_certainly_violates(const tdo_grid* g, uint32_t k, const double a[3], const double b[3],
+                            double c) {
+  if (k >= g->n_boxes || !(c > kHintMargin)) return false;
+  double lo[3], hi[3];
+  box_bounds(g->boxes[k], lo, hi);
+  if (far_apart(a, b, lo, hi, c)) return false;
+  const double m = c - kHintMargin;
+  return segment_box_d2(a, b, lo, hi, m * m) < m * m;
 }
 
 // min(cap, distance from [a, b] to the boxes).
 double boxes_min(const tdo_grid* g, const double a[3], const double b[3], double cap, bool inside) {
   double best = cap;
   if (g->n_boxes == 0) return best;
+  const SpanBox whole = span_box(a, b);
   if (inside) {
     // Every box closer than bucket_reach to a point of the segment is listed in that point's cell:
     // a result below the reach (or a cap within it) is exact.
     const double reach = dmin(cap, g->bucket_reach);
     double near = reach;
-    for (uint32_t k = 0; k < g->n_large; ++k) box_min(g->boxes[g->large_boxes[k]], a, b, &near);
+    for (uint32_t k = 0; k < g->n_large; ++k)
+      box_min(g->boxes[g->large_boxes[k]], a, b, whole, &near);
     for_each_cell_piece(g, a, b, [g, &near](const double* p0, const double* p1, uint32_t cell) {
+      const SpanBox sb = span_box(p0, p1);
       for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-        box_min(g->boxes[g->box_refs[r]], p0, p1, &near);
+        box_min(g->boxes[g->box_refs[r]], p0, p1, sb, &near);
       return true;
     });
     if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
   }
-  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, &best);
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, &best);
   return best;
 }
 
@@ -371,7 +432,7 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
       const bool ok =
           for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
             if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
-            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi), c);
+            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
           });
       if (!ok) return false;
       continue;
@@ -420,10 +481,17 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }
 
 // Lower *best (m) to the distance of point p to box b when that is smaller.
+// The sum of squares is that of point_box_d2; it stops at the first axis whose gap alone reaches
+// *best (rounding is monotone, so then d2 >= gap^2 >= best^2 and nothing changes).
 inline void box_min_point(const tdo_box& b, const double p[3], double* best) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  const double d2 = point_box_d2(p, lo, hi);
+  double d2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = dmax(lo[i] - p[i], 0.0) + dmax(p[i] - hi[i], 0.0);
+    if (g >= *best) return;
+    d2 += g * g;
+  }
   if (d2 < *best * *best) *best = sqrt(d2);
 }
 
@@ -465,7 +533,19 @@ double point_distance(const tdo_grid* g, const double p[3], double cap) {
 
 bool segment_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (!inside_bounds(g, a) || !inside_bounds(g, b)) return false;
-  return boxes_clear(g, a, b, c) && cubes_clear(g, a, b, c);
+  uint32_t hit = 0;
+  return boxes_clear(g, a, b, c, &hit) && cubes_clear(g, a, b, c);
+}
+
+// segment_clear with a hint (see segment_clear_hinted): the same answer.
+bool segment_clear_hint(const tdo_grid* g, const double a[3], const double b[3], double c,
+                        uint32_t* hint) {
+  if (!inside_bounds(g, a) || !inside_bounds(g, b)) return false;
+  if (*hint != 0u && box_certainly_violates(g, *hint - 1u, a, b, c)) return false;
+  uint32_t hit = 0xFFFFFFFFu;
+  const bool ok = boxes_clear(g, a, b, c, &hit) && cubes_clear(g, a, b, c);
+  if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
+  return ok;
 }
 
 // Distance (m) from p to the segment [a, b].
@@ -512,6 +592,111 @@ extern "C" double tdo_collision_segment_distance(const tdo_grid* grid, tdo_vec3 
   return segment_distance(grid, pa, pb, cap);
 }
 
+namespace tdo_internal {
+
+int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                         uint32_t* hint) {
+  if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
+    return 0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  return segment_clear_hint(grid, pa, pb, clearance, hint) ? 1 : 0;
+}
+
+namespace {
+
+// Margins of the hinted point distance: the nearest box's distance must stay below the bound of
+// every other obstacle by more than this (relative and absolute), far above rounding.
+constexpr double kPointHintRel = 1e-6;
+constexpr double kPointHintAbs = 1e-9;  // m
+
+}  // namespace
+
+double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, PointHint* h) {
+  if (!ready(grid) || !finite3(pv) || !(cap >= 0.0)) return -1.0;
+  double p[3];
+  load(pv, p);
+  // The hint covers box-only maps and points inside the bounds (the bucket index answers).
+  if (grid->n_cubes != 0 || grid->n_boxes == 0 || !inside_bounds(grid, p)) {
+    h->valid = 0;
+    return point_distance(grid, p, cap);
+  }
+  const double reach = grid->bucket_reach;
+  const double near0 = dmin(cap, reach);
+  if (h->valid) {
+    double m2 = 0.0;
+    for (int i = 0; i < 3; ++i) m2 += (p[i] - h->q[i]) * (p[i] - h->q[i]);
+    // Every other obstacle is at least others - |p - q| away (1-Lipschitz). Below the reach
+    // the bucket pass of the full query ends with this box's value, beyond it the scan of every
+    // box does; below the cap either way.
+    const double lim = dmin(cap, h->others - sqrt(m2));
+    double lo[3], hi[3];
+    box_bounds(grid->boxes[h->box], lo, hi);
+    const double d = sqrt(point_box_d2(p, lo, hi));
+    // Then the full query's running minimum takes this box's value and keeps it: d^2 is below
+    // the start value and every other box's d^2 by far more than rounding.
+    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) return d;
+  }
+  // Full evaluation, as boxes_min_point does it (same running minimum, in the same order), also
+  // keeping the nearest box and the second smallest distance of the listed boxes.
+  const tdo_grid_desc& dsc = grid->desc;
+  const double o[3] = {dsc.origin.x, dsc.origin.y, dsc.origin.z};
+  const int32_t nc[3] = {grid->ncx, grid->ncy, grid->ncz};
+  int32_t cell[3];
+  for (int i = 0; i < 3; ++i) {
+    double c = floor((p[i] - o[i]) / grid->cell_edge);
+    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+    cell[i] = static_cast<int32_t>(c);
+  }
+  const uint32_t ci = static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+  double near = near0, first = HUGE_VAL, second = HUGE_VAL;
+  uint32_t nearest = 0xFFFFFFFFu;
+  const auto visit = [&](uint32_t k) {
+    double lo[3], hi[3];
+    box_bounds(grid->boxes[k], lo, hi);
+    // point_box_d2's sum; a partial sum already >= second changes neither the two smallest nor
+    // the running minimum (near^2 is at most first up to rounding, so at most a tie repeats it).
+    double d2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double g = dmax(lo[i] - p[i], 0.0) + dmax(p[i] - hi[i], 0.0);
+      d2 += g * g;
+      if (d2 >= second) return;
+    }
+    if (d2 < near * near) near = sqrt(d2);
+    if (d2 < first) {
+      second = first;
+      first = d2;
+      nearest = k;
+    } else if (d2 < second) {
+      second = d2;
+    }
+  };
+  for (uint32_t k = 0; k < grid->n_large; ++k) visit(grid->large_boxes[k]);
+  for (uint32_t r = grid->cell_start[ci]; r < grid->cell_start[ci + 1]; ++r)
+    visit(grid->box_refs[r]);
+  double others;
+  if (near < reach || !(cap > reach)) {
+    // Boxes not listed in the cell are farther than the reach from every point of it.
+    others = dmin(sqrt(second), reach);
+  } else {
+    // Beyond the reach boxes_min_point scans every box from `cap`: the same, over all boxes.
+    near = cap;
+    first = HUGE_VAL;
+    second = HUGE_VAL;
+    nearest = 0xFFFFFFFFu;
+    for (uint32_t k = 0; k < grid->n_boxes; ++k) visit(k);
+    others = sqrt(second);
+  }
+  h->valid = nearest != 0xFFFFFFFFu ? 1 : 0;
+  h->box = nearest;
+  h->others = others;
+  for (int i = 0; i < 3; ++i) h->q[i] = p[i];
+  return near;  // cubes_min adds nothing without cubes
+}
+
+}  // namespace tdo_internal
+
 extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,
                                            double clearance) {
   if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
@@ -530,6 +715,7 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   for (int i = 0; i < 4; ++i)
     if (!finite3(c[i])) return 0;
   const double tol = dmax(tolerance, kMinTolerance);
+  uint32_t hint = 0;  // box that failed the last chord test (segment_clear_hint)
   Bezier stack[kBezierStackCap];
   int top = 0;
   for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
@@ -543,7 +729,7 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
                               point_segment_distance(bz.c[2], bz.c[0], bz.c[3]));
     bool in = true;
     for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
-    if (in && segment_clear(grid, bz.c[0], bz.c[3], clearance + bound)) continue;
+    if (in && segment_clear_hint(grid, bz.c[0], bz.c[3], clearance + bound, &hint)) continue;
     // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
     // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.
     if (!(bound > 0.5 * tol)) return 0;

@@ -27,6 +27,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "collision_internal.h"
 #include "tdo/collision.h"
 
 namespace {
@@ -76,13 +77,14 @@ struct Run {
   double clearance;  // m
   uint32_t checks;   // checks done
   uint32_t budget;   // checks allowed
+  uint32_t hint;     // box that failed the last check (segment_clear_hinted)
 };
 
 // 1 clear, 0 not clear, -1 budget exhausted.
 int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) {
   if (r.checks >= r.budget) return -1;
   ++r.checks;
-  return tdo_collision_segment_clear(r.grid, a, b, r.clearance) ? 1 : 0;
+  return tdo_internal::segment_clear_hinted(r.grid, a, b, r.clearance, &r.hint) ? 1 : 0;
 }
 
 bool memo_failed(const tdo_correct* ctx, uint32_t oi, uint32_t oj) {
@@ -396,8 +398,12 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
     if (!finite3(in->points[i])) return TDO_ERR_INVALID_ARGUMENT;
 
   // max_checks 0: no budget beyond the stage's own bound (like the search's max_expansions).
-  Run r{ctx, in->grid, in->clearance, 0u,
-        ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu};
+  Run r{ctx,
+        in->grid,
+        in->clearance,
+        0u,
+        ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu,
+        0u};
   tdo_status st = TDO_OK;
   // 1. The input itself must keep clearance.
   for (uint32_t i = 1; i < n && st == TDO_OK; ++i) {

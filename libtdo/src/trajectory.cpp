@@ -26,6 +26,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "collision_internal.h"
 #include "sample_energy.h"
 #include "tdo/collision.h"
 
@@ -202,6 +203,11 @@ struct BezierCursor {
   double s;      // m, arclength at u
   double len;    // m, segment length (tdo_segment_length)
   uint32_t seg;  // segment index, UINT32_MAX when unset
+  // B'(u), B''(u), |B'(u)| and B'.B''/|B'| at the parameter u of the last sample (valid when
+  // `have`): the next evaluation starts from there, so it reuses them instead of recomputing.
+  V3 d1u, d2u;
+  double spu, curvu;
+  int have;
 };
 
 inline V3 bez_d1(const BezierCursor& b, double u) {
@@ -226,12 +232,23 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
   const uint32_t panels = static_cast<uint32_t>(n);
   const double h = span / panels;
   double total = 0.0;
+  // Each pair of nodes m -/+ dx goes through the same operations as bez_speed, side by side in
+  // a two-lane vector (lane-wise IEEE arithmetic: the same results as one at a time).
+  typedef double V2 __attribute__((vector_size(16)));
+  const V2 h0x = {b.h[0].x, b.h[0].x}, h0y = {b.h[0].y, b.h[0].y}, h0z = {b.h[0].z, b.h[0].z};
+  const V2 h1x = {b.h[1].x, b.h[1].x}, h1y = {b.h[1].y, b.h[1].y}, h1z = {b.h[1].z, b.h[1].z};
+  const V2 h2x = {b.h[2].x, b.h[2].x}, h2y = {b.h[2].y, b.h[2].y}, h2z = {b.h[2].z, b.h[2].z};
   for (uint32_t k = 0; k < panels; ++k) {
     const double m = a + h * (k + 0.5);
     double sum = 0.0;
     for (int i = 0; i < 4; ++i) {
       const double dx = 0.5 * h * kGlX[i];
-      sum += kGlW[i] * (bez_speed(b, m - dx) + bez_speed(b, m + dx));
+      const V2 u = {m - dx, m + dx};
+      const V2 x = h0x + (h1x + h2x * u) * u;
+      const V2 y = h0y + (h1y + h2y * u) * u;
+      const V2 z = h0z + (h1z + h2z * u) * u;
+      const V2 q = x * x + y * y + z * z;
+      sum += kGlW[i] * (sqrt(q[0]) + sqrt(q[1]));
     }
     total += 0.5 * h * sum;
   }
@@ -248,17 +265,32 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
   c->s = 0.0;
   c->len = seg.length;
   c->seg = index;
+  c->have = 0;
 }
 
 /** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
 void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
   double u = c->u, at = c->s;
+  // Derivatives at u (the same expressions wherever u came from; computed once per u).
+  V3 d1 = c->d1u, d2 = c->d2u;
+  double sp = c->spu, curv = c->curvu;
+  bool have = c->have != 0;
+  const auto derivs = [&]() {
+    if (have) return;
+    d1 = bez_d1(*c, u);
+    d2 = bez_d2(*c, u);
+    sp = norm(d1);
+    curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
+    have = true;
+  };
   if (s <= 0.0) {
     u = 0.0;
     at = 0.0;
+    have = false;
   } else if (s >= c->len) {
     u = 1.0;
     at = c->len;
+    have = false;
   } else {
     const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
     double lo = 0.0, hi = 1.0;  // bracket of the solution in u
@@ -269,10 +301,8 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
         lo = u;
       else
         hi = u;
-      const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
-      const double sp = norm(d1);
       // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
-      const double curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
+      derivs();
       double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
       if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
       double un = u + du;
@@ -286,16 +316,21 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
       else
         at += bez_arclen(*c, u, un);
       u = un;
+      have = false;
     }
   }
+  derivs();
   c->u = u;
   c->s = at;
+  c->d1u = d1;
+  c->d2u = d2;
+  c->spu = sp;
+  c->curvu = curv;
+  c->have = 1;
   const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
            a2 = lerp(c->p[2], c->p[3], u);
   st->p = u <= 0.0 ? tv(c->p[0])
                    : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
-  const V3 d1 = bez_d1(*c, u), d2 = bez_d2(*c, u);
-  const double sp = norm(d1);
   if (!(sp > 0.0)) {
     st->t = tdo_vec3{0.0, 0.0, 0.0};
     st->kn = st->t;
@@ -311,9 +346,10 @@ void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   st->kappa = 0.0;
   st->dkappa_ds = 0.0;
   const double u = c.u;
-  const V3 d1 = bez_d1(c, u), d2 = bez_d2(c, u);
+  // cursor_eval left the derivatives at u in the cursor.
+  const V3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
   const V3 d3 = mul(sub(sub(c.d[2], c.d[1]), sub(c.d[1], c.d[0])), 6.0);
-  const double sp = norm(d1);
+  const double sp = c.have ? c.spu : norm(d1);
   if (!(sp > 0.0)) return;
   const V3 cr = cross(d1, d2);
   const double cn = norm(cr);
@@ -609,7 +645,35 @@ struct Sampler {
   uint32_t i;  // next sample
   uint32_t ph, q;
   BezierCursor cursor;
+  // The line segment of the last sample (lseg, UINT32_MAX when unset): its end points, direction
+  // d, length |d| and unit tangent, as tdo_segment_eval computes them for every sample.
+  uint32_t lseg;
+  V3 la, ld, lt;
+  double ln;
 };
+
+/** tdo_segment_eval of line segment `index` at local arclength s in [0, length], with the
+ *  per-segment quantities computed once (same expressions, same results). */
+void line_eval(Sampler* g, uint32_t index, double s, tdo_segment_state* st) {
+  const tdo_path_segment& seg = g->segs[index];
+  if (g->lseg != index) {
+    g->lseg = index;
+    g->la = mk(seg.p[0]);
+    g->ld = sub(mk(seg.p[1]), g->la);
+    g->ln = norm(g->ld);
+    g->lt = g->ln > 0.0 ? mul(g->ld, 1.0 / g->ln) : V3{0.0, 0.0, 0.0};
+  }
+  st->kn = tdo_vec3{0.0, 0.0, 0.0};
+  st->kappa = 0.0;
+  st->dkappa_ds = 0.0;
+  if (s >= seg.length)
+    st->p = seg.p[1];
+  else if (s <= 0.0 || !(g->ln > 0.0))
+    st->p = seg.p[0];
+  else
+    st->p = tv(add(g->la, mul(g->ld, s / g->ln)));
+  st->t = tv(g->lt);
+}
 
 void sampler_start(Sampler* g, const tdo_traj* ctx, const tdo_path_segment* segs, double dt,
                    uint32_t n) {
@@ -622,6 +686,7 @@ void sampler_start(Sampler* g, const tdo_traj* ctx, const tdo_path_segment* segs
   g->q = 0;
   memset(&g->cursor, 0, sizeof(g->cursor));
   g->cursor.seg = 0xFFFFFFFFu;
+  g->lseg = 0xFFFFFFFFu;
 }
 
 /** Sample g->i (< g->n) and the plateau it lies on; then the next one. */
@@ -654,6 +719,8 @@ void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
   if (g->segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
     if (g->cursor.seg != p.seg) cursor_reset(&g->cursor, g->segs[p.seg], p.seg);
     cursor_eval(&g->cursor, local, &st);
+  } else if (g->segs[p.seg].kind == TDO_SEGMENT_LINE) {
+    line_eval(g, p.seg, local, &st);
   } else {
     tdo_segment_eval(&g->segs[p.seg], local, &st);
   }
@@ -812,6 +879,8 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     const double cap = in->clearance + kClearanceCapExtra;
     const double floor_ok = in->clearance - kClearanceSlack;
     double ref = -HUGE_VAL, moved = 0.0;
+    PointHint hint;
+    hint.valid = 0;
     src.rewind();
     tdo_vec3 prev{0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < n; ++i) {
@@ -820,7 +889,7 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
       prev = si.p;
       const double lb = ref - moved - kLipschitzSlack;
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
-      const double d = tdo_collision_point_distance(in->grid, si.p, cap);
+      const double d = point_distance_hinted(in->grid, si.p, cap, &hint);
       ref = d;
       moved = 0.0;
       rep->min_clearance = dmin(rep->min_clearance, d);

@@ -8,7 +8,8 @@
 #include <cstring>
 #include <vector>
 
-#include "../../libtdo/src/grid_internal.h"  // the distance field, checked against brute force
+#include "../../libtdo/src/collision_internal.h"  // segment_clear_hinted (correction stage)
+#include "../../libtdo/src/grid_internal.h"       // the distance field, checked against brute force
 #include "rng.h"
 #include "tdo/collision.h"
 #include "tdo/tdo.h"
@@ -554,6 +555,132 @@ TEST_F(CollisionTest, GivenTheSameQueries_WhenRepeated_ThenResultsAreBitIdentica
         ASSERT_EQ(std::memcmp(&d, &first[s], sizeof d), 0) << "segment " << s;
     }
   }
+}
+
+// The correction stage's hinted query must answer exactly as the plain one: runs of queries that
+// share an end point (as the shortcut sweeps make them), random segments, and segments placed at
+// the clearance distance of a box give or take a few times the hint's rounding margin, for
+// clearances inside and beyond the bucket reach, on box and box + cube maps.
+TEST_F(CollisionTest, GivenRunsOfQueries_WhenAskedWithAHint_ThenSameAnswerAsWithout) {
+  Rng rng(57);
+  int compared = 0, failed = 0, hinted = 0, near = 0;
+  for (int map = 0; map < 24; ++map) {
+    const double cube_density = map % 3 == 2 ? 0.02 : 0.0;
+    const World w = random_world(rng, 20, 16, 8, 0.5, 25, 1.5, cube_density);
+    const double finish_clearance = 0.5;
+    ASSERT_EQ(load(grid(), w, finish_clearance), TDO_OK);
+    uint32_t hint = 0;
+    for (int run = 0; run < 30; ++run) {
+      // Clearance of this run: usually the finish clearance, sometimes beyond the bucket reach.
+      const double c = run % 5 == 4 ? 2.5 : (run % 7 == 6 ? 0.0 : finish_clearance);
+      const tdo_vec3 from = random_point_in(rng, w.m);
+      tdo_vec3 s0, s1;
+      random_segment(rng, w.m, &s0, &s1);
+      for (int k = 0; k < 12; ++k) {
+        tdo_vec3 to = lerp(s0, s1, 1.0 - k / 12.0);
+        tdo_vec3 a = from;
+        if (k % 4 == 3) random_segment(rng, w.m, &a, &to);
+        if (k % 3 == 2 && !w.boxes.empty()) {
+          // A segment through the middle of a box (it fails on that box, which becomes the
+          // hint when the box lies in the grid), then one parallel to its +y face at distance
+          // c +/- up to 3e-7 (so on both sides of the hint's margin).
+          const tdo_box& bx = w.boxes[rng.below(static_cast<uint32_t>(w.boxes.size()))];
+          const double y = bx.max.y + c + rng.uniform(-3e-7, 3e-7);
+          const double z = 0.5 * (bx.min.z + bx.max.z), my = 0.5 * (bx.min.y + bx.max.y);
+          const tdo_vec3 t0 = v3(bx.min.x - 0.3, my, z), t1 = v3(bx.max.x + 0.3, my, z);
+          a = v3(bx.min.x - 0.3, y, z);
+          to = v3(bx.max.x + 0.3, y, z);
+          if (!w.inside(a) || !w.inside(to) || !w.inside(t0) || !w.inside(t1)) continue;
+          const int through = tdo_collision_segment_clear(grid(), t0, t1, c);
+          ASSERT_EQ(tdo_internal::segment_clear_hinted(grid(), t0, t1, c, &hint), through);
+          ++near;
+        }
+        const uint32_t before = hint;
+        const int plain = tdo_collision_segment_clear(grid(), a, to, c);
+        const int got = tdo_internal::segment_clear_hinted(grid(), a, to, c, &hint);
+        ASSERT_EQ(got, plain) << "map " << map << " run " << run << " query " << k;
+        ++compared;
+        if (!plain) ++failed;
+        if (!plain && before != 0u && hint == before) ++hinted;
+      }
+    }
+  }
+  EXPECT_GT(compared, 6000);
+  EXPECT_GT(failed, 1000);  // the hint path is exercised
+  EXPECT_GT(hinted, 300);
+  EXPECT_GT(near, 200);
+}
+
+TEST_F(CollisionTest,
+       GivenAHintBox_WhenASegmentRunsAtTheClearanceDistance_ThenSameAnswerAsWithout) {
+  World w;
+  w.m = VoxelMap(12, 12, 12, 0.5, v3(0, 0, 0));
+  w.boxes.push_back(tdo_box{v3(2.0, 2.0, 2.0), v3(3.5, 2.75, 4.0)});
+  const double c = 0.5;
+  ASSERT_EQ(load(grid(), w, c), TDO_OK);
+  int clear = 0, blocked = 0;
+  for (int k = -40; k <= 40; ++k) {
+    uint32_t hint = 0;
+    // Through the box: fails on box 0, which becomes the hint.
+    ASSERT_EQ(
+        tdo_internal::segment_clear_hinted(grid(), v3(1.0, 2.5, 3.0), v3(4.5, 2.5, 3.0), c, &hint),
+        0);
+    ASSERT_EQ(hint, 1u);
+    // Along the +y face at distance c + k * 1e-8 (the hint's margin is 1e-7).
+    const double y = 2.75 + c + k * 1e-8;
+    const tdo_vec3 a = v3(1.0, y, 3.0), b = v3(4.5, y, 3.1);
+    const int plain = tdo_collision_segment_clear(grid(), a, b, c);
+    ASSERT_EQ(tdo_internal::segment_clear_hinted(grid(), a, b, c, &hint), plain) << "k " << k;
+    plain ? ++clear : ++blocked;
+  }
+  EXPECT_EQ(clear, 41);  // k >= 0: not closer than c
+  EXPECT_EQ(blocked, 40);
+}
+
+// The trajectory check's hinted point distance must give the plain query's value bit for bit:
+// walks of small steps (as samples move) with jumps, along box faces and near corners between
+// boxes, points on the bounds, several caps; box-only and box + cube maps (the latter always run
+// the full query).
+TEST_F(CollisionTest,
+       GivenWalksOfPoints_WhenPointDistanceIsHinted_ThenBitIdenticalToThePlainQuery) {
+  Rng rng(91);
+  int compared = 0, reused = 0;
+  for (int map = 0; map < 30; ++map) {
+    const double cube_density = map % 5 == 4 ? 0.02 : 0.0;
+    const World w = random_world(rng, 20, 16, 8, 0.5, 12 + map % 20, 1.2, cube_density);
+    ASSERT_EQ(load(grid(), w, 0.5), TDO_OK);
+    tdo_internal::PointHint hint;
+    hint.valid = 0;
+    tdo_vec3 p = random_point_in(rng, w.m);
+    const double cap = map % 3 == 0 ? 1.5 : (map % 3 == 1 ? 0.4 : 10.0);
+    for (int s = 0; s < 600; ++s) {
+      if (s % 97 == 0) {
+        p = random_point_in(rng, w.m);
+      } else if (s % 131 == 0 && !w.boxes.empty()) {  // just off a box face
+        const tdo_box& b = w.boxes[rng.below(static_cast<uint32_t>(w.boxes.size()))];
+        p = v3(0.5 * (b.min.x + b.max.x), b.max.y + rng.uniform(0.0, 0.6),
+               0.5 * (b.min.z + b.max.z));
+      } else {
+        const double step = s % 7 == 0 ? 0.2 : 0.03;
+        p = v3(p.x + rng.uniform(-step, step), p.y + rng.uniform(-step, step),
+               p.z + rng.uniform(-step, step));
+      }
+      if (s % 53 == 0) p.x = w.m.origin.x + w.m.nx * w.m.res;  // on the max face
+      const double before_q = hint.valid ? hint.q[0] : 0.0;
+      const int before_valid = hint.valid;
+      const double plain = tdo_collision_point_distance(grid(), p, cap);
+      const double got = tdo_internal::point_distance_hinted(grid(), p, cap, &hint);
+      ASSERT_EQ(std::memcmp(&got, &plain, sizeof got), 0)
+          << "map " << map << " step " << s << ": " << got << " vs " << plain;
+      ++compared;
+      // Answered from the hint: the fully evaluated point stayed, and it was not this one.
+      const bool same_q = std::memcmp(&hint.q[0], &before_q, sizeof before_q) == 0;
+      const bool here = std::memcmp(&p.x, &before_q, sizeof before_q) == 0;
+      if (before_valid && hint.valid && same_q && !here) ++reused;
+    }
+  }
+  EXPECT_EQ(compared, 30 * 600);
+  EXPECT_GT(reused, 1000);  // the hint answers a good share of the queries
 }
 
 }  // namespace

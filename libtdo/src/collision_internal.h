@@ -1,0 +1,40 @@
+// Internal collision queries shared by the stages (not part of the public API).
+#ifndef TDO_SRC_COLLISION_INTERNAL_H
+#define TDO_SRC_COLLISION_INTERNAL_H
+
+#include <stdint.h>
+
+#include "tdo/collision.h"
+
+namespace tdo_internal {
+
+/**
+ * tdo_collision_segment_clear with a hint for runs of similar queries: *hint (1 + the index of
+ * the box that failed the last query, 0 for none) is tested first against the whole segment, and
+ * the query stops as "not clear" when that box is certainly closer than the clearance (by more
+ * than a rounding margin, so the full query would fail too); otherwise the full query runs and a
+ * box that fails it becomes the hint. Same answer as tdo_collision_segment_clear, always.
+ */
+int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                         uint32_t* hint);
+
+/** State of point_distance_hinted between calls (valid = 0 to start). */
+struct PointHint {
+  double q[3];    // m, world frame: the last point evaluated in full
+  double others;  // m, lower bound of the distance from q to every obstacle but `box`
+  uint32_t box;   // index of the box nearest to q
+  int valid;      // 1 when the fields above hold
+};
+
+/**
+ * tdo_collision_point_distance for runs of nearby points (same result, bit for bit): when the box
+ * nearest to the last fully evaluated point q is still nearer to p than every other obstacle can
+ * be (their bound at q minus |p - q|, with a margin far above rounding), its distance is the
+ * answer; otherwise the full query runs and renews the hint. Box-only maps, points inside the
+ * bounds; anything else runs the full query.
+ */
+double point_distance_hinted(const tdo_grid* grid, tdo_vec3 p, double cap, PointHint* h);
+
+}  // namespace tdo_internal
+
+#endif  // TDO_SRC_COLLISION_INTERNAL_H
