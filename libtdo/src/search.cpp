@@ -8,6 +8,9 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "directions.h"
 #include "grid_internal.h"
@@ -948,6 +951,29 @@ constexpr uint32_t kTryDiv = 16;
 constexpr int kRetries = 2;
 constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
 
+#if defined(__SSE2__)
+// Step lengths (m) of the cells of each row of three of a 3x3x3 block, as the two overlapping
+// pairs (x = -1, 0) and (x = 0, +1) the Dijkstra compares; the centre and the second copy of the
+// middle cell are +inf, so their tests always fail.
+struct RowLengths {
+  alignas(16) double lo[9][2];
+  alignas(16) double hi[9][2];
+};
+
+RowLengths row_lengths(const tdo_search* ctx) {
+  RowLengths t;
+  for (int k = 0; k < 9; ++k) {
+    for (int x = 0; x < 3; ++x) {
+      const int c = 3 * k + x;
+      const double len = c == 13 ? HUGE_VAL : ctx->step_len[dir_of_cell(c)];
+      if (x < 2) t.lo[k][x] = len;
+      if (x > 0) t.hi[k][x - 1] = x == 1 ? HUGE_VAL : len;
+    }
+  }
+  return t;
+}
+#endif
+
 // Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
 // voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
 // stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
@@ -969,6 +995,13 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   }
   dist[root] = 0.0;
   qu.insert(root, 0u);
+#if defined(__SSE2__)
+  const RowLengths lens = row_lengths(ctx);
+  // Voxels whose whole 3x3x3 block of linear indices lies in [0, nvox).
+  const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
+  const uint32_t inner_lo = static_cast<uint32_t>(reach);
+  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach ? nvox - inner_lo : 0u;
+#endif
   double limit = HUGE_VAL;
   bool reached = false;
   uint64_t cur = 0;  // current bucket
@@ -1012,7 +1045,28 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         qu.insert(w, b > cur ? b : cur + 1u);
       };
       const uint32_t moves = g->moves[u];
-      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+#if defined(__SSE2__)
+      if (u >= inner_lo && u < inner_hi) {
+        // The cost tests of the 27 cells of u's block two at a time: each row of three cells is
+        // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
+        // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
+        // step order: a step changes the key of its own voxel alone, so the tests stay true.
+        const __m128d vdu = _mm_set1_pd(du);
+        uint32_t cells = 0;
+#pragma GCC unroll 9
+        for (int k = 0; k < 9; ++k) {
+          const double* r = dist + (static_cast<int64_t>(u) + ctx->block_row[k]);
+          const int lo = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
+          const int hi = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
+          cells |= static_cast<uint32_t>(lo | ((hi & 2) << 1)) << (3 * k);
+        }
+        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u)
+          step(__builtin_ctz(m));
+      } else
+#endif
+          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
 #pragma GCC unroll 26
         for (int e = 0; e < kNumDirs; ++e) step(e);
       } else {
