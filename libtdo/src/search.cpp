@@ -157,6 +157,11 @@ struct Query {
   int dev_terms;      // 1: f has the deviation term and the turn lower bound (0 in the retry)
   int exact_turns;    // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
   uint32_t budget;
+  // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
+  uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
+  uint32_t try_first;  // expansions before the try
+  double h_root;       // m, octile distance from start to goal
+  double h_best[2];    // m, smallest octile distance to its target of a state each side expanded
   // results
   double best;
   uint32_t meet[2];
@@ -423,9 +428,8 @@ inline void prefetch(const void* p) {
 
 inline int32_t iabs(int32_t a) { return a < 0 ? -a : a; }
 
-// 3D octile distance: admissible and consistent for the length part of the cost.
-inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
-  int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
+// 3D octile distance over (a, b, c) voxels along the axes.
+inline double octile_of(int32_t a, int32_t b, int32_t c, double res) {
   if (a < b) {
     const int32_t t = a;
     a = b;
@@ -443,6 +447,12 @@ inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res)
   }
   return res * (static_cast<double>(a) + (kSqrt2 - 1.0) * static_cast<double>(b) +
                 (kSqrt3 - kSqrt2) * static_cast<double>(c));
+}
+
+// 3D octile distance to the side's target: admissible and consistent for the length part of the
+// cost.
+inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+  return octile_of(iabs(x - s.tx), iabs(y - s.ty), iabs(z - s.tz), res);
 }
 
 // Voxel-state searches (no heading costs) count g, h and f in voxel edges with the step lengths
@@ -943,9 +953,6 @@ struct DjQueue {
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
 constexpr double kDjReach = 2.0;
 constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
-// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
-constexpr uint32_t kTryMin = 20000;
-constexpr uint32_t kTryDiv = 16;
 // Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
 // the budget).
 constexpr int kRetries = 2;
@@ -1062,8 +1069,7 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
               _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
           cells |= static_cast<uint32_t>(lo | ((hi & 2) << 1)) << (3 * k);
         }
-        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u)
-          step(__builtin_ctz(m));
+        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       } else
 #endif
           if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
@@ -1151,6 +1157,31 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   }
 }
 
+// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
+constexpr uint32_t kTryMin = 20000;
+constexpr uint32_t kTryDiv = 16;
+// A try that is not the last is given up early once it has spent 1/kTryProbe of its expansions
+// without a meeting and its progress so far, extrapolated, needs more than all of them (flooding).
+constexpr uint32_t kTryProbe = 8;
+
+// The flood test of such a try, after each expansion of a state. Progress is how much closer to
+// its target (octile distance, the try's own heuristic) the closest state each side has expanded
+// lies: the sides must together close the start-goal distance h_root before they can meet (the
+// straight-line picture). A try that has closed P of it in e expansions is projected to need
+// e * h_root / P; when that exceeds the try's share it is stopped as if it had run out (the
+// retry follows). The searches the octile guides well close the gap at a steady rate (on Map1-5
+// the largest projection is a quarter of kTryMin: docs/performance.md); a wall the octile cannot
+// see stops all progress while the states flood the region behind it. Only the first try, which
+// has the retries behind it, is tested; a meeting ends the test (the search is about to stop).
+inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
+  const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
+  if (h < q.h_best[back]) q.h_best[back] = h;
+  const uint32_t spent = q.expansions - q.try_first;
+  if (spent < q.try_share / kTryProbe || q.best < HUGE_VAL) return false;
+  const double progress = (q.h_root - q.h_best[0]) + (q.bidir ? q.h_root - q.h_best[1] : 0.0);
+  return static_cast<double>(spent) * q.h_root > static_cast<double>(q.try_share) * progress;
+}
+
 template <bool kHeaded>
 tdo_status search_loop(tdo_search* ctx, Query& q) {
   Side& fw = ctx->side[0];
@@ -1204,6 +1235,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       continue;
     }
     s.nodes[ui].closed = 1;
+    if (kHeaded && q.try_share != 0 && flooding(q, back, s, s.nodes[ui])) return TDO_ERR_BUDGET;
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= kSlotClosed;
     const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
     if (st != TDO_OK) return st;
@@ -1496,10 +1528,16 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   const uint32_t budget = q.budget;
   const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
   const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
+  q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
+                       iabs(q.v[1].k - q.v[0].k), g->desc.res);
   tdo_status st = TDO_OK;
   for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
+    // The flood test (flooding) runs in the first try only: the retries follow the free space.
+    q.try_share = t == 0 && t < retries ? share : 0u;
+    q.try_first = q.expansions;
+    q.h_best[0] = q.h_best[1] = q.h_root;
     st = run_search<true>(ctx, q);
     const bool retry =
         t < retries && q.expansions < budget &&
