@@ -487,6 +487,17 @@ inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z) {
          (kSqrt3Q - 2.0 * kSqrt2Q + 1.0) * static_cast<double>(lo);
 }
 
+// Square root of x >= 0, correctly rounded as IEEE 754 requires of sqrt() (the same bits). GCC
+// calls libm's sqrt out of line in parts of the search (errno handling), which spills the
+// registers around every call; the instruction itself cannot set errno.
+inline double sqrt_nonneg(double x) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_setzero_pd(), _mm_set_sd(x)));
+#else
+  return sqrt(x);
+#endif
+}
+
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
 // only orders the open list, and libm's acos was a tenth of a turn-penalised search's time.
 inline double acos_fast(double c) {
@@ -498,7 +509,7 @@ inline double acos_fast(double c) {
                 x * (-0.0501743046 +
                      x * (0.0308918810 +
                           x * (-0.0170881256 + x * (0.0066700901 + x * -0.0012624911))))));
-  const double r = sqrt(1.0 - x) * p;
+  const double r = sqrt_nonneg(1.0 - x) * p;
   return c < 0.0 ? kPi - r : r;
 }
 
@@ -518,7 +529,7 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
                  int32_t z) {
   if (travel >= kNumDirs) return 0.0;
   const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
-  const double n = sqrt(vx * vx + vy * vy + vz * vz);
+  const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
   if (!(n > 0.0)) return 0.0;
   return deviation_to(ctx, travel, vx, vy, vz, n);
 }
@@ -579,7 +590,8 @@ inline Target target_of(const Query& q, const Side& s, const Node& u) {
   t.vx = s.tx - u.x;
   t.vy = s.ty - u.y;
   t.vz = s.tz - u.z;
-  t.n = q.dev_terms ? sqrt(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz) : 0.0;  // unused without them
+  t.n = q.dev_terms ? sqrt_nonneg(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz)
+                    : 0.0;  // unused without them
   return t;
 }
 
@@ -772,7 +784,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   it.f = HUGE_VAL;
   // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
   const double vx = s.tx - u.x, vy = s.ty - u.y, vz = s.tz - u.z;
-  const double n = sqrt(vx * vx + vy * vy + vz * vz);
+  const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
   // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
   // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
   // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
