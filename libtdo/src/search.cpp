@@ -1020,6 +1020,8 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
   const uint32_t inner_lo = static_cast<uint32_t>(reach);
   const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach ? nvox - inner_lo : 0u;
+  int64_t rows[9];
+  for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
 #endif
   double limit = HUGE_VAL;
   bool reached = false;
@@ -1074,12 +1076,12 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         uint32_t cells = 0;
 #pragma GCC unroll 9
         for (int k = 0; k < 9; ++k) {
-          const double* r = dist + (static_cast<int64_t>(u) + ctx->block_row[k]);
+          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
           const int lo = _mm_movemask_pd(
               _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
           const int hi = _mm_movemask_pd(
               _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
-          cells |= static_cast<uint32_t>(lo | ((hi & 2) << 1)) << (3 * k);
+          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
         }
         for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       } else
@@ -1090,20 +1092,23 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
       } else {
         for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
+      // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
+      // a path's summed cost. No later test changes (a settled key fails every cost test).
+      dist[u] = du * (1.0 - 1e-12);
       u = after;
     }
     if (over) break;
     ++cur;
   }
   if (!reached) return false;
-  // Unsettled voxels: the smallest key left bounds their distance from below (HUGE_VAL when the
-  // queue ran empty: they are not connected to the root). Settled ones lose 1e-12 relative so that
-  // rounding of the sums never lifts the bound above a path's summed cost.
+  // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
+  // the queue ran empty they are not connected to the root and keep HUGE_VAL.
+  if (qu.queued == 0) return true;
   double rest = HUGE_VAL;
+  for (uint32_t k = 0; k < kDjRing; ++k)
+    for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
   for (uint32_t v = 0; v < nvox; ++v)
-    if (qu.prev[v] != kDjSettled && dist[v] < rest) rest = dist[v];
-  for (uint32_t v = 0; v < nvox; ++v)
-    dist[v] = qu.prev[v] == kDjSettled ? dist[v] * (1.0 - 1e-12) : rest;
+    if (qu.prev[v] != kDjSettled) dist[v] = rest;
   return true;
 }
 
