@@ -11,6 +11,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
 
 #include "directions.h"
 #include "grid_internal.h"
@@ -977,6 +980,7 @@ constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
 struct RowLengths {
   alignas(16) double lo[9][2];
   alignas(16) double hi[9][2];
+  alignas(32) double quad[9][4];  // the row's three cells and the next voxel (+inf), AVX2
 };
 
 RowLengths row_lengths(const tdo_search* ctx) {
@@ -987,10 +991,33 @@ RowLengths row_lengths(const tdo_search* ctx) {
       const double len = c == 13 ? HUGE_VAL : ctx->step_len[dir_of_cell(c)];
       if (x < 2) t.lo[k][x] = len;
       if (x > 0) t.hi[k][x - 1] = x == 1 ? HUGE_VAL : len;
+      t.quad[k][x] = len;
     }
+    t.quad[k][3] = HUGE_VAL;
   }
   return t;
 }
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TDO_DJ_AVX2 1
+// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
+// time (the row's three and the next voxel, whose length is +inf). The same additions and
+// comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
+__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
+                                                                    const int64_t* rows,
+                                                                    const RowLengths& lens,
+                                                                    double du) {
+  const __m256d vdu = _mm256_set1_pd(du);
+  uint32_t cells = 0;
+#pragma GCC unroll 9
+  for (int k = 0; k < 9; ++k) {
+    const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
+    const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(at_u + rows[k] - 1), _CMP_LT_OQ);
+    cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
+  }
+  return cells;
+}
+#endif
 #endif
 
 // Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
@@ -1019,7 +1046,11 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   // Voxels whose whole 3x3x3 block of linear indices lies in [0, nvox).
   const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
   const uint32_t inner_lo = static_cast<uint32_t>(reach);
-  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach ? nvox - inner_lo : 0u;
+  // (reach + 1: the AVX2 test reads one voxel past the block)
+  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
+#if defined(TDO_DJ_AVX2)
+  const bool avx2 = __builtin_cpu_supports("avx2");
+#endif
   int64_t rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
 #endif
@@ -1072,10 +1103,13 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
         // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
         // step order: a step changes the key of its own voxel alone, so the tests stay true.
-        const __m128d vdu = _mm_set1_pd(du);
         uint32_t cells = 0;
+#if defined(TDO_DJ_AVX2)
+        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
+#endif
+        const __m128d vdu = _mm_set1_pd(du);
 #pragma GCC unroll 9
-        for (int k = 0; k < 9; ++k) {
+        for (int k = 0; k < 9 && !avx2; ++k) {
           const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
           const int lo = _mm_movemask_pd(
               _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
