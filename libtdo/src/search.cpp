@@ -1571,7 +1571,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   }
   // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
   // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
-  // a try expands more than max(kTryMin, nvox / kTryDiv) states or fills the node pool, the search
+  // a try expands more than max(kTryMin, nvox / kTryDiv) states (the first one: or is projected
+  // to, see flooding) or fills the node pool, the search
   // starts again with the obstacle-aware heuristic (grid distances to each side's target,
   // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
   // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
