@@ -8,6 +8,12 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
 
 #include "directions.h"
 #include "grid_internal.h"
@@ -172,6 +178,11 @@ struct Query {
   int dev_terms;      // 1: f has the deviation term and the turn lower bound (0 in the retry)
   int exact_turns;    // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
   uint32_t budget;
+  // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
+  uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
+  uint32_t try_first;  // expansions before the try
+  double h_root;       // m, octile distance from start to goal
+  double h_best[2];    // m, smallest octile distance to its target of a state each side expanded
   // results
   double best;
   uint32_t meet[2];
@@ -444,9 +455,8 @@ inline void prefetch(const void* p) {
 
 inline int32_t iabs(int32_t a) { return a < 0 ? -a : a; }
 
-// 3D octile distance: admissible and consistent for the length part of the cost.
-inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
-  int32_t a = iabs(x - s.tx), b = iabs(y - s.ty), c = iabs(z - s.tz);
+// 3D octile distance over (a, b, c) voxels along the axes.
+inline double octile_of(int32_t a, int32_t b, int32_t c, double res) {
   if (a < b) {
     const int32_t t = a;
     a = b;
@@ -464,6 +474,12 @@ inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res)
   }
   return res * (static_cast<double>(a) + (kSqrt2 - 1.0) * static_cast<double>(b) +
                 (kSqrt3 - kSqrt2) * static_cast<double>(c));
+}
+
+// 3D octile distance to the side's target: admissible and consistent for the length part of the
+// cost.
+inline double octile(const Side& s, int32_t x, int32_t y, int32_t z, double res) {
+  return octile_of(iabs(x - s.tx), iabs(y - s.ty), iabs(z - s.tz), res);
 }
 
 // Voxel-state searches (no heading costs) count g, h and f in voxel edges with the step lengths
@@ -498,6 +514,17 @@ inline double octile_voxel(const Side& s, int32_t x, int32_t y, int32_t z) {
          (kSqrt3Q - 2.0 * kSqrt2Q + 1.0) * static_cast<double>(lo);
 }
 
+// Square root of x >= 0, correctly rounded as IEEE 754 requires of sqrt() (the same bits). GCC
+// calls libm's sqrt out of line in parts of the search (errno handling), which spills the
+// registers around every call; the instruction itself cannot set errno.
+inline double sqrt_nonneg(double x) {
+#if defined(__SSE2__)
+  return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_setzero_pd(), _mm_set_sd(x)));
+#else
+  return sqrt(x);
+#endif
+}
+
 // acos on [-1, 1] by Abramowitz and Stegun 4.4.46 (absolute error <= 2e-8 rad): the deviation
 // only orders the open list, and libm's acos was a tenth of a turn-penalised search's time.
 inline double acos_fast(double c) {
@@ -509,7 +536,7 @@ inline double acos_fast(double c) {
                 x * (-0.0501743046 +
                      x * (0.0308918810 +
                           x * (-0.0170881256 + x * (0.0066700901 + x * -0.0012624911))))));
-  const double r = sqrt(1.0 - x) * p;
+  const double r = sqrt_nonneg(1.0 - x) * p;
   return c < 0.0 ? kPi - r : r;
 }
 
@@ -529,7 +556,7 @@ double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, in
                  int32_t z) {
   if (travel >= kNumDirs) return 0.0;
   const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
-  const double n = sqrt(vx * vx + vy * vy + vz * vz);
+  const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
   if (!(n > 0.0)) return 0.0;
   return deviation_to(ctx, travel, vx, vy, vz, n);
 }
@@ -590,7 +617,8 @@ inline Target target_of(const Query& q, const Side& s, const Node& u) {
   t.vx = s.tx - u.x;
   t.vy = s.ty - u.y;
   t.vz = s.tz - u.z;
-  t.n = q.dev_terms ? sqrt(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz) : 0.0;  // unused without them
+  t.n = q.dev_terms ? sqrt_nonneg(t.vx * t.vx + t.vy * t.vy + t.vz * t.vz)
+                    : 0.0;  // unused without them
   return t;
 }
 
@@ -785,7 +813,7 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   it.f = HUGE_VAL;
   // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
   const double vx = s.tx - u.x, vy = s.ty - u.y, vz = s.tz - u.z;
-  const double n = sqrt(vx * vx + vy * vy + vz * vz);
+  const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
   // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
   // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
   // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
@@ -968,13 +996,57 @@ struct DjQueue {
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
 constexpr double kDjReach = 2.0;
 constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
-// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
-constexpr uint32_t kTryMin = 20000;
-constexpr uint32_t kTryDiv = 16;
 // Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
 // the budget).
 constexpr int kRetries = 2;
 constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
+
+#if defined(__SSE2__)
+// Step lengths (m) of the cells of each row of three of a 3x3x3 block, as the two overlapping
+// pairs (x = -1, 0) and (x = 0, +1) the Dijkstra compares; the centre and the second copy of the
+// middle cell are +inf, so their tests always fail.
+struct RowLengths {
+  alignas(16) double lo[9][2];
+  alignas(16) double hi[9][2];
+  alignas(32) double quad[9][4];  // the row's three cells and the next voxel (+inf), AVX2
+};
+
+RowLengths row_lengths(const tdo_search* ctx) {
+  RowLengths t;
+  for (int k = 0; k < 9; ++k) {
+    for (int x = 0; x < 3; ++x) {
+      const int c = 3 * k + x;
+      const double len = c == 13 ? HUGE_VAL : ctx->step_len[dir_of_cell(c)];
+      if (x < 2) t.lo[k][x] = len;
+      if (x > 0) t.hi[k][x - 1] = x == 1 ? HUGE_VAL : len;
+      t.quad[k][x] = len;
+    }
+    t.quad[k][3] = HUGE_VAL;
+  }
+  return t;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TDO_DJ_AVX2 1
+// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
+// time (the row's three and the next voxel, whose length is +inf). The same additions and
+// comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
+__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
+                                                                    const int64_t* rows,
+                                                                    const RowLengths& lens,
+                                                                    double du) {
+  const __m256d vdu = _mm256_set1_pd(du);
+  uint32_t cells = 0;
+#pragma GCC unroll 9
+  for (int k = 0; k < 9; ++k) {
+    const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
+    const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(at_u + rows[k] - 1), _CMP_LT_OQ);
+    cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
+  }
+  return cells;
+}
+#endif
+#endif
 
 // Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
 // voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
@@ -997,6 +1069,19 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   }
   dist[root] = 0.0;
   qu.insert(root, 0u);
+#if defined(__SSE2__)
+  const RowLengths lens = row_lengths(ctx);
+  // Voxels whose whole 3x3x3 block of linear indices lies in [0, nvox).
+  const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
+  const uint32_t inner_lo = static_cast<uint32_t>(reach);
+  // (reach + 1: the AVX2 test reads one voxel past the block)
+  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
+#if defined(TDO_DJ_AVX2)
+  const bool avx2 = __builtin_cpu_supports("avx2");
+#endif
+  int64_t rows[9];
+  for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
+#endif
   double limit = HUGE_VAL;
   bool reached = false;
   uint64_t cur = 0;  // current bucket
@@ -1040,26 +1125,52 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         qu.insert(w, b > cur ? b : cur + 1u);
       };
       const uint32_t moves = g->moves[u];
-      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+#if defined(__SSE2__)
+      if (u >= inner_lo && u < inner_hi) {
+        // The cost tests of the 27 cells of u's block two at a time: each row of three cells is
+        // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
+        // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
+        // step order: a step changes the key of its own voxel alone, so the tests stay true.
+        uint32_t cells = 0;
+#if defined(TDO_DJ_AVX2)
+        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
+#endif
+        const __m128d vdu = _mm_set1_pd(du);
+#pragma GCC unroll 9
+        for (int k = 0; k < 9 && !avx2; ++k) {
+          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
+          const int lo = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
+          const int hi = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
+          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
+        }
+        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+      } else
+#endif
+          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
 #pragma GCC unroll 26
         for (int e = 0; e < kNumDirs; ++e) step(e);
       } else {
         for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
+      // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
+      // a path's summed cost. No later test changes (a settled key fails every cost test).
+      dist[u] = du * (1.0 - 1e-12);
       u = after;
     }
     if (over) break;
     ++cur;
   }
   if (!reached) return false;
-  // Unsettled voxels: the smallest key left bounds their distance from below (HUGE_VAL when the
-  // queue ran empty: they are not connected to the root). Settled ones lose 1e-12 relative so that
-  // rounding of the sums never lifts the bound above a path's summed cost.
+  // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
+  // the queue ran empty they are not connected to the root and keep HUGE_VAL.
+  if (qu.queued == 0) return true;
   double rest = HUGE_VAL;
+  for (uint32_t k = 0; k < kDjRing; ++k)
+    for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
   for (uint32_t v = 0; v < nvox; ++v)
-    if (qu.prev[v] != kDjSettled && dist[v] < rest) rest = dist[v];
-  for (uint32_t v = 0; v < nvox; ++v)
-    dist[v] = qu.prev[v] == kDjSettled ? dist[v] * (1.0 - 1e-12) : rest;
+    if (qu.prev[v] != kDjSettled) dist[v] = rest;
   return true;
 }
 
@@ -1124,6 +1235,31 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   }
 }
 
+// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
+constexpr uint32_t kTryMin = 20000;
+constexpr uint32_t kTryDiv = 16;
+// A try that is not the last is given up early once it has spent 1/kTryProbe of its expansions
+// without a meeting and its progress so far, extrapolated, needs more than all of them (flooding).
+constexpr uint32_t kTryProbe = 8;
+
+// The flood test of such a try, after each expansion of a state. Progress is how much closer to
+// its target (octile distance, the try's own heuristic) the closest state each side has expanded
+// lies: the sides must together close the start-goal distance h_root before they can meet (the
+// straight-line picture). A try that has closed P of it in e expansions is projected to need
+// e * h_root / P; when that exceeds the try's share it is stopped as if it had run out (the
+// retry follows). The searches the octile guides well close the gap at a steady rate (on Map1-5
+// the largest projection is a quarter of kTryMin: docs/performance.md); a wall the octile cannot
+// see stops all progress while the states flood the region behind it. Only the first try, which
+// has the retries behind it, is tested; a meeting ends the test (the search is about to stop).
+inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
+  const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
+  if (h < q.h_best[back]) q.h_best[back] = h;
+  const uint32_t spent = q.expansions - q.try_first;
+  if (spent < q.try_share / kTryProbe || q.best < HUGE_VAL) return false;
+  const double progress = (q.h_root - q.h_best[0]) + (q.bidir ? q.h_root - q.h_best[1] : 0.0);
+  return static_cast<double>(spent) * q.h_root > static_cast<double>(q.try_share) * progress;
+}
+
 template <bool kHeaded>
 tdo_status search_loop(tdo_search* ctx, Query& q) {
   Side& fw = ctx->side[0];
@@ -1177,6 +1313,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       continue;
     }
     // ui is closed now: pop() and the stack set its heap position to kNil.
+    if (kHeaded && q.try_share != 0 && flooding(q, back, s, s.nodes[ui])) return TDO_ERR_BUDGET;
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
     const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
     if (st != TDO_OK) return st;
@@ -1462,7 +1599,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   }
   // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
   // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
-  // a try expands more than max(kTryMin, nvox / kTryDiv) states or fills the node pool, the search
+  // a try expands more than max(kTryMin, nvox / kTryDiv) states (the first one: or is projected
+  // to, see flooding) or fills the node pool, the search
   // starts again with the obstacle-aware heuristic (grid distances to each side's target,
   // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
   // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
@@ -1470,10 +1608,16 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   const uint32_t budget = q.budget;
   const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
   const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
+  q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
+                       iabs(q.v[1].k - q.v[0].k), g->desc.res);
   tdo_status st = TDO_OK;
   for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
+    // The flood test (flooding) runs in the first try only: the retries follow the free space.
+    q.try_share = t == 0 && t < retries ? share : 0u;
+    q.try_first = q.expansions;
+    q.h_best[0] = q.h_best[1] = q.h_root;
     st = run_search<true>(ctx, q);
     const bool retry =
         t < retries && q.expansions < budget &&

@@ -545,9 +545,50 @@ TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_
     const Result r = run(pl.search(), in);
     ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
     EXPECT_GE(r.out.fallback, 1u) << r.out.expansions << " expansions";
+    // The flood is seen early (search.cpp, kTryProbe): the octile try and the retry together
+    // expand fewer states than the try alone was given (kTryMin = 20000 on a grid this small).
+    EXPECT_LT(r.out.expansions, 20000u) << "the octile try ran to its end before the retry";
     EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
     EXPECT_GE(r.out.cost, want * (1.0 - 1e-9)) << "below the optimal length";
     EXPECT_TRUE(identical(r, run(pl.search(), in))) << "a second run differs";
+  }
+}
+
+// The flood test must leave a first try alone that progresses steadily: a field of pillars that
+// the octile try crosses in 7,000 to 9,000 expansions (well within kTryMin = 20,000, and long
+// enough for the test to be applied: more than kTryMin / kTryProbe = 2,500, search.cpp) keeps
+// the octile try's path (fallback 0). A test that gave up at a smaller projection would retry.
+TEST(SearchPenalty, GivenAFieldOfPillars_WhenTheOctileTryProgresses_ThenItIsNotGivenUp) {
+  const int32_t nx = 200, ny = 24, nz = 6;
+  const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
+  tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Case c;
+  c.map = VoxelMap(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  Rng rng(7u);  // 2 x 2 columns, full height, on one 40th of the floor
+  for (int32_t k = 0; k < nx * ny / 160; ++k) {
+    const int32_t x = 4 + static_cast<int32_t>(rng.next() % static_cast<uint64_t>(nx - 9));
+    const int32_t y = static_cast<int32_t>(rng.next() % static_cast<uint64_t>(ny - 1));
+    for (int32_t z = 0; z < nz; ++z)
+      for (int32_t dx = 0; dx < 2; ++dx)
+        for (int32_t dy = 0; dy < 2; ++dy) c.map.set(x + dx, y + dy, z);
+  }
+  c.s = {1, 12, 3};
+  c.g = {nx - 2, 11, 2};
+  c.ps = c.map.center(c.s);
+  c.pg = c.map.center(c.g);
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {  // the optimal stop: the bidirectional search runs long
+    SCOPED_TRACE(tdo_test::kind_name(kind));
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind, 50.0, 20.0);
+    in.theta_max = 0.25 * 3.14159265358979323846;
+    const Result r = run(pl.search(), in);
+    ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+    EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+    EXPECT_GT(r.out.expansions, 2500u) << "too short for the flood test to be applied";
+    EXPECT_EQ(r.out.fallback, 0u) << r.out.expansions << " expansions";
   }
 }
 

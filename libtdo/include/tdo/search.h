@@ -88,7 +88,9 @@ typedef struct tdo_search_output {
   uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
                               1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
-                              expansions, or a full node pool). expansions counts every try */
+                              expansions, progress towards the targets too slow to finish within
+                              them (first try only), or a full node pool). expansions counts every
+                              try */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */
