@@ -495,21 +495,26 @@ inline void box_min_point(const tdo_box& b, const double p[3], double* best) {
   if (d2 < *best * *best) *best = sqrt(d2);
 }
 
+// Cell of the box bucket index holding point p (clamped to the index).
+uint32_t point_cell(const tdo_grid* g, const double p[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
+  int32_t cell[3];
+  for (int i = 0; i < 3; ++i) {
+    double c = floor((p[i] - o[i]) / g->cell_edge);
+    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
+    cell[i] = static_cast<int32_t>(c);
+  }
+  return static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+}
+
 // boxes_min for a point: one cell of the index, point-to-box distances only.
 double boxes_min_point(const tdo_grid* g, const double p[3], double cap, bool inside) {
   double best = cap;
   if (g->n_boxes == 0) return best;
   if (inside) {
-    const tdo_grid_desc& d = g->desc;
-    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-    const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
-    int32_t cell[3];
-    for (int i = 0; i < 3; ++i) {
-      double c = floor((p[i] - o[i]) / g->cell_edge);
-      c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-      cell[i] = static_cast<int32_t>(c);
-    }
-    const uint32_t ci = static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+    const uint32_t ci = point_cell(g, p);
     double near = dmin(cap, g->bucket_reach);
     for (uint32_t k = 0; k < g->n_large; ++k) box_min_point(g->boxes[g->large_boxes[k]], p, &near);
     for (uint32_t r = g->cell_start[ci]; r < g->cell_start[ci + 1]; ++r)
@@ -640,16 +645,7 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
   }
   // Full evaluation, as boxes_min_point does it (same running minimum, in the same order), also
   // keeping the nearest box and the second smallest distance of the listed boxes.
-  const tdo_grid_desc& dsc = grid->desc;
-  const double o[3] = {dsc.origin.x, dsc.origin.y, dsc.origin.z};
-  const int32_t nc[3] = {grid->ncx, grid->ncy, grid->ncz};
-  int32_t cell[3];
-  for (int i = 0; i < 3; ++i) {
-    double c = floor((p[i] - o[i]) / grid->cell_edge);
-    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-    cell[i] = static_cast<int32_t>(c);
-  }
-  const uint32_t ci = static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
+  const uint32_t ci = point_cell(grid, p);
   double near = near0, first = HUGE_VAL, second = HUGE_VAL;
   uint32_t nearest = 0xFFFFFFFFu;
   const auto visit = [&](uint32_t k) {
