@@ -237,6 +237,22 @@ constexpr PruneTable kPrune = make_prune_table();
 constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13) << 14); }
 constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
 
+// Direction mask with bit d moved to bit dir_opposite(d) = 25 - d: a bit reversal of the 26 bits.
+constexpr uint32_t opposite_mask(uint32_t m) {
+  m = ((m >> 1) & 0x55555555u) | ((m & 0x55555555u) << 1);
+  m = ((m >> 2) & 0x33333333u) | ((m & 0x33333333u) << 2);
+  m = ((m >> 4) & 0x0F0F0F0Fu) | ((m & 0x0F0F0F0Fu) << 4);
+  m = ((m >> 8) & 0x00FF00FFu) | ((m & 0x00FF00FFu) << 8);
+  m = (m >> 16) | (m << 16);
+  return m >> (32 - kNumDirs);  // bit d went to 31 - d
+}
+constexpr bool opposite_mask_ok() {
+  for (int d = 0; d < kNumDirs; ++d)
+    if (opposite_mask(1u << d) != 1u << dir_opposite(d)) return false;
+  return true;
+}
+static_assert(opposite_mask_ok(), "opposite_mask");
+
 // Steps of u that its parent (search-sense step s away, legal steps p_moves) offered already.
 constexpr uint32_t pruned_steps(int s, uint32_t p_moves) {
   const uint64_t moved = (static_cast<uint64_t>(cells_of_dirs(p_moves)) << 13) >> kPrune.shift[s];
@@ -277,8 +293,21 @@ inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = static_cas
 inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
   if (s.heading_index == nullptr) return;
   Index* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  static_assert(kNil == static_cast<Index>(~0u), "memset fills kNil");
-  if (first) memset(row, 0xFF, kNumHeadings * sizeof(Index));  // kNil
+  static_assert(kNil == static_cast<Index>(~0u), "all-ones bytes fill kNil");
+  if (first) {
+#if defined(__SSE2__)
+    // Overlapping 16-byte stores (GCC makes the memset a byte-wise rep stos here).
+    constexpr size_t kBytes = kNumHeadings * sizeof(Index);
+    static_assert(kBytes >= 16, "row of at least one store");
+    const __m128i ones = _mm_set1_epi32(-1);
+    unsigned char* p = reinterpret_cast<unsigned char*>(row);
+    for (size_t o = 0; o + 16u < kBytes; o += 16u)
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(p + o), ones);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + kBytes - 16u), ones);
+#else
+    memset(row, 0xFF, kNumHeadings * sizeof(Index));
+#endif
+  }
   row[heading] = static_cast<Index>(idx);
 }
 
@@ -756,8 +785,9 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
       sift_up(s, n.heap, it);
     }
   } else {
-    idx = new_state(ctx, s, ui, w, ng, step >= 0 ? dir_dx(step) : 0, step >= 0 ? dir_dy(step) : 0,
-                    step >= 0 ? dir_dz(step) : 0, heading, first);
+    idx = new_state(ctx, s, ui, w, ng, step >= 0 ? kStepDelta.d[step][0] : 0,
+                    step >= 0 ? kStepDelta.d[step][1] : 0, step >= 0 ? kStepDelta.d[step][2] : 0,
+                    heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
     slot_set(s, w, idx);
@@ -817,15 +847,20 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
   // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
   // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
+  // The sharp steps as forward-sense directions d; the turn table is symmetric (prepare_tables).
+  const uint32_t sharp_d = back ? opposite_mask(sharp) : sharp;
+  const double* turn_row = ctx->turn[u.heading];
+  const uint8_t* order = ctx->by_angle[u.heading];
+  const double g0 = u.g + q.pivot_cost;
+  const double wh = q.h_weight * h;
   for (int k = 0; k < kNumDirs; ++k) {
-    const int d = ctx->by_angle[u.heading][k];
-    const int e = back ? dir_opposite(d) : d;
-    if (((sharp >> e) & 1u) == 0) continue;
-    const double pg =
-        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const double lb = pg + q.h_weight * h;
+    const int d = order[k];
+    if (((sharp_d >> d) & 1u) == 0) continue;
+    const double pg = g0 + turn_row[d];
+    const double lb = pg + wh;
     if (lb > it.f + 1e-9) break;
     if (!(lb < it.f)) continue;
+    const int e = back ? dir_opposite(d) : d;
     const double dev = n > 0.0 && q.dev_terms ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
     const double f = pg + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
@@ -917,13 +952,14 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   uint32_t sharp;   // search-sense steps reached through a pivot only
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
   uint32_t mask = direct;
+  const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
   while (mask != 0) {
     const int e = __builtin_ctz(mask);  // search-direction step
     mask &= mask - 1u;
     const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
-    if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
+    if (kHeaded) ng += turn_row[d];
     const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng, nullptr);
     if (st != TDO_OK) return st;
   }
@@ -941,13 +977,14 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const Node u = s.nodes[ui];
   uint32_t direct, sharp;
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  const Target t = target_of(q, s, u);  // every pivot stays in u's voxel
+  const Target t = target_of(q, s, u);            // every pivot stays in u's voxel
+  const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
+  const double g0 = u.g + q.pivot_cost;
   while (sharp != 0) {
     const int e = __builtin_ctz(sharp);
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
-    const double ng =
-        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
+    const double ng = g0 + turn_row[d];
     const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
   }
@@ -1421,7 +1458,7 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
       if (c > 1.0) c = 1.0;
       if (c < -1.0) c = -1.0;
       const double t = acos(c) / kPi;
-      ctx->turn[a][b] = lambda * t * t;
+      ctx->turn[a][b] = lambda * t * t;  // symmetric bit for bit (the search relies on it)
     }
   }
   ctx->turn_lambda = lambda;
