@@ -421,9 +421,13 @@ inline uint64_t bucket_of(const Side& s, double f) {
 // Queue item `it` (not queued yet): into the heap when its bucket is not above the current one,
 // else at the head of its bucket's list.
 inline void enqueue(Side& s, const OpenItem& it) {
+  if (!s.bucketed) {
+    sift_up(s, s.n_open++, it);
+    return;
+  }
   const uint64_t b = bucket_of(s, it.f);
   // b - cur < kRing always holds (see kRing); the heap keeps the order if it ever did not.
-  if (!s.bucketed || b <= s.cur || b - s.cur >= kRing) {
+  if (b <= s.cur || b - s.cur >= kRing) {
     sift_up(s, s.n_open++, it);
     return;
   }
@@ -619,17 +623,31 @@ inline double heuristic(const Side& s, uint32_t v, int32_t x, int32_t y, int32_t
   return e > o ? e : o;
 }
 
+// Priority of a turn-penalised state given by its fields (cost g, voxel v at (x, y, z), heading);
+// its heuristic goes to *h_out.
+inline double priority_headed(const tdo_search* ctx, const Query& q, const Side& s, int back,
+                              double g, uint32_t v, int32_t x, int32_t y, int32_t z, int heading,
+                              double* h_out) {
+  const double h = heuristic(s, v, x, y, z, q.grid->desc.res);
+  *h_out = h;
+  if (heading >= kNumDirs || !q.dev_terms) return g + q.h_weight * h;
+  const int travel = back ? dir_opposite(heading) : heading;
+  const double dev = deviation(ctx, s, travel, x, y, z);
+  return g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
+}
+
 template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
-  const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
-                           : octile_voxel(s, n.x, n.y, n.z);
+  if (kHeaded) {
+    double h;
+    const double f = priority_headed(ctx, q, s, back, n.g, n.voxel, n.x, n.y, n.z, n.heading, &h);
+    *h_out = static_cast<float>(h);
+    return f;
+  }
+  const double h = octile_voxel(s, n.x, n.y, n.z);
   *h_out = static_cast<float>(h);
-  if (!kHeaded) return n.g + h;
-  if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
-  const int travel = back ? dir_opposite(n.heading) : n.heading;
-  const double dev = deviation(ctx, s, travel, n.x, n.y, n.z);
-  return n.g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
+  return n.g + h;
 }
 
 // The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
@@ -734,10 +752,10 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
 
 // Allocate the state (w, heading) reached from ui over a step of (dx, dy, dz) voxels at cost ng,
 // chained before `next` (the voxel's previous first state, kNil for none). kNil: the pool is full.
-inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t w, double ng,
-                          int dx, int dy, int dz, int heading, uint32_t next) {
+// u: a copy of state ui.
+inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, const Node& u, uint32_t w,
+                          double ng, int dx, int dy, int dz, int heading, uint32_t next) {
   if (s.n_nodes >= ctx->cfg.max_nodes) return kNil;
-  const Node& u = s.nodes[ui];
   const uint32_t idx = s.n_nodes++;
   Node& n = s.nodes[idx];
   n.g = ng;
@@ -754,9 +772,9 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
 // Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
 // step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
 // use relax_voxel.
-// `t`: the voxel parts of w's priority (target_of), nullptr to compute them.
-inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
-                        int step, double ng, const Target* t) {
+// `t`: the voxel parts of w's priority (target_of), nullptr to compute them. u: a copy of state ui.
+inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const Node& u, uint32_t w,
+                        int heading, int step, double ng, const Target* t) {
   Side& s = ctx->side[back];
   const uint32_t first = slot_first(s, w);
   uint32_t idx = first;
@@ -785,16 +803,22 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
       sift_up(s, n.heap, it);
     }
   } else {
-    idx = new_state(ctx, s, ui, w, ng, step >= 0 ? kStepDelta.d[step][0] : 0,
-                    step >= 0 ? kStepDelta.d[step][1] : 0, step >= 0 ? kStepDelta.d[step][2] : 0,
-                    heading, first);
+    const int dx = step >= 0 ? kStepDelta.d[step][0] : 0;
+    const int dy = step >= 0 ? kStepDelta.d[step][1] : 0;
+    const int dz = step >= 0 ? kStepDelta.d[step][2] : 0;
+    idx = new_state(ctx, s, ui, u, w, ng, dx, dy, dz, heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
     slot_set(s, w, idx);
-    if (t != nullptr)
+    if (t != nullptr) {
       push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
-    else
-      push(ctx, q, s, back, idx, true);
+    } else {  // the fields new_state stored, from registers
+      double h;
+      const double f =
+          priority_headed(ctx, q, s, back, ng, w, static_cast<Coord>(u.x + dx),
+                          static_cast<Coord>(u.y + dy), static_cast<Coord>(u.z + dz), heading, &h);
+      push_headed(s, idx, f, h);
+    }
   }
   if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
@@ -898,8 +922,8 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
       }
     }
   } else {
-    idx = new_state(ctx, s, ui, w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1], kStepDelta.d[e][2],
-                    d, kNil);
+    idx = new_state(ctx, s, ui, s.nodes[ui], w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1],
+                    kStepDelta.d[e][2], d, kNil);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     slot_set(s, w, idx);
     push(ctx, q, s, back, idx, false);
@@ -960,7 +984,7 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
     if (kHeaded) ng += turn_row[d];
-    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng, nullptr);
+    const tdo_status st = relax(ctx, q, back, ui, u, w, d, e, ng, nullptr);
     if (st != TDO_OK) return st;
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
@@ -985,7 +1009,7 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
     const double ng = g0 + turn_row[d];
-    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
+    const tdo_status st = relax(ctx, q, back, ui, u, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
