@@ -585,8 +585,8 @@ inline double deviation_to(const tdo_search* ctx, int travel, double vx, double 
 }
 
 // Deviation in [0,1]: angle between the search's travel direction and the direction to its target.
-double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
-                 int32_t z) {
+inline double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
+                        int32_t z) {
   if (travel >= kNumDirs) return 0.0;
   const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
   const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
