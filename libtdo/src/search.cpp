@@ -237,6 +237,22 @@ constexpr PruneTable kPrune = make_prune_table();
 constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13) << 14); }
 constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
 
+// Direction mask with bit d moved to bit dir_opposite(d) = 25 - d: a bit reversal of the 26 bits.
+constexpr uint32_t opposite_mask(uint32_t m) {
+  m = ((m >> 1) & 0x55555555u) | ((m & 0x55555555u) << 1);
+  m = ((m >> 2) & 0x33333333u) | ((m & 0x33333333u) << 2);
+  m = ((m >> 4) & 0x0F0F0F0Fu) | ((m & 0x0F0F0F0Fu) << 4);
+  m = ((m >> 8) & 0x00FF00FFu) | ((m & 0x00FF00FFu) << 8);
+  m = (m >> 16) | (m << 16);
+  return m >> (32 - kNumDirs);  // bit d went to 31 - d
+}
+constexpr bool opposite_mask_ok() {
+  for (int d = 0; d < kNumDirs; ++d)
+    if (opposite_mask(1u << d) != 1u << dir_opposite(d)) return false;
+  return true;
+}
+static_assert(opposite_mask_ok(), "opposite_mask");
+
 // Steps of u that its parent (search-sense step s away, legal steps p_moves) offered already.
 constexpr uint32_t pruned_steps(int s, uint32_t p_moves) {
   const uint64_t moved = (static_cast<uint64_t>(cells_of_dirs(p_moves)) << 13) >> kPrune.shift[s];
@@ -277,8 +293,21 @@ inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = static_cas
 inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
   if (s.heading_index == nullptr) return;
   Index* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  static_assert(kNil == static_cast<Index>(~0u), "memset fills kNil");
-  if (first) memset(row, 0xFF, kNumHeadings * sizeof(Index));  // kNil
+  static_assert(kNil == static_cast<Index>(~0u), "all-ones bytes fill kNil");
+  if (first) {
+#if defined(__SSE2__)
+    // Overlapping 16-byte stores (GCC makes the memset a byte-wise rep stos here).
+    constexpr size_t kBytes = kNumHeadings * sizeof(Index);
+    static_assert(kBytes >= 16, "row of at least one store");
+    const __m128i ones = _mm_set1_epi32(-1);
+    unsigned char* p = reinterpret_cast<unsigned char*>(row);
+    for (size_t o = 0; o + 16u < kBytes; o += 16u)
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(p + o), ones);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + kBytes - 16u), ones);
+#else
+    memset(row, 0xFF, kNumHeadings * sizeof(Index));
+#endif
+  }
   row[heading] = static_cast<Index>(idx);
 }
 
@@ -392,9 +421,13 @@ inline uint64_t bucket_of(const Side& s, double f) {
 // Queue item `it` (not queued yet): into the heap when its bucket is not above the current one,
 // else at the head of its bucket's list.
 inline void enqueue(Side& s, const OpenItem& it) {
+  if (!s.bucketed) {
+    sift_up(s, s.n_open++, it);
+    return;
+  }
   const uint64_t b = bucket_of(s, it.f);
   // b - cur < kRing always holds (see kRing); the heap keeps the order if it ever did not.
-  if (!s.bucketed || b <= s.cur || b - s.cur >= kRing) {
+  if (b <= s.cur || b - s.cur >= kRing) {
     sift_up(s, s.n_open++, it);
     return;
   }
@@ -552,8 +585,8 @@ inline double deviation_to(const tdo_search* ctx, int travel, double vx, double 
 }
 
 // Deviation in [0,1]: angle between the search's travel direction and the direction to its target.
-double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
-                 int32_t z) {
+inline double deviation(const tdo_search* ctx, const Side& s, int travel, int32_t x, int32_t y,
+                        int32_t z) {
   if (travel >= kNumDirs) return 0.0;
   const double vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
   const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
@@ -590,17 +623,31 @@ inline double heuristic(const Side& s, uint32_t v, int32_t x, int32_t y, int32_t
   return e > o ? e : o;
 }
 
+// Priority of a turn-penalised state given by its fields (cost g, voxel v at (x, y, z), heading);
+// its heuristic goes to *h_out.
+inline double priority_headed(const tdo_search* ctx, const Query& q, const Side& s, int back,
+                              double g, uint32_t v, int32_t x, int32_t y, int32_t z, int heading,
+                              double* h_out) {
+  const double h = heuristic(s, v, x, y, z, q.grid->desc.res);
+  *h_out = h;
+  if (heading >= kNumDirs || !q.dev_terms) return g + q.h_weight * h;
+  const int travel = back ? dir_opposite(heading) : heading;
+  const double dev = deviation(ctx, s, travel, x, y, z);
+  return g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
+}
+
 template <bool kHeaded>
 inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int back,
                        const Node& n, float* h_out) {
-  const double h = kHeaded ? heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res)
-                           : octile_voxel(s, n.x, n.y, n.z);
+  if (kHeaded) {
+    double h;
+    const double f = priority_headed(ctx, q, s, back, n.g, n.voxel, n.x, n.y, n.z, n.heading, &h);
+    *h_out = static_cast<float>(h);
+    return f;
+  }
+  const double h = octile_voxel(s, n.x, n.y, n.z);
   *h_out = static_cast<float>(h);
-  if (!kHeaded) return n.g + h;
-  if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
-  const int travel = back ? dir_opposite(n.heading) : n.heading;
-  const double dev = deviation(ctx, s, travel, n.x, n.y, n.z);
-  return n.g + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
+  return n.g + h;
 }
 
 // The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
@@ -705,10 +752,10 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
 
 // Allocate the state (w, heading) reached from ui over a step of (dx, dy, dz) voxels at cost ng,
 // chained before `next` (the voxel's previous first state, kNil for none). kNil: the pool is full.
-inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t w, double ng,
-                          int dx, int dy, int dz, int heading, uint32_t next) {
+// u: a copy of state ui.
+inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, const Node& u, uint32_t w,
+                          double ng, int dx, int dy, int dz, int heading, uint32_t next) {
   if (s.n_nodes >= ctx->cfg.max_nodes) return kNil;
-  const Node& u = s.nodes[ui];
   const uint32_t idx = s.n_nodes++;
   Node& n = s.nodes[idx];
   n.g = ng;
@@ -725,9 +772,9 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, uint32_t 
 // Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
 // step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
 // use relax_voxel.
-// `t`: the voxel parts of w's priority (target_of), nullptr to compute them.
-inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32_t w, int heading,
-                        int step, double ng, const Target* t) {
+// `t`: the voxel parts of w's priority (target_of), nullptr to compute them. u: a copy of state ui.
+inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const Node& u, uint32_t w,
+                        int heading, int step, double ng, const Target* t) {
   Side& s = ctx->side[back];
   const uint32_t first = slot_first(s, w);
   uint32_t idx = first;
@@ -756,15 +803,22 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, uint32
       sift_up(s, n.heap, it);
     }
   } else {
-    idx = new_state(ctx, s, ui, w, ng, step >= 0 ? dir_dx(step) : 0, step >= 0 ? dir_dy(step) : 0,
-                    step >= 0 ? dir_dz(step) : 0, heading, first);
+    const int dx = step >= 0 ? kStepDelta.d[step][0] : 0;
+    const int dy = step >= 0 ? kStepDelta.d[step][1] : 0;
+    const int dz = step >= 0 ? kStepDelta.d[step][2] : 0;
+    idx = new_state(ctx, s, ui, u, w, ng, dx, dy, dz, heading, first);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
     slot_set(s, w, idx);
-    if (t != nullptr)
+    if (t != nullptr) {
       push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
-    else
-      push(ctx, q, s, back, idx, true);
+    } else {  // the fields new_state stored, from registers
+      double h;
+      const double f =
+          priority_headed(ctx, q, s, back, ng, w, static_cast<Coord>(u.x + dx),
+                          static_cast<Coord>(u.y + dy), static_cast<Coord>(u.z + dz), heading, &h);
+      push_headed(s, idx, f, h);
+    }
   }
   if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
@@ -817,15 +871,20 @@ tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t u
   // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
   // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
   // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
+  // The sharp steps as forward-sense directions d; the turn table is symmetric (prepare_tables).
+  const uint32_t sharp_d = back ? opposite_mask(sharp) : sharp;
+  const double* turn_row = ctx->turn[u.heading];
+  const uint8_t* order = ctx->by_angle[u.heading];
+  const double g0 = u.g + q.pivot_cost;
+  const double wh = q.h_weight * h;
   for (int k = 0; k < kNumDirs; ++k) {
-    const int d = ctx->by_angle[u.heading][k];
-    const int e = back ? dir_opposite(d) : d;
-    if (((sharp >> e) & 1u) == 0) continue;
-    const double pg =
-        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const double lb = pg + q.h_weight * h;
+    const int d = order[k];
+    if (((sharp_d >> d) & 1u) == 0) continue;
+    const double pg = g0 + turn_row[d];
+    const double lb = pg + wh;
     if (lb > it.f + 1e-9) break;
     if (!(lb < it.f)) continue;
+    const int e = back ? dir_opposite(d) : d;
     const double dev = n > 0.0 && q.dev_terms ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
     const double f = pg + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
     if (f < it.f) it.f = f;
@@ -863,8 +922,8 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
       }
     }
   } else {
-    idx = new_state(ctx, s, ui, w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1], kStepDelta.d[e][2],
-                    d, kNil);
+    idx = new_state(ctx, s, ui, s.nodes[ui], w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1],
+                    kStepDelta.d[e][2], d, kNil);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     slot_set(s, w, idx);
     push(ctx, q, s, back, idx, false);
@@ -917,14 +976,15 @@ tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   uint32_t sharp;   // search-sense steps reached through a pivot only
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
   uint32_t mask = direct;
+  const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
   while (mask != 0) {
     const int e = __builtin_ctz(mask);  // search-direction step
     mask &= mask - 1u;
     const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     double ng = u.g + ctx->step_len[e];
-    if (kHeaded) ng += back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d];
-    const tdo_status st = relax(ctx, q, back, ui, w, d, e, ng, nullptr);
+    if (kHeaded) ng += turn_row[d];
+    const tdo_status st = relax(ctx, q, back, ui, u, w, d, e, ng, nullptr);
     if (st != TDO_OK) return st;
   }
   // Pivots keep the constrained search complete: turning in place to any legal step direction is
@@ -941,14 +1001,15 @@ tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const Node u = s.nodes[ui];
   uint32_t direct, sharp;
   classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  const Target t = target_of(q, s, u);  // every pivot stays in u's voxel
+  const Target t = target_of(q, s, u);            // every pivot stays in u's voxel
+  const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
+  const double g0 = u.g + q.pivot_cost;
   while (sharp != 0) {
     const int e = __builtin_ctz(sharp);
     sharp &= sharp - 1u;
     const int d = back ? dir_opposite(e) : e;
-    const double ng =
-        u.g + q.pivot_cost + (back ? ctx->turn[d][u.heading] : ctx->turn[u.heading][d]);
-    const tdo_status st = relax(ctx, q, back, ui, u.voxel, d, -1, ng, &t);
+    const double ng = g0 + turn_row[d];
+    const tdo_status st = relax(ctx, q, back, ui, u, u.voxel, d, -1, ng, &t);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -1421,7 +1482,7 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
       if (c > 1.0) c = 1.0;
       if (c < -1.0) c = -1.0;
       const double t = acos(c) / kPi;
-      ctx->turn[a][b] = lambda * t * t;
+      ctx->turn[a][b] = lambda * t * t;  // symmetric bit for bit (the search relies on it)
     }
   }
   ctx->turn_lambda = lambda;
