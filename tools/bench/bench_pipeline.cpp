@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "map_list.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 
@@ -76,18 +77,14 @@ std::vector<double> timed(tdo_planner* pl, const tdo_plan_request& req, int repe
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string dir = TDO_BENCH_PIPELINE_MAPS_DIR;
-  std::vector<std::string> names;
+  tdo_bench::MapList maps{TDO_BENCH_PIPELINE_MAPS_DIR, {}};
   int repeat = 21;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
     const std::string v = argv[++i];
-    if (a == "--maps-dir") {
-      dir = v;
-    } else if (a == "--map") {
-      names.push_back(v);
-    } else if (a == "--repeat") {
+    if (maps.take(a, v)) continue;
+    if (a == "--repeat") {
       char* end = nullptr;
       const long r = std::strtol(v.c_str(), &end, 10);
       if (end == v.c_str() || *end != '\0' || r < 1 || r > 100000)
@@ -97,7 +94,8 @@ int main(int argc, char** argv) {
       return usage(("unknown option " + a).c_str());
     }
   }
-  if (names.empty()) names = {"map1", "map2", "map3", "map4", "map5"};
+  const std::vector<std::string> names = maps.chosen();
+  const std::string& dir = maps.dir;
 
   std::vector<Row> rows;
   for (const std::string& name : names) {

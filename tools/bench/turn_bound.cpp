@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "map_list.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 #include "wall_links.h"
@@ -109,8 +110,7 @@ bool parse_double(const std::string& v, double lo, double hi, double* out) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string dir = TDO_BENCH_PIPELINE_MAPS_DIR;
-  std::vector<std::string> names;
+  tdo_bench::MapList maps{TDO_BENCH_PIPELINE_MAPS_DIR, {}};
   double clearance = 0.5;
   double cell = 0.01;
   double max_cells = 2e7;
@@ -118,11 +118,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
     const std::string v = argv[++i];
-    if (a == "--maps-dir") {
-      dir = v;
-    } else if (a == "--map") {
-      names.push_back(v);
-    } else if (a == "--clearance") {
+    if (maps.take(a, v)) continue;
+    if (a == "--clearance") {
       if (!parse_double(v, 0.0, 1e3, &clearance)) return usage("--clearance needs a number >= 0");
     } else if (a == "--cell") {
       if (!parse_double(v, 1e-6, 1e3, &cell)) return usage("--cell needs a number > 0 (m)");
@@ -132,7 +129,8 @@ int main(int argc, char** argv) {
       return usage(("unknown option " + a).c_str());
     }
   }
-  if (names.empty()) names = {"map1", "map2", "map3", "map4", "map5"};
+  const std::vector<std::string> names = maps.chosen();
+  const std::string& dir = maps.dir;
 
   std::printf("clearance %.3f m, smallest box %.4f m, budget %.0f boxes per map\n\n", clearance,
               cell, max_cells);
