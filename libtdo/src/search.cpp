@@ -2,7 +2,9 @@
 //
 // Without penalties a voxel is one state (the heading field only remembers the last step), so the
 // search is plain A* over voxels. With lambda or mu > 0 a state is (voxel, heading); the states of
-// one voxel form a chain from a per-voxel slot, so lookups, meetings and capacity stay bounded.
+// one voxel form a chain from a per-voxel slot, so lookups, meetings and capacity stay bounded,
+// and an expansion creates states only for the children near the smallest queued f (partial
+// expansion, expand_headed), so the pools hold about as many states as the search expands.
 #include "tdo/search.h"
 
 #include <math.h>
@@ -40,7 +42,7 @@ typedef uint16_t Coord;
 // "No state": all ones of an Index (every index and position stays below it). The voxel arrays of
 // exact_lower_bounds use it too (voxel indices stay below it as well: kMaxVoxels).
 constexpr uint32_t kNil = static_cast<Index>(~0u);
-constexpr uint32_t kTopBit = (kNil >> 1) + 1u;  // flag bit of an Index (kSlotClosed, kPivotItem)
+constexpr uint32_t kTopBit = (kNil >> 1) + 1u;  // flag bit of an Index (kSlotClosed, kDeferItem)
 constexpr uint64_t kMaxVoxels = static_cast<VoxelId>(~0u);  // max_voxels at most this
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kSqrt2 = 1.41421356237309504880;
@@ -79,9 +81,9 @@ constexpr uint32_t kArity =
 // slot takes one Index.
 constexpr uint32_t kSlotClosed = kTopBit;
 constexpr uint32_t kSlotIndex = kTopBit - 1u;
-// Open-list item that stands for the deferred pivots of an expanded state (partial expansion):
-// its f is a lower bound of every pivot's f, so most are never popped.
-constexpr uint32_t kPivotItem = kTopBit;
+// Open-list item that stands for the deferred children of an expanded turn-penalised state
+// (expand_headed): its f is the smallest of their f, so most are never popped.
+constexpr uint32_t kDeferItem = kTopBit;
 
 // Unidirectional A* keeps children whose f does not exceed their parent's on a small LIFO stack
 // instead of the heap: they are expanded next anyway (f <= fmin keeps A* optimal), which skips a
@@ -170,13 +172,14 @@ struct Query {
   tdo_voxel v[2];
   int bidir;
   double mu;
-  double h_weight;    // >= 1
-  int first_meet;     // stop at the first meeting
-  double d_th;        // deviation threshold, 0 = off
-  double pivot_cost;  // m, surcharge of a pivot
-  int constrained;    // theta_max active
-  int dev_terms;      // 1: f has the deviation term and the turn lower bound (0 in the retry)
-  int exact_turns;    // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
+  double h_weight;      // >= 1
+  int first_meet;       // stop at the first meeting
+  double d_th;          // deviation threshold, 0 = off
+  double pivot_cost;    // m, surcharge of a pivot
+  double defer_margin;  // m, expand_headed: children up to this far above the next f are created
+  int constrained;      // theta_max active
+  int dev_terms;        // 1: f has the deviation term and the turn lower bound (0 in the retry)
+  int exact_turns;      // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
   uint32_t budget;
   // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
   uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
@@ -352,7 +355,7 @@ inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a)
 
 inline void place(Side& s, uint32_t i, const OpenItem& it) {
   s.open[i] = it;
-  if ((it.node & kPivotItem) == 0) s.nodes[it.node].heap = static_cast<Index>(i);
+  if ((it.node & kDeferItem) == 0) s.nodes[it.node].heap = static_cast<Index>(i);
 }
 
 // Put item `it` at position i (a hole, or its old place) and move it up to where it belongs. The
@@ -410,7 +413,7 @@ uint32_t pop(Side& s) {
     const OpenItem last = s.open[n];
     sift_up(s, i, last);
   }
-  if ((top & kPivotItem) == 0) s.nodes[top].heap = kNil;
+  if ((top & kDeferItem) == 0) s.nodes[top].heap = kNil;
   return top;
 }
 
@@ -769,20 +772,26 @@ inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, const Nod
   return idx;
 }
 
-// Turn-penalised searches: offer state (w, heading) at cost ng with parent ui over forward-sense
-// step `step` (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches
-// use relax_voxel.
-// `t`: the voxel parts of w's priority (target_of), nullptr to compute them. u: a copy of state ui.
-inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const Node& u, uint32_t w,
-                        int heading, int step, double ng, const Target* t) {
-  Side& s = ctx->side[back];
-  const uint32_t first = slot_first(s, w);
-  uint32_t idx = first;
+// State (w, heading) of a turn-penalised side, kNil when it has none.
+inline uint32_t find_state(const Side& s, uint32_t w, int heading) {
+  uint32_t idx = slot_first(s, w);
   if (s.heading_index != nullptr) {
     if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
   } else {
     while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
   }
+  return idx;
+}
+
+// Turn-penalised searches: offer state (w, heading) at cost ng, priority f and heuristic h
+// (priority_headed or priority_at of these fields) with parent ui over forward-sense step `step`
+// (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches use
+// relax_voxel. u: a copy of state ui.
+inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const Node& u, uint32_t w,
+                        int heading, int step, double ng, double f, double h) {
+  Side& s = ctx->side[back];
+  const uint32_t first = slot_first(s, w);
+  uint32_t idx = find_state(s, w, heading);
   if (idx != kNil) {
     Node& n = s.nodes[idx];
     if (n.heap == kNil || !(ng < n.g)) return TDO_OK;  // closed, or no cheaper
@@ -792,14 +801,8 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const 
     if (n.heap != kInStack) {  // on the stack f only fell: it stays next in line
       OpenItem it;
       it.node = static_cast<Index>(idx);
-      if (t != nullptr) {
-        it.f = priority_at(ctx, q, back, ng, heading, *t);
-        it.h = static_cast<float>(t->h);
-      } else {
-        float h;
-        it.f = priority<true>(ctx, q, s, back, n, &h);
-        it.h = h;
-      }
+      it.f = f;
+      it.h = static_cast<float>(h);
       sift_up(s, n.heap, it);
     }
   } else {
@@ -810,15 +813,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const 
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     index_state(s, w, heading, idx, first == kNil);
     slot_set(s, w, idx);
-    if (t != nullptr) {
-      push_headed(s, idx, priority_at(ctx, q, back, ng, heading, *t), t->h);
-    } else {  // the fields new_state stored, from registers
-      double h;
-      const double f =
-          priority_headed(ctx, q, s, back, ng, w, static_cast<Coord>(u.x + dx),
-                          static_cast<Coord>(u.y + dy), static_cast<Coord>(u.z + dz), heading, &h);
-      push_headed(s, idx, f, h);
-    }
+    push_headed(s, idx, f, h);
   }
   if (q.bidir) meet<true>(ctx, q, back, idx);
   return TDO_OK;
@@ -852,48 +847,6 @@ inline void classify(const tdo_search* ctx, const Query& q, int back, const Node
       }
     }
   }
-}
-
-// Queue the pivots of expanded state u (search-sense steps `sharp`) behind one open-list item
-// whose f is the smallest of theirs, computed exactly as relax() and priority() will compute them
-// for the pivot states (same voxel, heading d, travel e): the item comes up when its first pivot
-// would, and most items never do.
-tdo_status push_pivot_item(tdo_search* ctx, const Query& q, int back, uint32_t ui, const Node& u,
-                           uint32_t sharp) {
-  Side& s = ctx->side[back];
-  if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
-  const double h = heuristic(s, u.voxel, u.x, u.y, u.z, q.grid->desc.res);
-  OpenItem it;
-  it.f = HUGE_VAL;
-  // The target direction is the same for every pivot (deviation() in parts, same arithmetic).
-  const double vx = s.tx - u.x, vy = s.ty - u.y, vz = s.tz - u.z;
-  const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
-  // By increasing turn from the heading (the turn cost is symmetric and grows with the angle):
-  // once g + w h of a pivot exceeds the best f, no later pivot can lower it (the deviation terms
-  // are >= 0). The 1e-9 m margin keeps equal angles whose table entries differ by rounding in.
-  // The sharp steps as forward-sense directions d; the turn table is symmetric (prepare_tables).
-  const uint32_t sharp_d = back ? opposite_mask(sharp) : sharp;
-  const double* turn_row = ctx->turn[u.heading];
-  const uint8_t* order = ctx->by_angle[u.heading];
-  const double g0 = u.g + q.pivot_cost;
-  const double wh = q.h_weight * h;
-  for (int k = 0; k < kNumDirs; ++k) {
-    const int d = order[k];
-    if (((sharp_d >> d) & 1u) == 0) continue;
-    const double pg = g0 + turn_row[d];
-    const double lb = pg + wh;
-    if (lb > it.f + 1e-9) break;
-    if (!(lb < it.f)) continue;
-    const int e = back ? dir_opposite(d) : d;
-    const double dev = n > 0.0 && q.dev_terms ? deviation_to(ctx, e, vx, vy, vz, n) : 0.0;
-    const double f = pg + q.h_weight * (h + turn_bound(ctx, q, dev)) + q.mu * dev;
-    if (f < it.f) it.f = f;
-  }
-  it.h = static_cast<float>(h);
-  it.node = static_cast<Index>(ui | kPivotItem);
-  s.open[s.n_open] = it;
-  sift_up(s, s.n_open++);
-  return TDO_OK;
 }
 
 // Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
@@ -967,51 +920,98 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   return TDO_OK;
 }
 
-template <bool kHeaded>
-tdo_status expand(tdo_search* ctx, Query& q, int back, uint32_t ui) {
-  if (!kHeaded) return expand_voxel(ctx, q, back, ui);
+constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
+
+// A child of a turn-penalised state that need not be offered: its state exists and is closed, or
+// costs no more.
+inline bool settled(const Side& s, uint32_t w, int heading, double ng) {
+  const uint32_t idx = find_state(s, w, heading);
+  return idx != kNil && (s.nodes[idx].heap == kNil || !(s.nodes[idx].g < ng));
+}
+
+// Expansion of a turn-penalised state with deferred children (partial expansion): of the children
+// of closed state ui (its direct steps, and its pivots: turning in place to a sharp step at the
+// turn cost plus the pivot surcharge, so every legal step stays reachable and the search complete)
+// only those whose f does not exceed `limit` become states. The others wait behind one open-list
+// item of ui (kDeferItem) whose f is the smallest of theirs and whose h field holds the set of
+// their search-sense steps (`todo`); popped, it calls this again with its f plus
+// q.defer_margin as the limit (offering at least the child at that f, so an item comes back at
+// most 26 times). A state's cost is final once it is closed, so its children's f are the same bits
+// every time. The search loop's limit is the next queued f plus q.defer_margin: children that
+// close are created at once (the turn of a direct step costs at most pivot_cost, and the margin
+// adds one voxel edge), which saves most item pops; the sharp turns and the children far above
+// wait, and most are never offered. Map1: 3,517 states for 2,527 expansions instead of 11,971 for
+// 2,652 (docs/performance.md). A child in a voxel that the other side has reached is offered at
+// once, so a meeting is seen as soon as both sides have a state there.
+tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, double limit,
+                         uint32_t todo) {
   Side& s = ctx->side[back];
+  const Side& other = ctx->side[1 - back];
   const Node u = s.nodes[ui];
   uint32_t direct;  // search-sense steps expanded directly
   uint32_t sharp;   // search-sense steps reached through a pivot only
-  classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  uint32_t mask = direct;
+  classify<true>(ctx, q, back, u, &direct, &sharp);
+  direct &= todo;
+  sharp &= todo;
   const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
-  while (mask != 0) {
-    const int e = __builtin_ctz(mask);  // search-direction step
-    mask &= mask - 1u;
+  double next = HUGE_VAL;                         // smallest f of a deferred child
+  uint32_t left = 0;                              // search-sense steps of the deferred children
+  for (uint32_t mask = direct; mask != 0; mask &= mask - 1u) {
+    const int e = __builtin_ctz(mask);         // search-direction step
     const int d = back ? dir_opposite(e) : e;  // forward-sense direction of the step
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
-    double ng = u.g + ctx->step_len[e];
-    if (kHeaded) ng += turn_row[d];
-    const tdo_status st = relax(ctx, q, back, ui, u, w, d, e, ng, nullptr);
-    if (st != TDO_OK) return st;
+    const double ng = u.g + ctx->step_len[e] + turn_row[d];
+    double h;
+    const double f =
+        priority_headed(ctx, q, s, back, ng, w, static_cast<Coord>(u.x + kStepDelta.d[e][0]),
+                        static_cast<Coord>(u.y + kStepDelta.d[e][1]),
+                        static_cast<Coord>(u.z + kStepDelta.d[e][2]), d, &h);
+    if (!(f > limit) || (q.bidir && slot_first(other, w) != kNil)) {
+      const tdo_status st = relax(ctx, q, back, ui, u, w, d, e, ng, f, h);
+      if (st != TDO_OK) return st;
+    } else if (!settled(s, w, d, ng)) {
+      left |= 1u << e;
+      next = f < next ? f : next;
+    }
   }
-  // Pivots keep the constrained search complete: turning in place to any legal step direction is
-  // allowed at the turn cost plus the pivot surcharge; the new state then steps straight on. They
-  // are deferred behind one open-list item (push_pivot_item).
-  if (kHeaded && sharp != 0) return push_pivot_item(ctx, q, back, ui, u, sharp);
-  return TDO_OK;
-}
-
-// Generate the deferred pivots of state ui (already expanded).
-template <bool kHeaded>
-tdo_status expand_pivots(tdo_search* ctx, Query& q, int back, uint32_t ui) {
-  Side& s = ctx->side[back];
-  const Node u = s.nodes[ui];
-  uint32_t direct, sharp;
-  classify<kHeaded>(ctx, q, back, u, &direct, &sharp);
-  const Target t = target_of(q, s, u);            // every pivot stays in u's voxel
-  const double* turn_row = ctx->turn[u.heading];  // symmetric: turn[d][h] = turn[h][d]
-  const double g0 = u.g + q.pivot_cost;
-  while (sharp != 0) {
-    const int e = __builtin_ctz(sharp);
-    sharp &= sharp - 1u;
-    const int d = back ? dir_opposite(e) : e;
-    const double ng = g0 + turn_row[d];
-    const tdo_status st = relax(ctx, q, back, ui, u, u.voxel, d, -1, ng, &t);
-    if (st != TDO_OK) return st;
+  if (sharp != 0) {
+    // Every pivot stays in u's voxel: one heuristic and target vector (target_of). By increasing
+    // turn from the heading (the turn cost is symmetric and grows with the angle): once g + w h of
+    // a pivot exceeds both the limit and the smallest deferred f, no later pivot is offered or
+    // lowers it (the deviation terms are >= 0), so they stay deferred unevaluated. The 1e-9 m
+    // margin keeps equal angles whose table entries differ by rounding in.
+    const Target t = target_of(q, s, u);
+    const bool meets = q.bidir && slot_first(other, u.voxel) != kNil;
+    uint32_t rest = back ? opposite_mask(sharp) : sharp;  // forward-sense directions
+    const uint8_t* order = ctx->by_angle[u.heading];
+    const double g0 = u.g + q.pivot_cost;
+    const double wh = q.h_weight * t.h;
+    for (int k = 0; k < kNumDirs && rest != 0; ++k) {
+      const int d = order[k];
+      if (((rest >> d) & 1u) == 0) continue;
+      const double ng = g0 + turn_row[d];
+      const double lb = ng + wh;
+      if (lb > limit && lb > next + 1e-9 && !meets) break;
+      rest &= ~(1u << d);
+      const double f = priority_at(ctx, q, back, ng, d, t);
+      if (!(f > limit) || meets) {
+        const tdo_status st = relax(ctx, q, back, ui, u, u.voxel, d, -1, ng, f, t.h);
+        if (st != TDO_OK) return st;
+      } else if (!settled(s, u.voxel, d, ng)) {
+        left |= 1u << (back ? dir_opposite(d) : d);
+        next = f < next ? f : next;
+      }
+    }
+    left |= back ? opposite_mask(rest) : rest;  // not evaluated: f above next
   }
+  if (left == 0) return TDO_OK;
+  if (s.n_open >= ctx->cfg.max_nodes) return TDO_ERR_NODE_CAPACITY;
+  OpenItem it;
+  it.f = next;
+  memcpy(&it.h, &left, sizeof(it.h));  // orders ties as the unsigned bits of h do (key_of)
+  it.node = static_cast<Index>(ui | kDeferItem);
+  s.open[s.n_open] = it;
+  sift_up(s, s.n_open++);
   return TDO_OK;
 }
 
@@ -1056,7 +1056,6 @@ struct DjQueue {
 // (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
 // key it stopped at is still a lower bound of every unsettled voxel's distance.
 constexpr double kDjReach = 2.0;
-constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 // Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
 // the budget).
 constexpr int kRetries = 2;
@@ -1300,16 +1299,19 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
 constexpr uint32_t kTryMin = 20000;
 constexpr uint32_t kTryDiv = 16;
 // A try that is not the last is given up early once it has spent 1/kTryProbe of its expansions
-// without a meeting and its progress so far, extrapolated, needs more than all of them (flooding).
+// without a meeting and its progress so far, extrapolated, needs more than 1/kFloodFactor of them
+// (flooding).
 constexpr uint32_t kTryProbe = 8;
+constexpr double kFloodFactor = 2.0;
 
 // The flood test of such a try, after each expansion of a state. Progress is how much closer to
 // its target (octile distance, the try's own heuristic) the closest state each side has expanded
 // lies: the sides must together close the start-goal distance h_root before they can meet (the
 // straight-line picture). A try that has closed P of it in e expansions is projected to need
-// e * h_root / P; when that exceeds the try's share it is stopped as if it had run out (the
-// retry follows). The searches the octile guides well close the gap at a steady rate (on Map1-5
-// the largest projection is a quarter of kTryMin: docs/performance.md); a wall the octile cannot
+// e * h_root / P; when that exceeds half the try's share it is stopped as if it had run out (the
+// retry follows). The searches the octile guides well close the gap at a steady rate (on Map1-3
+// and Map5 the largest projection is 3,572 expansions, a third of half of kTryMin:
+// docs/performance.md); a wall the octile cannot
 // see stops all progress while the states flood the region behind it. Only the first try, which
 // has the retries behind it, is tested; a meeting ends the test (the search is about to stop).
 inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
@@ -1318,7 +1320,8 @@ inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
   const uint32_t spent = q.expansions - q.try_first;
   if (spent < q.try_share / kTryProbe || q.best < HUGE_VAL) return false;
   const double progress = (q.h_root - q.h_best[0]) + (q.bidir ? q.h_root - q.h_best[1] : 0.0);
-  return static_cast<double>(spent) * q.h_root > static_cast<double>(q.try_share) * progress;
+  return static_cast<double>(spent) * q.h_root * kFloodFactor >
+         static_cast<double>(q.try_share) * progress;
 }
 
 template <bool kHeaded>
@@ -1327,7 +1330,9 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
   Side& bw = ctx->side[1];
   add_root(ctx, q, 0, kHeaded);
   if (q.bidir) add_root(ctx, q, 1, kHeaded);
-  // Bounded: every iteration expands one state or returns, and expansions stop at the budget.
+  // Bounded: every iteration expands one state, or pops the item of an expanded state's deferred
+  // children, which offers at least one of them and so comes back at most 26 times per expanded
+  // state; or it returns. Expansions stop at the budget.
   for (;;) {
     int back = 0;
     if (!q.bidir) {
@@ -1335,7 +1340,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
         advance(fw, [&](const Node& n, float* h) { return priority<false>(ctx, q, fw, 0, n, h); });
       if (fw.n_open == 0 && fw.n_stack == 0) return TDO_ERR_NO_PATH;
       const uint32_t top = fw.n_stack > 0 ? fw.stack[fw.n_stack - 1].node : fw.open[0].node;
-      if ((top & kPivotItem) == 0 && fw.nodes[top].voxel == q.voxel[1]) {
+      if ((top & kDeferItem) == 0 && fw.nodes[top].voxel == q.voxel[1]) {
         q.best = fw.nodes[top].g;
         q.meet[0] = top;
         return TDO_OK;
@@ -1356,6 +1361,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     if (n_queued > q.peak_open) q.peak_open = n_queued;
     if (n_queued > ctx->max_open) return TDO_ERR_OPEN_CAPACITY;
     uint32_t ui;
+    float popped_h = 0.0f;  // h of the item taken from the heap
     if (s.n_stack > 0) {
       --s.n_stack;
       ui = s.stack[s.n_stack].node;
@@ -1364,19 +1370,29 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
       s.nodes[ui].heap = kNil;
     } else {
       s.f_cur = s.open[0].f;
+      popped_h = s.open[0].h;
       if (!kHeaded) prefetch_block(ctx, q, s, back, s.nodes[s.open[0].node]);
       ui = pop(s);
     }
-    ++q.expansions;
-    if ((ui & kPivotItem) != 0) {
-      const tdo_status st = expand_pivots<kHeaded>(ctx, q, back, ui & ~kPivotItem);
+    if (kHeaded && (ui & kDeferItem) != 0) {
+      uint32_t todo;  // the item's h field: its steps (expand_headed)
+      memcpy(&todo, &popped_h, sizeof(todo));
+      const tdo_status st =
+          expand_headed(ctx, q, back, ui & ~kDeferItem, s.f_cur + q.defer_margin, todo);
       if (st != TDO_OK) return st;
       continue;
     }
+    ++q.expansions;
     // ui is closed now: pop() and the stack set its heap position to kNil.
     if (kHeaded && q.try_share != 0 && flooding(q, back, s, s.nodes[ui])) return TDO_ERR_BUDGET;
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
-    const tdo_status st = expand<kHeaded>(ctx, q, back, ui);
+    // Children whose f is not above the next queued f plus the margin are created now (those up
+    // to the next f would be popped before anything else), the rest are deferred.
+    const tdo_status st =
+        kHeaded
+            ? expand_headed(ctx, q, back, ui,
+                            (top_of(s) > s.f_cur ? top_of(s) : s.f_cur) + q.defer_margin, kAllMoves)
+            : expand_voxel(ctx, q, back, ui);
     if (st != TDO_OK) return st;
   }
 }
@@ -1493,12 +1509,13 @@ size_t heading_index_bytes(const tdo_search_config& cfg) {
                             : 0u;
 }
 
-// Open-list items one expansion adds at most: 26 neighbours and one item of deferred pivots.
+// Open-list items one expansion adds at most: 26 children (direct steps and pivots) and one item
+// of deferred children.
 constexpr uint32_t kOpenSlack = kNumDirs + 1u;
 
 // Open-list entries carved per side. The list never holds more items than states (each open state
-// once, each deferred-pivot item stands for an expanded state), so max_nodes always suffices; a
-// smaller max_open gets max_open + kOpenSlack (the check in search_loop).
+// once, each item of deferred children stands for an expanded state), so max_nodes always suffices;
+// a smaller max_open gets max_open + kOpenSlack (the check in search_loop).
 uint32_t open_entries(const tdo_search_config& cfg) {
   if (cfg.max_open == 0u || static_cast<uint64_t>(cfg.max_open) + kOpenSlack >= cfg.max_nodes)
     return cfg.max_nodes;
@@ -1643,6 +1660,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
   q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);
+  q.defer_margin = q.pivot_cost + g->desc.res;  // the dearest direct turn, one voxel edge more
   q.budget = in->max_expansions != 0 ? in->max_expansions : ctx->cfg.max_expansions;
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;

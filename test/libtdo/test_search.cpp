@@ -597,6 +597,51 @@ TEST(SearchPenalty, GivenAFieldOfPillars_WhenTheOctileTryProgresses_ThenItIsNotG
   }
 }
 
+// Partial expansion (search.cpp, expand_headed): a turn-penalised expansion creates states only
+// for the children whose f is near the smallest queued f and defers the rest behind one item, so
+// a search holds about as many states as it expands. With full expansion (every direct step and
+// pivot a state, about 4.5 per expansion on Map1) a pool of 3/2 of the expansions runs out; here
+// the result must be the unlimited one bit for bit.
+TEST(SearchPenalty, GivenAPoolOfThreeHalvesTheExpansions_WhenSearchingWithPenalties_ThenTheSame) {
+  const int32_t nx = 24, ny = 24, nz = 12;
+  const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
+  VoxelMap map(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  Rng rng(11u);  // 3 x 3 columns up to random heights
+  for (int32_t k = 0; k < 24; ++k) {
+    const int32_t x = 2 + static_cast<int32_t>(rng.next() % static_cast<uint64_t>(nx - 6));
+    const int32_t y = 2 + static_cast<int32_t>(rng.next() % static_cast<uint64_t>(ny - 6));
+    const int32_t h = 2 + static_cast<int32_t>(rng.next() % static_cast<uint64_t>(nz - 2));
+    for (int32_t z = 0; z < h; ++z)
+      for (int32_t dx = 0; dx < 3; ++dx)
+        for (int32_t dy = 0; dy < 3; ++dy) map.set(x + dx, y + dy, z);
+  }
+  const tdo_voxel s{0, 0, 1}, g{nx - 1, ny - 1, nz - 2};
+  TestPlanner big(make_cap(n, 4u * n, n + 1u));  // 4 n: below the 16-bit build's limit
+  ASSERT_EQ(big.status(), TDO_OK);
+  ASSERT_EQ(tdo_test::load_voxels(big.grid(), map), TDO_OK);
+  int checked = 0;
+  for (tdo_search_kind kind : kKinds)
+    for (int first_meet : {0, 1}) {
+      if (kind == TDO_SEARCH_ASTAR && first_meet == 1) continue;
+      SCOPED_TRACE(std::string(tdo_test::kind_name(kind)) + " first_meet " +
+                   std::to_string(first_meet));
+      tdo_search_input in = make_input(big.grid(), map.center(s), map.center(g), kind, 50.0, 20.0);
+      in.theta_max = 0.25 * 3.14159265358979323846;
+      in.first_meet = first_meet;
+      const Result r = run(big.search(), in);
+      ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+      ASSERT_TRUE(tdo_test::valid_path(map, r.out, s, g));
+      ASSERT_GT(r.out.expansions, 200u) << "too short a query to tell";
+      TestPlanner small(make_cap(n, r.out.expansions * 3u / 2u, n + 1u));
+      ASSERT_EQ(small.status(), TDO_OK);
+      ASSERT_EQ(tdo_test::load_voxels(small.grid(), map), TDO_OK);
+      in.grid = small.grid();
+      EXPECT_TRUE(identical(r, run(small.search(), in)));
+      ++checked;
+    }
+  EXPECT_EQ(checked, 3);
+}
+
 // ---------------------------------------------------------------------------------------------
 // (c) named statuses
 
@@ -888,8 +933,9 @@ TEST_F(SearchTest, GivenNegativeOrNonFiniteParameters_WhenSearching_ThenInvalidA
 }
 
 // The index width bounds the capacities: 2^31 - 1 states per direction with 32-bit indices (one
-// bit flags pivot items and closed slots), 2^15 - 1 with 16-bit ones (tdo_index16), which also
-// need max_voxels < 2^16 and grid axes < 256. Beyond: a named status, at init or at the query.
+// bit flags items of deferred children and closed slots), 2^15 - 1 with 16-bit ones (tdo_index16),
+// which also need max_voxels < 2^16 and grid axes < 256. Beyond: a named status, at init or at the
+// query.
 TEST(SearchCapacity, GivenCapacitiesAtAndBeyondTheIndexWidth_WhenInitialising_ThenRefusedBeyond) {
 #if defined(TDO_SEARCH_INDEX16)
   const uint32_t max_nodes = 0x7FFFu, max_voxels = 0xFFFFu;

@@ -4,15 +4,17 @@
 
 /* m, obstacle clearance (tdo-plan's default for .tdomap files) */
 #define TDO_DEMO_CLEARANCE 0.5
-/* search states per direction: Map1's query needs 6033 with the default parameters (retry off) */
-#define TDO_DEMO_MAX_NODES 6656u
-/* open-list items per direction: Map1's query holds at most 5609 (tdo-plan's open_list_peak), +5 %
+/* search states per direction: Map1's query needs 1799 with the default parameters (retry off),
+ * +10.3 % */
+#define TDO_DEMO_MAX_NODES 1984u
+/* open-list items per direction: Map1's query holds at most 1595 (tdo-plan's open_list_peak), +5.3
+ * %
  */
-#define TDO_DEMO_MAX_OPEN 5904u
+#define TDO_DEMO_MAX_OPEN 1680u
 /* voxels in one grid path (Map1's path has 26; it also sizes correction, smoothing and the
  * trajectory's segment arrays) */
 #define TDO_DEMO_MAX_PATH 32u
-/* trajectory samples at dt = 0.01 s (Map1's flight: 1875) */
+/* trajectory samples at dt = 0.01 s (Map1's flight: 1871) */
 #define TDO_DEMO_MAX_SAMPLES 2048u
 /* 1: samples are not stored (0 bytes instead of 84 each); verified and printed in streaming passes
  */
@@ -20,6 +22,6 @@
 /* speed-profile pieces (8 per path segment + 1) */
 #define TDO_DEMO_MAX_PROFILE 257u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (606u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (308u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

@@ -4,14 +4,15 @@
 
 /* m, obstacle clearance (tdo-plan's default for .tdomap files) */
 #define TDO_DEMO_CLEARANCE 0.5
-/* search states per direction: Map4's query needs 346010 with the default parameters */
-#define TDO_DEMO_MAX_NODES 352256u
-/* open-list items per direction: Map4's query holds at most 68393 (tdo-plan's open_list_peak), +5 %
+/* search states per direction: Map4's query needs 264566 with the default parameters (retry off),
+ * +6.1 % */
+#define TDO_DEMO_MAX_NODES 280704u
+/* open-list items per direction: Map4's query holds at most 68884 (tdo-plan's open_list_peak), +5 %
  */
-#define TDO_DEMO_MAX_OPEN 71824u
-/* voxels in one grid path (Map4's path has 114) */
+#define TDO_DEMO_MAX_OPEN 72336u
+/* voxels in one grid path (Map4's path has 113) */
 #define TDO_DEMO_MAX_PATH 160u
-/* trajectory samples at dt = 0.01 s (Map4's flight: 7586) */
+/* trajectory samples at dt = 0.01 s (Map4's flight: 7389) */
 #define TDO_DEMO_MAX_SAMPLES 8192u
 /* 1: samples are not stored (0 bytes instead of 84 each); verified and printed in streaming passes
  */
@@ -19,6 +20,6 @@
 /* speed-profile pieces (8 per path segment + 1; Map4's path has 52 segments) */
 #define TDO_DEMO_MAX_PROFILE 1025u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (25504u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (21047u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

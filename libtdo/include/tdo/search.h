@@ -82,15 +82,15 @@ typedef struct tdo_search_output {
   uint32_t pivots;       /**< pivots (sharp turns in place) on the returned path */
   uint32_t n_path;       /**< voxels in path, start voxel first, goal voxel last */
   const tdo_voxel* path; /**< the voxel path */
-  uint32_t peak_open;    /**< most open-list items (states waiting for expansion and deferred
-                              pivot items) a direction held before one of its expansions, every
-                              try counted: the smallest max_open this query runs with */
+  uint32_t peak_open;    /**< most open-list items (states waiting for expansion and items of
+                              deferred children) a direction held before one of its expansions,
+                              every try counted: the smallest max_open this query runs with */
   uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
                               1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
                               expansions, progress towards the targets too slow to finish within
-                              them (first try only), or a full node pool). expansions counts every
-                              try */
+                              half of them (first try only), or a full node pool). expansions
+                              counts every try */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */
