@@ -312,6 +312,9 @@ int tdo_demo_run(tdo_demo_info* info) {
   cfg.cap.max_path = TDO_DEMO_MAX_PATH;
   cfg.cap.max_samples = TDO_DEMO_MAX_SAMPLES;
   cfg.cap.max_profile = TDO_DEMO_MAX_PROFILE;
+  cfg.cap.max_waypoints = TDO_DEMO_MAX_WAYPOINTS;
+  cfg.cap.max_violations = TDO_DEMO_MAX_VIOLATIONS;
+  cfg.cap.boxes_only = 1u; /* the map is boxes: no distance field (4 bytes per voxel) */
   cfg.cap.stream_samples = TDO_DEMO_STREAM_SAMPLES;
   cfg.cap.max_open = TDO_DEMO_MAX_OPEN;
   /* the longest axis sizes the distance field's line scratch (max_voxels by default) */

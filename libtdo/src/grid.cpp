@@ -399,8 +399,10 @@ size_t grid_footprint(const GridCapacity& cap) {
          tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(tdo_box) + 1u) +
          tdo_arena_round(static_cast<size_t>(cap.max_clear_cells) * 3u * sizeof(int32_t) + 1u) +
-         // distance field and its EDT line scratch
-         tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(float)) +
+         // distance field and its EDT line scratch (none for boxes only)
+         (cap.boxes_only != 0u
+              ? 0u
+              : tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(float))) +
          tdo_arena_round(line * sizeof(uint32_t)) + tdo_arena_round(line * sizeof(int32_t)) +
          // bucket index: cell offsets, box references, large boxes
          tdo_arena_round((static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) *
@@ -423,17 +425,20 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
   if (g->flags == nullptr || g->moves == nullptr || g->boxes == nullptr || g->stencil == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   const size_t line = df_line_capacity(cap);
-  g->df = static_cast<float*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(float)));
-  g->df_f = static_cast<uint32_t*>(tdo_arena_alloc(arena, line * sizeof(uint32_t)));
-  g->df_v = static_cast<int32_t*>(tdo_arena_alloc(arena, line * sizeof(int32_t)));
+  if (cap.boxes_only == 0u) {
+    g->df = static_cast<float*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(float)));
+    g->df_f = static_cast<uint32_t*>(tdo_arena_alloc(arena, line * sizeof(uint32_t)));
+    g->df_v = static_cast<int32_t*>(tdo_arena_alloc(arena, line * sizeof(int32_t)));
+    if (g->df == nullptr || g->df_f == nullptr || g->df_v == nullptr)
+      return TDO_ERR_ARENA_TOO_SMALL;
+  }
   g->cell_start = static_cast<uint32_t*>(tdo_arena_alloc(
       arena, (static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) * sizeof(uint32_t)));
   g->box_refs = static_cast<uint32_t*>(
       tdo_arena_alloc(arena, static_cast<size_t>(box_ref_capacity(cap)) * sizeof(uint32_t) + 1u));
   g->large_boxes = static_cast<uint32_t*>(
       tdo_arena_alloc(arena, static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u));
-  if (g->df == nullptr || g->df_f == nullptr || g->df_v == nullptr || g->cell_start == nullptr ||
-      g->box_refs == nullptr || g->large_boxes == nullptr)
+  if (g->cell_start == nullptr || g->box_refs == nullptr || g->large_boxes == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   g->clearance = -1.0;
   *out = g;
@@ -491,6 +496,7 @@ extern "C" tdo_status tdo_grid_add_box(tdo_grid* g, const tdo_box* box) {
 
 extern "C" tdo_status tdo_grid_add_voxel(tdo_grid* g, int32_t i, int32_t j, int32_t k) {
   if (g == nullptr || g->nvox == 0 || !in_grid(g, i, j, k)) return TDO_ERR_INVALID_ARGUMENT;
+  if (g->cap.boxes_only != 0u) return TDO_ERR_MAP_CAPACITY;  // no distance field for voxels
   uint8_t& f = g->flags[index_of(g, i, j, k)];
   if ((f & kFlagCube) == 0) ++g->n_cubes;
   f |= kFlagOccupied | kFlagCube;
@@ -518,7 +524,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   compute_moves(g);
   // Collision-query structures (collision.h): they change no blocked flag and no move.
   if (g->n_cubes > 0) mark_surface(g);
-  build_distance_field(g);
+  if (g->cap.boxes_only == 0u) build_distance_field(g);
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;

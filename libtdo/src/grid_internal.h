@@ -21,6 +21,7 @@ struct GridCapacity {
   uint32_t max_clear_cells;
   uint32_t max_box_refs = 0;  // bucket index entries; 0 = max_boxes * kRefsPerBoxDefault
   uint32_t max_axis = 0;      // voxels along the longest axis; 0 = not limited (max_voxels)
+  uint32_t boxes_only = 0;    // 1: no voxel obstacles, so no distance field (tdo_capacity)
 };
 
 // Distance field and box buckets (collision queries, built by tdo_grid_finish).
@@ -36,6 +37,7 @@ constexpr uint32_t kRefsPerBoxDefault = kLargeBoxCells;  // so a derived capacit
 inline uint32_t bucket_cell_capacity(uint32_t max_voxels) { return max_voxels / 16u + 64u; }
 // Entries of the line scratch of the exact EDT: the longest axis a grid of this capacity can have.
 inline uint32_t df_line_capacity(const GridCapacity& cap) {
+  if (cap.boxes_only != 0u) return 0u;
   const uint32_t n =
       cap.max_axis > 0u && cap.max_axis < cap.max_voxels ? cap.max_axis : cap.max_voxels;
   return n < kDfMaxAxis ? n : kDfMaxAxis;
@@ -65,7 +67,8 @@ struct tdo_grid {
   // Distance field (tdo_grid_finish): per voxel, the exact Euclidean distance (m) from its centre
   // to the centre of the nearest occupied voxel, rounded down to float; +inf without any.
   // df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is then 0, still a lower bound.
-  float* df;       // m, max_voxels entries
+  // Only the collision queries against voxel obstacles read it; boxes_only grids have none.
+  float* df;       // m, max_voxels entries (nullptr when boxes_only)
   uint32_t* df_f;  // EDT line scratch: squared distances (voxel^2), df_line_capacity entries
   int32_t* df_v;   // EDT line scratch: parabola sites (voxel index), df_line_capacity entries
   int df_valid;    // 1 when df holds the exact field

@@ -130,12 +130,20 @@ bool has_trajectory(const tdo_capacity& c) {
 tdo_correct_config correct_cfg(const tdo_capacity& c) {
   return tdo_correct_config{c.max_path + 2u, c.max_checks};
 }
+// Waypoints the smoothing takes: the correction's output, at most the grid path's points (its
+// voxels with the exact start and goal) unless max_waypoints says fewer.
+uint32_t max_waypoints(const tdo_capacity& c) {
+  return c.max_waypoints != 0u && c.max_waypoints < c.max_path + 2u ? c.max_waypoints
+                                                                    : c.max_path + 2u;
+}
+// Path segments: a line per waypoint gap and at most two curves per corner (g2).
+uint32_t max_segments(const tdo_capacity& c) { return 3u * max_waypoints(c) + 1u; }
 tdo_smooth_config smooth_cfg(const tdo_capacity& c) {
-  return tdo_smooth_config{c.max_path + 2u, 3u * c.max_path + 7u, c.max_shrinks};
+  return tdo_smooth_config{max_waypoints(c), max_segments(c), c.max_shrinks};
 }
 tdo_traj_config traj_cfg(const tdo_capacity& c) {
-  return tdo_traj_config{c.max_samples,    3u * c.max_path + 7u, c.max_profile,
-                         c.max_violations, c.max_refinements,    c.stream_samples};
+  return tdo_traj_config{c.max_samples,    max_segments(c),   c.max_profile,
+                         c.max_violations, c.max_refinements, c.stream_samples};
 }
 
 size_t pipeline_footprint(const tdo_planner_config* cfg) {

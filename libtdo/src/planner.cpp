@@ -10,12 +10,12 @@ namespace {
 
 bool valid(const tdo_planner_config* cfg) {
   return cfg != nullptr && cfg->cap.max_voxels > 0 && cfg->cap.max_nodes > 0 &&
-         cfg->cap.max_path > 0;
+         cfg->cap.max_path > 0 && cfg->cap.max_waypoints != 1u;  // a path has two ends
 }
 
 GridCapacity grid_cap(const tdo_planner_config& cfg) {
-  return GridCapacity{cfg.cap.max_voxels, cfg.cap.max_boxes, cfg.cap.max_clear_cells,
-                      cfg.cap.max_box_refs, cfg.cap.max_axis};
+  return GridCapacity{cfg.cap.max_voxels,   cfg.cap.max_boxes, cfg.cap.max_clear_cells,
+                      cfg.cap.max_box_refs, cfg.cap.max_axis,  cfg.cap.boxes_only};
 }
 
 tdo_search_config search_cfg(const tdo_planner_config& cfg) {

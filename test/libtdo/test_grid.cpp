@@ -636,6 +636,44 @@ TEST(GridCapacity, GivenAnAxisLongerThanMaxAxis_WhenReset_ThenMapCapacityElseThe
   }
 }
 
+// boxes_only drops the distance field (4 bytes per voxel) and its line scratch (8 bytes per voxel
+// of max_axis, here max_voxels): a voxel obstacle is refused by name, and box maps answer every
+// query exactly as with the field.
+TEST(GridCapacity, GivenBoxesOnly_WhenAVoxelIsAdded_ThenMapCapacityElseTheSameDistances) {
+  tdo_planner_config full{}, boxes{};
+  full.cap = tdo_test::make_cap(1000, 1000, 100);
+  boxes.cap = full.cap;
+  boxes.cap.boxes_only = 1u;
+  EXPECT_EQ(tdo_planner_footprint(&full) - tdo_planner_footprint(&boxes), (4u + 8u) * 1000u);
+  TestPlanner a(full.cap), b(boxes.cap);
+  ASSERT_EQ(a.status(), TDO_OK);
+  ASSERT_EQ(b.status(), TDO_OK);
+  const tdo_grid_desc d{12, 10, 8, 0.5, tdo_vec3{-1.0, 2.0, 0.5}};
+  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_reset(g, &d), TDO_OK);
+  EXPECT_EQ(tdo_grid_add_voxel(a.grid(), 3, 4, 5), TDO_OK);
+  EXPECT_EQ(tdo_grid_add_voxel(b.grid(), 3, 4, 5), TDO_ERR_MAP_CAPACITY);
+  ASSERT_EQ(tdo_grid_reset(a.grid(), &d), TDO_OK);  // drop the voxel again
+  tdo_test::Rng rng(78);
+  for (int n = 0; n < 6; ++n) {
+    const tdo_vec3 lo{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const tdo_box box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 1.5), lo.y + rng.uniform(0.1, 1.5),
+                                   lo.z + rng.uniform(0.1, 1.5)}};
+    for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_add_box(g, &box), TDO_OK);
+  }
+  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_finish(g, 0.4), TDO_OK);
+  EXPECT_EQ(tdo_grid_blocked_count(a.grid()), tdo_grid_blocked_count(b.grid()));
+  for (int n = 0; n < 500; ++n) {
+    const tdo_vec3 p{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const tdo_vec3 q{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const double pa = tdo_collision_point_distance(a.grid(), p, 3.0);
+    const double pb = tdo_collision_point_distance(b.grid(), p, 3.0);
+    EXPECT_EQ(std::memcmp(&pa, &pb, sizeof pa), 0) << n;
+    const double sa = tdo_collision_segment_distance(a.grid(), p, q, 3.0);
+    const double sb = tdo_collision_segment_distance(b.grid(), p, q, 3.0);
+    EXPECT_EQ(std::memcmp(&sa, &sb, sizeof sa), 0) << n;
+  }
+}
+
 TEST(GridCapacity, GivenMoreBoxesThanMaxBoxes_WhenAdded_ThenBoxCapacity) {
   TestPlanner pl(tdo_test::make_cap(64, 64, 64, 2));
   ASSERT_EQ(pl.status(), TDO_OK);

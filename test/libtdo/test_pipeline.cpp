@@ -285,6 +285,43 @@ std::vector<unsigned char> bytes_of(const tdo_plan_result& r) {
   return b;
 }
 
+// max_waypoints sizes smoothing and trajectory by the corrected waypoints instead of the grid path:
+// with exactly the plan's count the result is the unlimited one bit for bit, in a smaller arena;
+// one fewer stops the smoothing with TDO_ERR_PATH_CAPACITY. A path needs two ends: 1 is refused.
+TEST(PipelineCapacity, GivenMaxWaypointsOneShortOfThePlan_WhenPlanned_ThenPathCapacityElseTheSame) {
+  const tdo_capacity full = pipeline_cap(kClearance);
+  TestPlanner ref(full);
+  ASSERT_EQ(ref.status(), TDO_OK);
+  ASSERT_EQ(load_room(ref.grid(), kClearance), TDO_OK);
+  const tdo_plan_request r = room_request();
+  tdo_plan_result want{};
+  ASSERT_EQ(tdo_planner_plan(ref.planner(), &r, &want), TDO_OK);
+  ASSERT_GE(want.n_waypoints, 3u) << "the room's plan should turn at the door";
+  ASSERT_LT(want.n_waypoints + 2u, full.max_path + 2u) << "too long a plan to tell";
+  const std::vector<unsigned char> want_bytes = bytes_of(want);
+  tdo_planner_config cfg_full{}, cfg_exact{};
+  cfg_full.cap = full;
+  cfg_exact.cap = full;
+  cfg_exact.cap.max_waypoints = want.n_waypoints;
+  EXPECT_LT(tdo_planner_footprint(&cfg_exact), tdo_planner_footprint(&cfg_full));
+  TestPlanner exact(cfg_exact.cap);
+  ASSERT_EQ(exact.status(), TDO_OK);
+  ASSERT_EQ(load_room(exact.grid(), kClearance), TDO_OK);
+  tdo_plan_result got{};
+  ASSERT_EQ(tdo_planner_plan(exact.planner(), &r, &got), TDO_OK);
+  EXPECT_TRUE(bytes_of(got) == want_bytes);
+  tdo_capacity short_cap = full;
+  short_cap.max_waypoints = want.n_waypoints - 1u;
+  TestPlanner shorter(short_cap);
+  ASSERT_EQ(shorter.status(), TDO_OK);
+  ASSERT_EQ(load_room(shorter.grid(), kClearance), TDO_OK);
+  EXPECT_EQ(tdo_planner_plan(shorter.planner(), &r, &got), TDO_ERR_PATH_CAPACITY);
+  tdo_planner_config one{};
+  one.cap = full;
+  one.cap.max_waypoints = 1u;
+  EXPECT_EQ(tdo_planner_footprint(&one), 0u);
+}
+
 TEST_F(Pipeline, GivenTheSameRequestTwiceWithAnotherInBetweenThenBitIdenticalResults) {
   const tdo_plan_request r = room_request();
   ASSERT_EQ(plan(r), TDO_OK);

@@ -63,6 +63,16 @@ typedef struct tdo_capacity {
                                  line scratch (8 bytes each). 0 = max_voxels (never too small). A
                                  grid with a longer axis: tdo_grid_reset returns
                                  TDO_ERR_MAP_CAPACITY. tdo_capacity_for_grid sets 0 */
+  uint32_t boxes_only;      /**< 1: obstacles are boxes only (.tdomap maps), so the grid keeps no
+                                 distance field (4 bytes per voxel less, and no line scratch);
+                                 tdo_grid_add_voxel returns TDO_ERR_MAP_CAPACITY. 0: voxel
+                                 obstacles too (voxel maps, OcTrees). tdo_capacity_for_grid
+                                 sets 0 */
+  uint32_t max_waypoints;   /**< waypoints after the correction (start and goal included); sizes
+                                 the smoothing and trajectory segment arrays (3 segments per
+                                 waypoint, about 280 bytes per waypoint). 0 = max_path + 2, the
+                                 most a correction can return. More: the smoothing stage returns
+                                 TDO_ERR_PATH_CAPACITY. tdo_capacity_for_grid sets 0 */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */

@@ -44,7 +44,8 @@ tdo_status tdo_grid_add_box(tdo_grid* grid, const tdo_box* box);
 
 /**
  * @brief Mark voxel (i,j,k) as an occupied cube (voxel maps, OcTrees).
- * @return TDO_ERR_INVALID_ARGUMENT when the voxel lies outside the grid.
+ * @return TDO_ERR_INVALID_ARGUMENT when the voxel lies outside the grid, TDO_ERR_MAP_CAPACITY when
+ *         the planner was configured for boxes only (tdo_capacity.boxes_only).
  */
 tdo_status tdo_grid_add_voxel(tdo_grid* grid, int32_t i, int32_t j, int32_t k);
 
