@@ -598,6 +598,30 @@ TEST(GridCapacity, GivenAMapLargerThanMaxVoxels_WhenReset_ThenMapCapacity) {
   EXPECT_EQ(tdo_grid_reset(pl.grid(), &huge), TDO_ERR_MAP_CAPACITY);
 }
 
+// Two grids of the same (reset) size get the same 6 random boxes and clearance 0.4 m; their blocked
+// voxels and 500 random point and segment distances must agree bit for bit.
+void expect_same_box_answers(tdo_grid* a, tdo_grid* b, uint64_t seed) {
+  tdo_test::Rng rng(seed);
+  for (int n = 0; n < 6; ++n) {
+    const tdo_vec3 lo{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const tdo_box box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 1.5), lo.y + rng.uniform(0.1, 1.5),
+                                   lo.z + rng.uniform(0.1, 1.5)}};
+    for (tdo_grid* g : {a, b}) ASSERT_EQ(tdo_grid_add_box(g, &box), TDO_OK);
+  }
+  for (tdo_grid* g : {a, b}) ASSERT_EQ(tdo_grid_finish(g, 0.4), TDO_OK);
+  EXPECT_EQ(tdo_grid_blocked_count(a), tdo_grid_blocked_count(b));
+  for (int n = 0; n < 500; ++n) {
+    const tdo_vec3 p{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const tdo_vec3 q{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
+    const double pa = tdo_collision_point_distance(a, p, 3.0);
+    const double pb = tdo_collision_point_distance(b, p, 3.0);
+    EXPECT_EQ(std::memcmp(&pa, &pb, sizeof pa), 0) << n;
+    const double sa = tdo_collision_segment_distance(a, p, q, 3.0);
+    const double sb = tdo_collision_segment_distance(b, p, q, 3.0);
+    EXPECT_EQ(std::memcmp(&sa, &sb, sizeof sa), 0) << n;
+  }
+}
+
 // max_axis sizes the distance field's line scratch: a longer axis is refused by name, and a grid
 // within it answers every query exactly as an unlimited one.
 TEST(GridCapacity, GivenAnAxisLongerThanMaxAxis_WhenReset_ThenMapCapacityElseTheSameDistances) {
@@ -618,22 +642,8 @@ TEST(GridCapacity, GivenAnAxisLongerThanMaxAxis_WhenReset_ThenMapCapacityElseThe
     EXPECT_EQ(tdo_grid_reset(a.grid(), &d), TDO_OK);
   }
   const tdo_grid_desc d{12, 10, 8, 0.5, tdo_vec3{-1.0, 2.0, 0.5}};
-  tdo_test::Rng rng(77);
   for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_reset(g, &d), TDO_OK);
-  for (int n = 0; n < 6; ++n) {
-    const tdo_vec3 lo{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
-    const tdo_box box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 1.5), lo.y + rng.uniform(0.1, 1.5),
-                                   lo.z + rng.uniform(0.1, 1.5)}};
-    for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_add_box(g, &box), TDO_OK);
-  }
-  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_finish(g, 0.4), TDO_OK);
-  EXPECT_EQ(tdo_grid_blocked_count(a.grid()), tdo_grid_blocked_count(b.grid()));
-  for (int n = 0; n < 500; ++n) {
-    const tdo_vec3 p{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
-    const double da = tdo_collision_point_distance(a.grid(), p, 3.0);
-    const double db = tdo_collision_point_distance(b.grid(), p, 3.0);
-    EXPECT_EQ(std::memcmp(&da, &db, sizeof da), 0) << n;
-  }
+  expect_same_box_answers(a.grid(), b.grid(), 77u);
 }
 
 // boxes_only drops the distance field (4 bytes per voxel) and its line scratch (8 bytes per voxel
@@ -653,25 +663,7 @@ TEST(GridCapacity, GivenBoxesOnly_WhenAVoxelIsAdded_ThenMapCapacityElseTheSameDi
   EXPECT_EQ(tdo_grid_add_voxel(a.grid(), 3, 4, 5), TDO_OK);
   EXPECT_EQ(tdo_grid_add_voxel(b.grid(), 3, 4, 5), TDO_ERR_MAP_CAPACITY);
   ASSERT_EQ(tdo_grid_reset(a.grid(), &d), TDO_OK);  // drop the voxel again
-  tdo_test::Rng rng(78);
-  for (int n = 0; n < 6; ++n) {
-    const tdo_vec3 lo{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
-    const tdo_box box{lo, tdo_vec3{lo.x + rng.uniform(0.1, 1.5), lo.y + rng.uniform(0.1, 1.5),
-                                   lo.z + rng.uniform(0.1, 1.5)}};
-    for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_add_box(g, &box), TDO_OK);
-  }
-  for (tdo_grid* g : {a.grid(), b.grid()}) ASSERT_EQ(tdo_grid_finish(g, 0.4), TDO_OK);
-  EXPECT_EQ(tdo_grid_blocked_count(a.grid()), tdo_grid_blocked_count(b.grid()));
-  for (int n = 0; n < 500; ++n) {
-    const tdo_vec3 p{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
-    const tdo_vec3 q{rng.uniform(-1.0, 5.0), rng.uniform(2.0, 7.0), rng.uniform(0.5, 4.5)};
-    const double pa = tdo_collision_point_distance(a.grid(), p, 3.0);
-    const double pb = tdo_collision_point_distance(b.grid(), p, 3.0);
-    EXPECT_EQ(std::memcmp(&pa, &pb, sizeof pa), 0) << n;
-    const double sa = tdo_collision_segment_distance(a.grid(), p, q, 3.0);
-    const double sb = tdo_collision_segment_distance(b.grid(), p, q, 3.0);
-    EXPECT_EQ(std::memcmp(&sa, &sb, sizeof sa), 0) << n;
-  }
+  expect_same_box_answers(a.grid(), b.grid(), 78u);
 }
 
 TEST(GridCapacity, GivenMoreBoxesThanMaxBoxes_WhenAdded_ThenBoxCapacity) {
