@@ -988,11 +988,24 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
     const uint8_t* order = ctx->by_angle[u.heading];
     const double g0 = u.g + q.pivot_cost;
     const double wh = q.h_weight * t.h;
+    // The deviation of a pivot's direction is at least its turn from the heading minus the
+    // heading's own deviation (triangle inequality of angles), theta / pi = sqrt(turn / lambda):
+    // mu times that, less 1e-7 for acos_fast's error, joins the lower bound, still growing with
+    // the turn. -1: not used (no deviation term or no turn table).
+    const bool dev_bound = q.dev_terms && q.mu > 0.0 && ctx->turn_lambda > 0.0 && t.n > 0.0;
+    const double dev_u = dev_bound ? deviation_to(ctx, back ? dir_opposite(u.heading) : u.heading,
+                                                  t.vx, t.vy, t.vz, t.n)
+                                   : 0.0;
+    const double inv_lambda = dev_bound ? 1.0 / ctx->turn_lambda : 0.0;
     for (int k = 0; k < kNumDirs && rest != 0; ++k) {
       const int d = order[k];
       if (((rest >> d) & 1u) == 0) continue;
       const double ng = g0 + turn_row[d];
-      const double lb = ng + wh;
+      double lb = ng + wh;
+      if (dev_bound) {
+        const double dev_lb = sqrt_nonneg(turn_row[d] * inv_lambda) - dev_u - 1e-7;
+        if (dev_lb > 0.0) lb += q.mu * dev_lb;
+      }
       if (lb > limit && lb > next + 1e-9 && !meets) break;
       rest &= ~(1u << d);
       const double f = priority_at(ctx, q, back, ng, d, t);
