@@ -400,9 +400,7 @@ size_t grid_footprint(const GridCapacity& cap) {
          tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(tdo_box) + 1u) +
          tdo_arena_round(static_cast<size_t>(cap.max_clear_cells) * 3u * sizeof(int32_t) + 1u) +
          // distance field and its EDT line scratch (none for boxes only)
-         (cap.boxes_only != 0u
-              ? 0u
-              : tdo_arena_round(static_cast<size_t>(cap.max_voxels) * sizeof(float))) +
+         tdo_arena_round(static_cast<size_t>(df_capacity(cap)) * sizeof(float)) +
          tdo_arena_round(line * sizeof(uint32_t)) + tdo_arena_round(line * sizeof(int32_t)) +
          // bucket index: cell offsets, box references, large boxes
          tdo_arena_round((static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) *
@@ -426,7 +424,7 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
     return TDO_ERR_ARENA_TOO_SMALL;
   const size_t line = df_line_capacity(cap);
   if (cap.boxes_only == 0u) {
-    g->df = static_cast<float*>(tdo_arena_alloc(arena, cap.max_voxels * sizeof(float)));
+    g->df = static_cast<float*>(tdo_arena_alloc(arena, df_capacity(cap) * sizeof(float)));
     g->df_f = static_cast<uint32_t*>(tdo_arena_alloc(arena, line * sizeof(uint32_t)));
     g->df_v = static_cast<int32_t*>(tdo_arena_alloc(arena, line * sizeof(int32_t)));
     if (g->df == nullptr || g->df_f == nullptr || g->df_v == nullptr)

@@ -35,6 +35,10 @@ constexpr uint32_t kRefsPerBoxDefault = kLargeBoxCells;  // so a derived capacit
 
 // Cells of the bucket index a grid of max_voxels may need (the cell edge grows until it fits).
 inline uint32_t bucket_cell_capacity(uint32_t max_voxels) { return max_voxels / 16u + 64u; }
+// Entries of the distance field: one per voxel, none for boxes only.
+inline uint32_t df_capacity(const GridCapacity& cap) {
+  return cap.boxes_only != 0u ? 0u : cap.max_voxels;
+}
 // Entries of the line scratch of the exact EDT: the longest axis a grid of this capacity can have.
 inline uint32_t df_line_capacity(const GridCapacity& cap) {
   if (cap.boxes_only != 0u) return 0u;

@@ -374,11 +374,6 @@ void sift_up(Side& s, uint32_t i, const OpenItem& it) {
   place(s, i, it);
 }
 
-inline void sift_up(Side& s, uint32_t i) {
-  const OpenItem it = s.open[i];  // a copy: sift_up overwrites position i
-  sift_up(s, i, it);
-}
-
 // Index of the smallest of the kArity items from `first` (all present), chosen by selects.
 inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
   const uint32_t a =
@@ -1025,8 +1020,7 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
   it.f = next;
   memcpy(&it.h, &left, sizeof(it.h));  // orders ties as the unsigned bits of h do (key_of)
   it.node = static_cast<Index>(ui | kDeferItem);
-  s.open[s.n_open] = it;
-  sift_up(s, s.n_open++);
+  sift_up(s, s.n_open++, it);
   return TDO_OK;
 }
 

@@ -503,21 +503,27 @@ TEST(SearchConstrained,
   narrow_penalised(kConstrained);
 }
 
-// Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
-// its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
-// path, deterministically; plain searches never retry and stay optimal.
-TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
-  const int32_t nx = 64, ny = 32, nz = 8;
-  const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
+// Capacities of the flood tests for n voxels, with the obstacle-aware retry: 27 states per voxel,
+// or in the 16-bit build the largest pool (2^15 - 1 per direction). The walls test fills it (a
+// full pool starts the retry as a spent budget share does, so the retry's Dijkstra runs with
+// 16-bit indices too); the pillar field fits, because partial expansion creates about as many
+// states as the search expands.
+tdo_capacity retry_cap(uint32_t n) {
 #if defined(TDO_SEARCH_INDEX16)
-  // 27 states per voxel are beyond 16-bit indices: the largest pool (a full pool starts the retry
-  // as a spent budget share does), so the retry's Dijkstra runs with 16-bit indices too
   tdo_capacity cap = make_cap(n, 0x7FFFu, n + 1u);
 #else
   tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
 #endif
   cap.exact_heuristic = 1u;
-  TestPlanner pl(cap);
+  return cap;
+}
+
+// Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
+// its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
+// path, deterministically; plain searches never retry and stay optimal.
+TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
+  const int32_t nx = 64, ny = 32, nz = 8;
+  TestPlanner pl(retry_cap(static_cast<uint32_t>(nx * ny * nz)));
   ASSERT_EQ(pl.status(), TDO_OK);
   Case c;
   c.map = VoxelMap(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
@@ -555,21 +561,13 @@ TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_
 }
 
 // The flood test must leave a first try alone that progresses steadily: a field of pillars that
-// the octile try crosses in 7,000 to 9,000 expansions (well within kTryMin = 20,000, and long
-// enough for the test to be applied: more than kTryMin / kTryProbe = 2,500, search.cpp) keeps
-// the octile try's path (fallback 0). A test that gave up at a smaller projection would retry.
+// the octile try crosses in 6,700 to 9,000 expansions (within kTryMin = 20,000, whose half a
+// projection must exceed to stop the try, and long enough for the test to be applied: more than
+// kTryMin / kTryProbe = 2,500, search.cpp) keeps the octile try's path (fallback 0). A test that
+// gave up at a smaller projection would retry.
 TEST(SearchPenalty, GivenAFieldOfPillars_WhenTheOctileTryProgresses_ThenItIsNotGivenUp) {
   const int32_t nx = 200, ny = 24, nz = 6;
-  const uint32_t n = static_cast<uint32_t>(nx * ny * nz);
-#if defined(TDO_SEARCH_INDEX16)
-  // The largest pool of 16-bit indices (2^15 - 1 states per direction) holds this query: partial
-  // expansion creates about as many states as the search expands.
-  tdo_capacity cap = make_cap(n, 0x7FFFu, n + 1u);
-#else
-  tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
-#endif
-  cap.exact_heuristic = 1u;
-  TestPlanner pl(cap);
+  TestPlanner pl(retry_cap(static_cast<uint32_t>(nx * ny * nz)));
   ASSERT_EQ(pl.status(), TDO_OK);
   Case c;
   c.map = VoxelMap(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
