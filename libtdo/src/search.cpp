@@ -193,6 +193,8 @@ struct Query {
   uint32_t meet[2];
   uint32_t expansions;
   uint32_t peak_open;  // largest open list (heap plus later buckets) of a side before its expansion
+  uint32_t peak_nodes;  // most states one side held at the end of a try
+  uint32_t states;      // states created, both sides, every try
 };
 
 // Offsets of the steps as a table: the voxel-state relaxation reads them instead of dividing.
@@ -1414,6 +1416,8 @@ tdo_status run_search(tdo_search* ctx, Query& q) {
     Index* slot = ctx->side[k].slot;
     const Node* nodes = ctx->side[k].nodes;
     const uint32_t n = ctx->side[k].n_nodes;
+    q.states += n;
+    if (n > q.peak_nodes) q.peak_nodes = n;
     for (uint32_t i = 0; i < n; ++i) slot[nodes[i].voxel] = kNil;
   }
   return st;
@@ -1680,6 +1684,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     const tdo_status st = run_search<false>(ctx, q);
     out->expansions = q.expansions;
     out->peak_open = q.peak_open;
+    out->peak_nodes = q.peak_nodes;
+    out->states = q.states;
     if (st != TDO_OK) return st;
     const tdo_status wp = write_path(ctx, q, out);
     out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
@@ -1716,6 +1722,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
         if (!exact_lower_bounds(ctx, g, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
           out->expansions = q.expansions;
           out->peak_open = q.peak_open;
+          out->peak_nodes = q.peak_nodes;
+          out->states = q.states;
           return TDO_ERR_NO_PATH;
         }
         ctx->side[k].hx = ctx->hdist[k];
@@ -1731,6 +1739,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   }
   out->expansions = q.expansions;
   out->peak_open = q.peak_open;
+  out->peak_nodes = q.peak_nodes;
+  out->states = q.states;
   if (st != TDO_OK) return st;
   return write_path(ctx, q, out);
 }

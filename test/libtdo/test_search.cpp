@@ -771,10 +771,12 @@ TEST(SearchCapacity, GivenATinyNodePool_WhenSearchingFar_ThenNodeCapacity) {
     }
 }
 
-// max_open: the peak a search reports is exactly what it needs. With max_open = peak the result is
-// the unlimited one bit for bit, one less stops with TDO_ERR_OPEN_CAPACITY (the planners live in
-// exactly footprint-sized blocks, so ASan sees any write past the smaller open list).
-TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapacityElseTheSame) {
+// A capacity the search reports it needs (peak_open for max_open, peak_nodes for max_nodes) is
+// exactly that: with the capacity at the peak the result is the unlimited one bit for bit, one less
+// stops with the capacity's status (the planners live in exactly footprint-sized blocks, so ASan
+// sees any write past the smaller arrays). Checks random queries of both kinds, with and without
+// turn penalties; returns the largest peak seen.
+uint32_t check_reported_peaks(bool nodes_not_open) {
   Rng rng(31);
   int checked = 0;
   uint32_t largest = 0;
@@ -785,27 +787,32 @@ TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapa
         const uint32_t nodes = 27u * 12u * 12u * 6u;
         tdo_capacity cap = make_cap(12u * 12u * 6u, nodes, 1000);
         TestPlanner free_pl(cap);
-        ASSERT_EQ(free_pl.status(), TDO_OK);
-        ASSERT_EQ(tdo_test::load_voxels(free_pl.grid(), c.map), TDO_OK);
+        EXPECT_EQ(free_pl.status(), TDO_OK);
+        EXPECT_EQ(tdo_test::load_voxels(free_pl.grid(), c.map), TDO_OK);
         const Result full =
             run(free_pl.search(), make_input(free_pl.grid(), c.ps, c.pg, kind, lambda, lambda));
         if (full.status != TDO_OK) continue;
-        const uint32_t peak = full.out.peak_open;
+        const uint32_t peak = nodes_not_open ? full.out.peak_nodes : full.out.peak_open;
         if (peak < 2u) continue;  // a one-step query never holds more than the root
+        // Every expansion closes a state it created (both roots included).
+        EXPECT_GE(full.out.states, full.out.expansions);
+        EXPECT_LE(full.out.peak_nodes, full.out.states);
         SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
                                           << " lambda " << lambda << " peak " << peak);
-        for (uint32_t max_open : {peak, peak - 1u}) {
-          cap.max_open = max_open;
+        for (uint32_t limit : {peak, peak - 1u}) {
+          (nodes_not_open ? cap.max_nodes : cap.max_open) = limit;
           TestPlanner pl(cap);
-          ASSERT_EQ(pl.status(), TDO_OK);
-          ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+          EXPECT_EQ(pl.status(), TDO_OK);
+          EXPECT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
           const Result r =
               run(pl.search(), make_input(pl.grid(), c.ps, c.pg, kind, lambda, lambda));
-          if (max_open == peak) {
+          if (limit == peak) {
             EXPECT_TRUE(identical(full, r));
-            EXPECT_EQ(r.out.peak_open, peak);
+            EXPECT_EQ(nodes_not_open ? r.out.peak_nodes : r.out.peak_open, peak);
+            EXPECT_EQ(r.out.states, full.out.states);
           } else {
-            EXPECT_EQ(r.status, TDO_ERR_OPEN_CAPACITY) << tdo_status_str(r.status);
+            EXPECT_EQ(r.status, nodes_not_open ? TDO_ERR_NODE_CAPACITY : TDO_ERR_OPEN_CAPACITY)
+                << tdo_status_str(r.status);
           }
         }
         largest = peak > largest ? peak : largest;
@@ -813,7 +820,15 @@ TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapa
       }
   }
   EXPECT_GE(checked, 20);
-  EXPECT_GE(largest, 100u);  // some queries had a real open list
+  return largest;
+}
+
+TEST(SearchCapacity, GivenANodePoolOneShortOfThePeak_WhenSearching_ThenNodeCapacityElseTheSame) {
+  EXPECT_GE(check_reported_peaks(true), 100u);  // some queries held many states
+}
+
+TEST(SearchCapacity, GivenAnOpenListOneShortOfThePeak_WhenSearching_ThenOpenCapacityElseTheSame) {
+  EXPECT_GE(check_reported_peaks(false), 100u);  // some queries had a real open list
   // The open list is carved for max_open + 27 items only.
   tdo_planner_config a{}, b{};
   a.cap = make_cap(1000, 27000, 100);

@@ -548,6 +548,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       }
     }
     std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
+    std::printf("states           %" PRIu32 " (both directions; at most %" PRIu32
+                " in one: --max-nodes)\n",
+                res.search.states, res.search.peak_nodes);
     std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", res.search.peak_open);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);

@@ -85,6 +85,9 @@ typedef struct tdo_search_output {
   uint32_t peak_open;    /**< most open-list items (states waiting for expansion and items of
                               deferred children) a direction held before one of its expansions,
                               every try counted: the smallest max_open this query runs with */
+  uint32_t peak_nodes;   /**< most states a direction held in any try: the smallest max_nodes
+                              this query runs with */
+  uint32_t states;       /**< states created, both directions, every try (the roots included) */
   uint32_t fallback;     /**< turn-penalised search: 0 = found by the first try (octile heuristic);
                               1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
