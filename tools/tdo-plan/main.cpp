@@ -65,6 +65,8 @@ struct Options {
   long long max_voxels = 100000000; /**< hidden: voxel capacity of the planner */
   long long arena_bytes = -1;       /**< hidden: arena size override (-1 = footprint) */
   bool clearance_given = false;
+  double resolution = 0.0; /**< m, voxel edge of an OcTree map (when given) */
+  bool resolution_given = false;
 };
 
 std::string fmt(double v, int precision = 6) {
@@ -108,6 +110,7 @@ void validate(const Options& o) {
   if (o.theta_max > 180.0)
     throw BadInput{"--theta-max must be at most 180 degrees, got " + fmt(o.theta_max)};
   if (o.clearance_given) check_nonneg(o.clearance, "--clearance");
+  if (o.resolution_given) check_positive(o.resolution, "--resolution");
   check_positive(o.v_max, "--v-max");
   check_positive(o.a_max, "--a-max");
   check_positive(o.j_max, "--j-max");
@@ -297,8 +300,10 @@ const char* kind_name(tdo_io::MapKind k) {
   return "?";
 }
 
-nlohmann::json params_json(const Options& o, double clearance, long long max_expansions) {
+nlohmann::json params_json(const Options& o, double clearance, long long max_expansions,
+                           double resolution) {
   nlohmann::json p;
+  p["resolution"] = resolution;
   p["lambda"] = o.lambda;
   p["mu"] = o.mu;
   p["theta_max_deg"] = o.theta_max;
@@ -487,7 +492,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     nlohmann::json j;
     j["status"] = tdo_status_str(st);
     j["planner"] = o.planner;
-    j["params"] = params_json(o, clearance, o.max_expansions);
+    j["params"] = params_json(o, clearance, o.max_expansions, map.desc.res);
     j["grid_path"] = points_json(res.grid_path, res.n_grid_path);
     if (res.reached >= TDO_PLAN_CORRECT)
       j["waypoints"] = points_json(res.waypoints, res.n_waypoints);
@@ -635,8 +640,10 @@ int run(int argc, char** argv) {
       "Plan a path on a voxel map with libtdo.\n"
       "Exit status: 0 planned, 1 no plan (status printed), 2 bad input.",
       "tdo-plan"};
-  app.add_option("--map", o.map_path, "map file: .tdomap, MovingAI .3dmap (OctoMap .bt/.ot later)")
+  app.add_option("--map", o.map_path, "map file: .tdomap, MovingAI .3dmap, OctoMap OcTree .bt/.ot")
       ->required();
+  app.add_option("--resolution", o.resolution,
+                 "m, voxel edge an OcTree map (.bt/.ot) is voxelized at (default: the tree's)");
   app.add_option("--start", o.start, "start X Y Z in m (default: the map's 'start')")->expected(3);
   app.add_option("--goal", o.goal, "goal X Y Z in m (default: the map's 'goal')")->expected(3);
   app.add_option("--planner", o.planner,
@@ -717,6 +724,7 @@ int run(int argc, char** argv) {
     throw BadInput{e.what()};
   }
   o.clearance_given = app.count("--clearance") > 0;
+  o.resolution_given = app.count("--resolution") > 0;
 
   // Planner presets; options given on the command line win.
   const bool tdo = o.planner == "tdo";
@@ -731,7 +739,13 @@ int run(int argc, char** argv) {
 
   tdo_io::Map map;
   std::string err;
-  if (!tdo_io::load_map(o.map_path, &map, &err)) throw BadInput{err};
+  tdo_io::LoadOptions load;
+  load.resolution = o.resolution_given ? o.resolution : 0.0;  // 0: the tree's
+  load.max_voxels = static_cast<uint64_t>(o.max_voxels);
+  if (!tdo_io::load_map(o.map_path, load, &map, &err)) throw BadInput{err};
+  if (o.resolution_given && map.kind != tdo_io::MapKind::OctoMap)
+    throw BadInput{"--resolution applies to OcTree maps (.bt/.ot) only; " + o.map_path +
+                   " gives its own grid"};
   const double clearance =
       o.clearance_given ? o.clearance : (map.kind == tdo_io::MapKind::MovingAI ? 0.0 : 0.5);
 
