@@ -1699,6 +1699,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
   // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
   // the free space. The tries share the expansion budget; the last one gets all that is left.
+  // One table for both sides (the goal's, with the landmark bound D(start) - D(v) backward) was
+  // tried and not kept: rooted at the landmark, the backward side learns nothing about the
+  // direction to the start (geb079 2.7 times the expansions; docs/performance.md).
   const uint32_t budget = q.budget;
   const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
   const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
