@@ -453,7 +453,7 @@ void shorten(Run& r, uint32_t* m_io, uint32_t* critical) {
     removed -= m;
     if (removed == 0u && round > 0u) break;
   }
-  if (budget_left && m >= 3u) budget_left = tighten(r, m);
+  if (budget_left && m >= 3u) (void)tighten(r, m);  // out of budget: keeps what it has
   // Drop points whose neighbours see each other; count the others.
   uint32_t crit = 0;
   uint32_t k = 1;
