@@ -80,12 +80,15 @@ struct Run {
   uint32_t hint;     // box that failed the last check (segment_clear_hinted)
 };
 
-// 1 clear, 0 not clear, -1 budget exhausted.
-int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) {
+// [a, b] at `clearance` (m, >= the run's): 1 clear, 0 not clear, -1 budget exhausted.
+int check_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double clearance) {
   if (r.checks >= r.budget) return -1;
   ++r.checks;
-  return tdo_internal::segment_clear_hinted(r.grid, a, b, r.clearance, &r.hint) ? 1 : 0;
+  return tdo_internal::segment_clear_hinted(r.grid, a, b, clearance, &r.hint) ? 1 : 0;
 }
+
+// [a, b] at the run's clearance.
+int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) { return check_at(r, a, b, r.clearance); }
 
 bool memo_failed(const tdo_correct* ctx, uint32_t oi, uint32_t oj) {
   const uint32_t* m = ctx->memo + static_cast<size_t>(oi) * kMemo;
@@ -235,6 +238,8 @@ tdo_status multiscale(Run& r, uint32_t* m_io, double turn_threshold, uint32_t* c
 // - relocation: an interior point moves a fraction s in kRelocS of the way to the nearest point
 //   of the chord between its neighbours when both new segments are clear (the sum of the two
 //   distances is convex in the point, so it never grows).
+// After the rounds, one tightening pass (below: small axis moves of each interior point that
+// shorten the polyline without tighter corners or less room from the obstacles).
 // It stops early (keeping the valid polyline it has) when the check budget is spent. Finally every
 // interior point whose chord between its neighbours is clear is dropped, so the safety-critical
 // count stays exact.
@@ -316,6 +321,120 @@ bool relocate_sweep(Run& r, uint32_t m) {
   return true;
 }
 
+// Tightening after the shortcut rounds, one pass over the interior waypoints: a pattern search
+// moves each in axis steps of res/4, res/8 and res/16 (at most kTightMoves moves per point, each
+// the first direction of the largest step that passes). A move is accepted only when
+// - the polyline gets shorter;
+// - the turns at the point and its two neighbours do not add up to more (a move that shifts the
+//   turning onto the neighbours makes the flight rougher);
+// - the room cost of those three corners, the sum of turn / shorter adjacent segment, grows by
+//   at most kRoomTol (relative): the smoothing fits each corner's radius into the room its
+//   segments leave (smooth.cpp), and integral kappa^2 of such a corner goes as turn / radius;
+// - each new segment keeps max(clearance, min(d, clearance + kRoomMargin)), d the exact
+//   distance of the segment it replaces: waypoints are pulled tight only where there is room,
+//   and a segment never gets closer to the obstacles than the one it replaces.
+// A direction whose clearance check failed is not tried again for that point (smaller steps
+// towards the same obstacle fail as well, nearly always; skipping them only keeps a point).
+// Without the last three rules the search met the length goal on Map2 but hugged the clearance
+// and made the smoothing's corners tighter (docs/performance.md, "Why the rest is not met").
+constexpr uint32_t kTightMoves = 6u;                     // accepted moves per point at most
+constexpr double kTightStep[3] = {0.25, 0.125, 0.0625};  // of res, largest first
+constexpr double kRoomMargin = 0.5;  // m beyond the clearance kept where a segment had it
+constexpr double kRoomTol = 0.005;   // relative growth of the room cost allowed per move
+constexpr double kShorterBy = 1e-9;  // m, a move must shorten the polyline by more
+
+double dist3(const tdo_vec3& a, const tdo_vec3& b) {
+  const tdo_vec3 d = sub(b, a);
+  return sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+}
+
+// Turn sum (rad) and room cost (rad/m) of the corners k-1, k, k+1 with p[k] replaced by q;
+// false for a zero-length segment there.
+bool corner_costs(const tdo_vec3* p, uint32_t m, uint32_t k, const tdo_vec3& q, double* turns,
+                  double* room) {
+  *turns = 0.0;
+  *room = 0.0;
+  for (uint32_t j = k - 1u; j <= k + 1u; ++j) {
+    if (j == 0u || j + 1u >= m) continue;
+    const tdo_vec3& a = j - 1u == k ? q : p[j - 1u];
+    const tdo_vec3& b = j == k ? q : p[j];
+    const tdo_vec3& c = j + 1u == k ? q : p[j + 1u];
+    const double l1 = dist3(a, b), l2 = dist3(b, c);
+    if (!(l1 > 0.0) || !(l2 > 0.0)) return false;
+    const double th = turn_angle(a, b, c);
+    *turns += th;
+    *room += th / (l1 < l2 ? l1 : l2);
+  }
+  return true;
+}
+
+// min(cap, exact distance) of [a, b], counted as a check; -1 when the budget ran out.
+double capped_distance(Run& r, const tdo_vec3& a, const tdo_vec3& b, double cap) {
+  if (r.checks >= r.budget) return -1.0;
+  ++r.checks;
+  return tdo_collision_segment_distance(r.grid, a, b, cap);
+}
+
+// The pass; returns false when the budget ran out.
+bool tighten(Run& r, uint32_t m) {
+  tdo_vec3* p = r.ctx->pts;
+  const double res = tdo_grid_get_desc(r.grid).res;
+  const double cap = r.clearance + kRoomMargin;
+  double carried = -1.0;  // capped distance of [p[k-1], p[k]] when known, else -1
+  for (uint32_t k = 1; k + 1u < m; ++k) {
+    const tdo_vec3 a = p[k - 1u], c = p[k + 1u];
+    double d1 = carried, d2 = -1.0;  // capped distances of the current segments, -1 unknown
+    carried = -1.0;
+    uint32_t failed = 0u;  // bit per direction whose clearance check failed
+    bool moved = true;
+    // Bounded: kTightMoves moves, each of at most 3 x 6 candidates.
+    for (uint32_t mv = 0; mv < kTightMoves && moved; ++mv) {
+      moved = false;
+      const tdo_vec3 b = p[k];
+      double turns0 = 0.0, room0 = 0.0;
+      if (!corner_costs(p, m, k, b, &turns0, &room0)) break;
+      const double len0 = dist3(a, b) + dist3(b, c);
+      for (double step : kTightStep) {
+        const double h = step * res;
+        for (uint32_t dir = 0; dir < 6u && !moved; ++dir) {
+          if ((failed >> dir & 1u) != 0u) continue;
+          tdo_vec3 q = b;
+          const double dh = (dir & 1u) != 0u ? -h : h;
+          if (dir < 2u)
+            q.x += dh;
+          else if (dir < 4u)
+            q.y += dh;
+          else
+            q.z += dh;
+          if (!(dist3(a, q) + dist3(q, c) < len0 - kShorterBy)) continue;
+          double turns = 0.0, room = 0.0;
+          if (!corner_costs(p, m, k, q, &turns, &room)) continue;
+          if (turns > turns0 || room > room0 * (1.0 + kRoomTol)) continue;
+          // The old segments' distances, only for a candidate that got this far.
+          if (d1 < 0.0) d1 = capped_distance(r, a, b, cap);
+          if (d2 < 0.0 && d1 >= 0.0) d2 = capped_distance(r, b, c, cap);
+          if (d1 < 0.0 || d2 < 0.0) return false;
+          int ok = check_at(r, a, q, d1 > r.clearance ? d1 : r.clearance);
+          if (ok == 1) ok = check_at(r, q, c, d2 > r.clearance ? d2 : r.clearance);
+          if (ok < 0) return false;
+          if (ok == 0) {
+            failed |= 1u << dir;
+            continue;
+          }
+          p[k] = q;
+          r.ctx->orig[k] = kNone;
+          moved = true;
+          d1 = d2 = -1.0;  // both segments changed
+        }
+        if (moved) break;
+      }
+    }
+    // [p[k], p[k+1]] is the next point's first segment; its distance carries over when known.
+    if (!moved) carried = d2;
+  }
+  return true;
+}
+
 void shorten(Run& r, uint32_t* m_io, uint32_t* critical) {
   tdo_correct* ctx = r.ctx;
   uint32_t m = *m_io;
@@ -334,6 +453,7 @@ void shorten(Run& r, uint32_t* m_io, uint32_t* critical) {
     removed -= m;
     if (removed == 0u && round > 0u) break;
   }
+  if (budget_left && m >= 3u) (void)tighten(r, m);  // out of budget: keeps what it has
   // Drop points whose neighbours see each other; count the others.
   uint32_t crit = 0;
   uint32_t k = 1;

@@ -57,8 +57,11 @@ typedef struct tdo_correct_input {
                                are tried first at each scale (sweep A) */
   int shorten;            /**< MULTISCALE only: 1 = after the scales, partial shortcuts (a
                                waypoint run is replaced by one point on a later segment whose
-                               chord is verified at clearance); fewer or equal waypoints, shorter
-                               polyline. 0 = off (the paper's correction alone) */
+                               chord is verified at clearance), relocation towards the chord of
+                               the neighbours, then small moves of each waypoint that keep the
+                               turns, the corners' room and the segments' room from obstacles;
+                               fewer or equal waypoints, shorter polyline. 0 = off (the paper's
+                               correction alone) */
 } tdo_correct_input;
 
 /** Output polyline P2; storage in the context, valid until the next run. */
