@@ -29,22 +29,21 @@
 
 #include "collision_internal.h"
 #include "tdo/collision.h"
+#include "vec3.h"
 
 namespace {
+
+using tdo_internal::finite3;
+using tdo_internal::norm;
+using tdo_internal::sub;
 
 constexpr double kCollinearRad = 1e-9;  // rad, turns below this are "collinear"
 constexpr uint32_t kMemo = 8;           // failed chords remembered per start point
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr uint32_t kScales[3] = {3u, 5u, 7u};
 
-bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-
 bool same(const tdo_vec3& a, const tdo_vec3& b) {
   return !(a.x < b.x || a.x > b.x || a.y < b.y || a.y > b.y || a.z < b.z || a.z > b.z);
-}
-
-tdo_vec3 sub(const tdo_vec3& a, const tdo_vec3& b) {
-  return tdo_vec3{a.x - b.x, a.y - b.y, a.z - b.z};
 }
 
 // Turn angle (rad) at b of the polyline a -> b -> c, in [0, pi]; 0 for a zero-length side.
@@ -343,10 +342,7 @@ constexpr double kRoomMargin = 0.5;  // m beyond the clearance kept where a segm
 constexpr double kRoomTol = 0.005;   // relative growth of the room cost allowed per move
 constexpr double kShorterBy = 1e-9;  // m, a move must shorten the polyline by more
 
-double dist3(const tdo_vec3& a, const tdo_vec3& b) {
-  const tdo_vec3 d = sub(b, a);
-  return sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-}
+double dist3(const tdo_vec3& a, const tdo_vec3& b) { return norm(sub(b, a)); }
 
 // Turn sum (rad) and room cost (rad/m) of the corners k-1, k, k+1 with p[k] replaced by q;
 // false for a zero-length segment there.

@@ -988,7 +988,7 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
     // The deviation of a pivot's direction is at least its turn from the heading minus the
     // heading's own deviation (triangle inequality of angles), theta / pi = sqrt(turn / lambda):
     // mu times that, less 1e-7 for acos_fast's error, joins the lower bound, still growing with
-    // the turn. -1: not used (no deviation term or no turn table).
+    // the turn (dev_bound false: no deviation term, no turn table or no target direction).
     const bool dev_bound = q.dev_terms && q.mu > 0.0 && ctx->turn_lambda > 0.0 && t.n > 0.0;
     const double dev_u = dev_bound ? deviation_to(ctx, back ? dir_opposite(u.heading) : u.heading,
                                                   t.vx, t.vy, t.vz, t.n)
@@ -1399,11 +1399,11 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
     // Children whose f is not above the next queued f plus the margin are created now (those up
     // to the next f would be popped before anything else), the rest are deferred.
+    const double next_f = kHeaded ? top_of(s) : 0.0;
     const tdo_status st =
-        kHeaded
-            ? expand_headed(ctx, q, back, ui,
-                            (top_of(s) > s.f_cur ? top_of(s) : s.f_cur) + q.defer_margin, kAllMoves)
-            : expand_voxel(ctx, q, back, ui);
+        kHeaded ? expand_headed(ctx, q, back, ui,
+                                (next_f > s.f_cur ? next_f : s.f_cur) + q.defer_margin, kAllMoves)
+                : expand_voxel(ctx, q, back, ui);
     if (st != TDO_OK) return st;
   }
 }
@@ -1547,6 +1547,14 @@ size_t side_bytes(const tdo_search_config& cfg) {
 
 bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
+// The query's counters (expansions, open-list and state peaks, states), every try counted.
+void report_counts(const Query& q, tdo_search_output* out) {
+  out->expansions = q.expansions;
+  out->peak_open = q.peak_open;
+  out->peak_nodes = q.peak_nodes;
+  out->states = q.states;
+}
+
 }  // namespace
 }  // namespace tdo_internal
 
@@ -1682,10 +1690,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
     const tdo_status st = run_search<false>(ctx, q);
-    out->expansions = q.expansions;
-    out->peak_open = q.peak_open;
-    out->peak_nodes = q.peak_nodes;
-    out->states = q.states;
+    report_counts(q, out);
     if (st != TDO_OK) return st;
     const tdo_status wp = write_path(ctx, q, out);
     out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
@@ -1723,10 +1728,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     if (t == 0) {
       for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
         if (!exact_lower_bounds(ctx, g, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
-          out->expansions = q.expansions;
-          out->peak_open = q.peak_open;
-          out->peak_nodes = q.peak_nodes;
-          out->states = q.states;
+          report_counts(q, out);
           return TDO_ERR_NO_PATH;
         }
         ctx->side[k].hx = ctx->hdist[k];
@@ -1740,10 +1742,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     q.dev_terms = 0;
     out->fallback = static_cast<uint32_t>(t + 1);
   }
-  out->expansions = q.expansions;
-  out->peak_open = q.peak_open;
-  out->peak_nodes = q.peak_nodes;
-  out->states = q.states;
+  report_counts(q, out);
   if (st != TDO_OK) return st;
   return write_path(ctx, q, out);
 }

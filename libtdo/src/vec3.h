@@ -1,4 +1,4 @@
-// Small inline vector helpers for the follower and the simulator (internal).
+// Small inline vector helpers of the library's stages (internal).
 #ifndef TDO_SRC_VEC3_H
 #define TDO_SRC_VEC3_H
 

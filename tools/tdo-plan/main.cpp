@@ -557,10 +557,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
                 " in one: --max-nodes)\n",
                 res.search.states, res.search.peak_nodes);
     std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", res.search.peak_open);
-    if (res.search.fallback > 0)  // tdo_search_output.fallback: which try found the path
+    if (res.search.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
       std::printf("search_try       retry %" PRIu32
-                  " (after the octile try: grid-distance heuristic, weight %s)\n",
-                  res.search.fallback, res.search.fallback == 1 ? "2" : "10");
+                  " (after the octile try: grid-distance heuristic)\n",
+                  res.search.fallback);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
