@@ -3,11 +3,10 @@
 
 #include "directions.h"
 #include "grid_internal.h"
+#include "vec3.h"
 
 namespace tdo_internal {
 namespace {
-
-bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 int64_t index_of(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
   return i + j * g->stride_y + k * g->stride_z;

@@ -6,6 +6,10 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "vec3.h"
+
+using tdo_internal::finite3;
+
 namespace {
 
 struct V {
@@ -23,7 +27,6 @@ inline V cross(const V& a, const V& b) {
 }
 inline double norm(const V& a) { return sqrt(dot(a, a)); }
 inline V lerp(const V& a, const V& b, double t) { return add(a, mul(sub(b, a), t)); }
-inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 constexpr V kZero{0.0, 0.0, 0.0};
 

@@ -19,6 +19,7 @@
 
 #include "directions.h"
 #include "grid_internal.h"
+#include "vec3.h"
 
 namespace tdo_internal {
 namespace {
@@ -1544,8 +1545,6 @@ size_t side_bytes(const tdo_search_config& cfg) {
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(open_entries(cfg)) * sizeof(OpenItem));
 }
-
-bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 // The query's counters (expansions, open-list and state peaks, states), every try counted.
 void report_counts(const Query& q, tdo_search_output* out) {

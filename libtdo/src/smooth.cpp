@@ -29,6 +29,9 @@
 #include <string.h>
 
 #include "tdo/collision.h"
+#include "vec3.h"
+
+using tdo_internal::finite3;
 
 namespace {
 
@@ -66,7 +69,6 @@ inline V cross(const V& a, const V& b) {
   return V{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline double norm(const V& a) { return sqrt(dot(a, a)); }
-inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 inline bool positive(double x) { return isfinite(x) && x > 0.0; }
 inline double dmin(double a, double b) { return a < b ? a : b; }
 inline double dmax(double a, double b) { return a > b ? a : b; }

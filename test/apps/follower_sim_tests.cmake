@@ -1,12 +1,11 @@
 # Tests of tdo-avoid and tdo-sim (included from CMakeLists.txt): their nodes in-process over
-# memq://, the whole chain planner + follower + simulator on Map6, and the programs themselves.
-if(TARGET tdo::avoid_node)
-  add_executable(tdo_avoid_node_tests test_avoid_node.cpp)
-  target_link_libraries(tdo_avoid_node_tests PRIVATE tdo::avoid_node GTest::gtest_main)
-  tdo_set_warnings(tdo_avoid_node_tests)
-  gtest_discover_tests(tdo_avoid_node_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
-                       PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
-endif()
+# memq://, the whole chain planner + follower + simulator on Map6, and the programs themselves. The
+# simulator (tdo::sim_node, tdo-sim) reads map files, so it needs the tools (TDO_BUILD_TOOLS).
+add_executable(tdo_avoid_node_tests test_avoid_node.cpp)
+target_link_libraries(tdo_avoid_node_tests PRIVATE tdo::avoid_node GTest::gtest_main)
+tdo_set_warnings(tdo_avoid_node_tests)
+gtest_discover_tests(tdo_avoid_node_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                     PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
 if(TARGET tdo::sim_node)
   add_executable(tdo_sim_node_tests test_sim_node.cpp)
   target_link_libraries(tdo_sim_node_tests PRIVATE tdo::sim_node GTest::gtest_main)
@@ -15,7 +14,7 @@ if(TARGET tdo::sim_node)
   gtest_discover_tests(tdo_sim_node_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
                        PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
 endif()
-if(TARGET tdo::avoid_node AND TARGET tdo::sim_node AND TARGET tdo::planner_node)
+if(TARGET tdo::sim_node)
   add_executable(tdo_chain_tests test_chain.cpp)
   target_link_libraries(tdo_chain_tests PRIVATE tdo::planner_node tdo::avoid_node tdo::sim_node
                                                 GTest::gtest_main)
@@ -26,33 +25,14 @@ if(TARGET tdo::avoid_node AND TARGET tdo::sim_node AND TARGET tdo::planner_node)
 endif()
 
 # The programs: --help, a bad option, a bounded memq:// run, a bad URL, SIGINT/SIGTERM.
-function(tdo_app_run_test app name code regex)
-  string(JOIN "|" args ${ARGN})
-  string(REPLACE "-" "_" id ${app})
-  add_test(NAME apps.${id}_${name}
-           COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:${app}> "-DARGS=${args}" -DCODE=${code}
-                   "-DOUTPUT_REGEX=${regex}" -P ${CMAKE_CURRENT_SOURCE_DIR}/run_expect.cmake)
-  set_tests_properties(apps.${id}_${name} PROPERTIES LABELS "apps" TIMEOUT 60)
-endfunction()
-function(tdo_app_signal_tests app)
-  string(REPLACE "-" "_" id ${app})
-  foreach(sig INT TERM)
-    add_test(NAME apps.${id}_stops_on_sig${sig}
-             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/signal_stop_app.sh ${app}
-                     $<TARGET_FILE:${app}> ${sig} ${ARGN})
-    set_tests_properties(apps.${id}_stops_on_sig${sig} PROPERTIES LABELS "apps" TIMEOUT 60)
-  endforeach()
-endfunction()
-if(TARGET tdo-avoid)
-  tdo_app_run_test(tdo-avoid help 0 "--follower" --help)
-  tdo_app_run_test(tdo-avoid bad_option 2 "frobnicate" --frobnicate)
-  tdo_app_run_test(tdo-avoid bad_follower 2 "--follower" --follower potential)
-  tdo_app_run_test(tdo-avoid bad_rate 2 "rate" --lcm-url memq:// --rate 0)
-  tdo_app_run_test(tdo-avoid bad_url 2 "cannot start LCM" --lcm-url nonsense://x)
-  tdo_app_run_test(tdo-avoid memq_run 0 "stopped: 0 received, 0 setpoints"
-                   --lcm-url memq:// --duration 0.3 --max-size 16 16 8 --follower apf)
-  tdo_app_signal_tests(tdo-avoid --lcm-url memq:// --max-size 16 16 8)
-endif()
+tdo_app_run_test(tdo-avoid help 0 "--follower" --help)
+tdo_app_run_test(tdo-avoid bad_option 2 "frobnicate" --frobnicate)
+tdo_app_run_test(tdo-avoid bad_follower 2 "--follower" --follower potential)
+tdo_app_run_test(tdo-avoid bad_rate 2 "rate" --lcm-url memq:// --rate 0)
+tdo_app_run_test(tdo-avoid bad_url 2 "cannot start LCM" --lcm-url nonsense://x)
+tdo_app_run_test(tdo-avoid memq_run 0 "stopped: 0 received, 0 setpoints"
+                 --lcm-url memq:// --duration 0.3 --max-size 16 16 8 --follower apf)
+tdo_app_signal_tests(tdo-avoid --lcm-url memq:// --max-size 16 16 8)
 if(TARGET tdo-sim)
   tdo_app_run_test(tdo-sim help 0 "--lockstep" --help)
   tdo_app_run_test(tdo-sim bad_option 2 "frobnicate" --frobnicate)
