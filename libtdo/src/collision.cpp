@@ -235,24 +235,78 @@ inline SpanBox span_box(const double p0[3], const double p1[3]) {
   return s;
 }
 
-// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, then the
-// exact distance.
+// Quick decisions before an exact segment-to-box distance. Every candidate point the exact
+// computation evaluates lies within a few ulps of the coordinates (~1e-15 * scale) of the true
+// segment, and every squared distance it sums is within a few ulps relative. So a lower bound
+// (the distance between the segment's bounding box and the box) that exceeds the limit by `tol`,
+// or a point of the segment closer than the limit by `tol`, gives the exact computation's
+// decision; `tol` is kQuickRel * (1 + limit + scale) m, scale the largest coordinate magnitude
+// in use, far above that rounding and far below any clearance that matters.
+constexpr double kQuickRel = 1e-9;
+
+// Largest coordinate magnitude (m) of the grid bounds: every segment of a box query lies inside.
+inline double bounds_scale(const tdo_grid* g) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const double e[3] = {o[0] + d.nx * d.res, o[1] + d.ny * d.res, o[2] + d.nz * d.res};
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) s = dmax(s, dmax(fabs(o[i]), fabs(e[i])));
+  return s;
+}
+
+inline double quick_tol(double limit, double scale) { return kQuickRel * (1.0 + limit + scale); }
+
+// Squared distance (m^2) between the box [lo, hi] and the span box: at most the squared distance
+// of every point of the piece.
+inline double span_gap2(const SpanBox& sb, const double lo[3], const double hi[3]) {
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = dmax(lo[i] - sb.mx[i], 0.0) + dmax(sb.mn[i] - hi[i], 0.0);
+    s += g * g;
+  }
+  return s;
+}
+
+// Squared distance (m^2) from [lo, hi] to the point of [a, b] nearest to the box's centre line
+// projection (the centre projected onto the segment): an upper bound of the segment's distance.
+inline double centre_point_d2(const double a[3], const double b[3], const double lo[3],
+                              const double hi[3]) {
+  double dd = 0.0, wd = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = b[i] - a[i];
+    dd += d * d;
+    wd += (0.5 * (lo[i] + hi[i]) - a[i]) * d;
+  }
+  double t = dd > 0.0 ? wd / dd : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  double p[3];
+  seg_point(a, b, t, p);
+  return point_box_d2(p, lo, hi);
+}
+
+// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, the span
+// box's distance (quick: clear), then the exact distance. `tol` = quick_tol(c, scale).
 inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
-                      double c) {
+                      double c, double tol) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
   for (int i = 0; i < 3; ++i)
     if (lo[i] - c > sb.mx[i] || hi[i] + c < sb.mn[i]) return true;
+  const double ct = c + tol;
+  if (span_gap2(sb, lo, hi) >= ct * ct) return true;
   return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
 }
 
 // Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
+// `scale` as for quick_tol: a span box farther than *best by the quick tolerance cannot lower it.
 inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
-                    double* best) {
+                    double scale, double* best) {
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
   for (int i = 0; i < 3; ++i)  // far_apart with r = *best
     if (lo[i] - *best > sb.mx[i] || hi[i] + *best < sb.mn[i]) return;
+  const double bt = *best + quick_tol(*best, scale);
+  if (span_gap2(sb, lo, hi) >= bt * bt) return;
   const double d2 = segment_box_d2(p0, p1, lo, hi);
   if (d2 < *best * *best) *best = sqrt(d2);
 }
@@ -261,9 +315,10 @@ inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], co
 bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c, uint32_t* hit) {
   if (g->n_boxes == 0) return true;
   const SpanBox whole = span_box(a, b);
+  const double tol = quick_tol(c, bounds_scale(g));
   if (!(c <= g->bucket_reach)) {
     for (uint32_t k = 0; k < g->n_boxes; ++k) {
-      if (!box_clear(g->boxes[k], a, b, whole, c)) {
+      if (!box_clear(g->boxes[k], a, b, whole, c, tol)) {
         *hit = k;
         return false;
       }
@@ -271,16 +326,16 @@ bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double
     return true;
   }
   for (uint32_t k = 0; k < g->n_large; ++k) {
-    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) {
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c, tol)) {
       *hit = g->large_boxes[k];
       return false;
     }
   }
   return for_each_cell_piece(
-      g, a, b, [g, c, hit](const double* p0, const double* p1, uint32_t cell) {
+      g, a, b, [g, c, tol, hit](const double* p0, const double* p1, uint32_t cell) {
         const SpanBox sb = span_box(p0, p1);
         for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r) {
-          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) {
+          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c, tol)) {
             *hit = g->box_refs[r];
             return false;
           }
@@ -304,6 +359,8 @@ bool box_certainly_violates(const tdo_grid* g, uint32_t k, const double a[3], co
   box_bounds(g->boxes[k], lo, hi);
   if (far_apart(a, b, lo, hi, c)) return false;
   const double m = c - kHintMargin;
+  // Quick: a point of the segment closer than m (its rounding is far below the margin too).
+  if (centre_point_d2(a, b, lo, hi) < m * m) return true;
   return segment_box_d2(a, b, lo, hi, m * m) < m * m;
 }
 
@@ -312,22 +369,26 @@ double boxes_min(const tdo_grid* g, const double a[3], const double b[3], double
   double best = cap;
   if (g->n_boxes == 0) return best;
   const SpanBox whole = span_box(a, b);
+  // Outside the bounds the segment's own coordinates count too.
+  double scale = bounds_scale(g);
+  for (int i = 0; i < 3; ++i) scale = dmax(scale, dmax(fabs(a[i]), fabs(b[i])));
   if (inside) {
     // Every box closer than bucket_reach to a point of the segment is listed in that point's cell:
     // a result below the reach (or a cap within it) is exact.
     const double reach = dmin(cap, g->bucket_reach);
     double near = reach;
     for (uint32_t k = 0; k < g->n_large; ++k)
-      box_min(g->boxes[g->large_boxes[k]], a, b, whole, &near);
-    for_each_cell_piece(g, a, b, [g, &near](const double* p0, const double* p1, uint32_t cell) {
-      const SpanBox sb = span_box(p0, p1);
-      for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-        box_min(g->boxes[g->box_refs[r]], p0, p1, sb, &near);
-      return true;
-    });
+      box_min(g->boxes[g->large_boxes[k]], a, b, whole, scale, &near);
+    for_each_cell_piece(g, a, b,
+                        [g, scale, &near](const double* p0, const double* p1, uint32_t cell) {
+                          const SpanBox sb = span_box(p0, p1);
+                          for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
+                            box_min(g->boxes[g->box_refs[r]], p0, p1, sb, scale, &near);
+                          return true;
+                        });
     if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
   }
-  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, &best);
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, scale, &best);
   return best;
 }
 
