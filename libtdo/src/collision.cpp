@@ -670,6 +670,18 @@ int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cl
   return segment_clear_hint(grid, pa, pb, clearance, hint) ? 1 : 0;
 }
 
+int segment_blocked_by_hint(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                            uint32_t hint) {
+  if (hint == 0u || !ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) ||
+      !isfinite(clearance))
+    return 0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  return box_certainly_violates(grid, hint - 1u, pa, pb, clearance) ? 1 : 0;
+}
+
 namespace {
 
 // Margins of the hinted point distance: the nearest box's distance must stay below the bound of
