@@ -162,6 +162,14 @@ double bounds_distance(const tdo_grid* g, const double p[3]) {
 // ---------------------------------------------------------------------------------------------
 // Boxes.
 
+// floor(x) clamped to [0, n - 1], for finite x: truncation equals floor on [0, n), and below 0
+// or from n on the clamp decides (no libm call).
+inline int32_t clamped_floor(double x, int32_t n) {
+  if (!(x >= 0.0)) return 0;
+  if (!(x < static_cast<double>(n))) return n - 1;
+  return static_cast<int32_t>(x);
+}
+
 // Cut [a, b] (inside the grid bounds) at the bucket cell faces and call f(p0, p1, cell) for every
 // non-empty piece, in order; the cell is that of the piece's midpoint. Stops when f returns false.
 // Bounded: every iteration crosses one cell face, at most ncx + ncy + ncz + 3 iterations.
@@ -175,9 +183,7 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
   int32_t face[3];
   for (int i = 0; i < 3; ++i) {
     d[i] = b[i] - a[i];
-    double c = floor((a[i] - o[i]) / e);
-    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-    const int32_t ci = static_cast<int32_t>(c);
+    const int32_t ci = clamped_floor((a[i] - o[i]) / e, nc[i]);
     next[i] = HUGE_VAL;
     face[i] = 0;
     if (d[i] > 0.0) {
@@ -198,9 +204,7 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
       seg_point(a, b, t1 > t0 ? t1 : t0, p1);
       int32_t cell[3];
       for (int i = 0; i < 3; ++i) {
-        double c = floor((0.5 * (p0[i] + p1[i]) - o[i]) / e);
-        c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-        cell[i] = static_cast<int32_t>(c);
+        cell[i] = clamped_floor((0.5 * (p0[i] + p1[i]) - o[i]) / e, nc[i]);
       }
       if (!f(p0, p1, static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]))))
         return false;
@@ -233,6 +237,13 @@ inline SpanBox span_box(const double p0[3], const double p1[3]) {
     s.mx[i] = dmax(p0[i], p1[i]);
   }
   return s;
+}
+
+// far_apart of box b and the span box with distance r, read from the box itself (the same
+// comparisons, without copying the bounds first: most boxes stop here).
+inline bool span_far(const tdo_box& b, const SpanBox& sb, double r) {
+  return b.min.x - r > sb.mx[0] || b.max.x + r < sb.mn[0] || b.min.y - r > sb.mx[1] ||
+         b.max.y + r < sb.mn[1] || b.min.z - r > sb.mx[2] || b.max.z + r < sb.mn[2];
 }
 
 // Quick decisions before an exact segment-to-box distance. Every candidate point the exact
@@ -288,10 +299,9 @@ inline double centre_point_d2(const double a[3], const double b[3], const double
 // box's distance (quick: clear), then the exact distance. `tol` = quick_tol(c, scale).
 inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
                       double c, double tol) {
+  if (span_far(b, sb, c)) return true;
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  for (int i = 0; i < 3; ++i)
-    if (lo[i] - c > sb.mx[i] || hi[i] + c < sb.mn[i]) return true;
   const double ct = c + tol;
   if (span_gap2(sb, lo, hi) >= ct * ct) return true;
   return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
@@ -301,10 +311,9 @@ inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], 
 // `scale` as for quick_tol: a span box farther than *best by the quick tolerance cannot lower it.
 inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
                     double scale, double* best) {
+  if (span_far(b, sb, *best)) return;
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  for (int i = 0; i < 3; ++i)  // far_apart with r = *best
-    if (lo[i] - *best > sb.mx[i] || hi[i] + *best < sb.mn[i]) return;
   const double bt = *best + quick_tol(*best, scale);
   if (span_gap2(sb, lo, hi) >= bt * bt) return;
   const double d2 = segment_box_d2(p0, p1, lo, hi);
@@ -563,9 +572,7 @@ uint32_t point_cell(const tdo_grid* g, const double p[3]) {
   const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
   int32_t cell[3];
   for (int i = 0; i < 3; ++i) {
-    double c = floor((p[i] - o[i]) / g->cell_edge);
-    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-    cell[i] = static_cast<int32_t>(c);
+    cell[i] = clamped_floor((p[i] - o[i]) / g->cell_edge, nc[i]);
   }
   return static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
 }
