@@ -162,6 +162,14 @@ double bounds_distance(const tdo_grid* g, const double p[3]) {
 // ---------------------------------------------------------------------------------------------
 // Boxes.
 
+// floor(x) clamped to [0, n - 1], for finite x: truncation equals floor on [0, n), and below 0
+// or from n on the clamp decides (no libm call).
+inline int32_t clamped_floor(double x, int32_t n) {
+  if (!(x >= 0.0)) return 0;
+  if (!(x < static_cast<double>(n))) return n - 1;
+  return static_cast<int32_t>(x);
+}
+
 // Cut [a, b] (inside the grid bounds) at the bucket cell faces and call f(p0, p1, cell) for every
 // non-empty piece, in order; the cell is that of the piece's midpoint. Stops when f returns false.
 // Bounded: every iteration crosses one cell face, at most ncx + ncy + ncz + 3 iterations.
@@ -175,9 +183,7 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
   int32_t face[3];
   for (int i = 0; i < 3; ++i) {
     d[i] = b[i] - a[i];
-    double c = floor((a[i] - o[i]) / e);
-    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-    const int32_t ci = static_cast<int32_t>(c);
+    const int32_t ci = clamped_floor((a[i] - o[i]) / e, nc[i]);
     next[i] = HUGE_VAL;
     face[i] = 0;
     if (d[i] > 0.0) {
@@ -198,9 +204,7 @@ bool for_each_cell_piece(const tdo_grid* g, const double a[3], const double b[3]
       seg_point(a, b, t1 > t0 ? t1 : t0, p1);
       int32_t cell[3];
       for (int i = 0; i < 3; ++i) {
-        double c = floor((0.5 * (p0[i] + p1[i]) - o[i]) / e);
-        c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-        cell[i] = static_cast<int32_t>(c);
+        cell[i] = clamped_floor((0.5 * (p0[i] + p1[i]) - o[i]) / e, nc[i]);
       }
       if (!f(p0, p1, static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]))))
         return false;
@@ -235,24 +239,83 @@ inline SpanBox span_box(const double p0[3], const double p1[3]) {
   return s;
 }
 
-// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, then the
-// exact distance.
+// far_apart of box b and the span box with distance r, read from the box itself (the same
+// comparisons, without copying the bounds first: most boxes stop here).
+inline bool span_far(const tdo_box& b, const SpanBox& sb, double r) {
+  return b.min.x - r > sb.mx[0] || b.max.x + r < sb.mn[0] || b.min.y - r > sb.mx[1] ||
+         b.max.y + r < sb.mn[1] || b.min.z - r > sb.mx[2] || b.max.z + r < sb.mn[2];
+}
+
+// Quick decisions before an exact segment-to-box distance. Every candidate point the exact
+// computation evaluates lies within a few ulps of the coordinates (~1e-15 * scale) of the true
+// segment, and every squared distance it sums is within a few ulps relative. So a lower bound
+// (the distance between the segment's bounding box and the box) that exceeds the limit by `tol`,
+// or a point of the segment closer than the limit by `tol`, gives the exact computation's
+// decision; `tol` is kQuickRel * (1 + limit + scale) m, scale the largest coordinate magnitude
+// in use, far above that rounding and far below any clearance that matters.
+constexpr double kQuickRel = 1e-9;
+
+// Largest coordinate magnitude (m) of the grid bounds: every segment of a box query lies inside.
+inline double bounds_scale(const tdo_grid* g) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const double e[3] = {o[0] + d.nx * d.res, o[1] + d.ny * d.res, o[2] + d.nz * d.res};
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) s = dmax(s, dmax(fabs(o[i]), fabs(e[i])));
+  return s;
+}
+
+inline double quick_tol(double limit, double scale) { return kQuickRel * (1.0 + limit + scale); }
+
+// Squared distance (m^2) between the box [lo, hi] and the span box: at most the squared distance
+// of every point of the piece.
+inline double span_gap2(const SpanBox& sb, const double lo[3], const double hi[3]) {
+  double s = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double g = dmax(lo[i] - sb.mx[i], 0.0) + dmax(sb.mn[i] - hi[i], 0.0);
+    s += g * g;
+  }
+  return s;
+}
+
+// Squared distance (m^2) from [lo, hi] to the point of [a, b] nearest to the box's centre line
+// projection (the centre projected onto the segment): an upper bound of the segment's distance.
+inline double centre_point_d2(const double a[3], const double b[3], const double lo[3],
+                              const double hi[3]) {
+  double dd = 0.0, wd = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = b[i] - a[i];
+    dd += d * d;
+    wd += (0.5 * (lo[i] + hi[i]) - a[i]) * d;
+  }
+  double t = dd > 0.0 ? wd / dd : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  double p[3];
+  seg_point(a, b, t, p);
+  return point_box_d2(p, lo, hi);
+}
+
+// 1 when box `b` keeps clearance c from [p0, p1] (sb = span_box(p0, p1)): far_apart, the span
+// box's distance (quick: clear), then the exact distance. `tol` = quick_tol(c, scale).
 inline bool box_clear(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
-                      double c) {
+                      double c, double tol) {
+  if (span_far(b, sb, c)) return true;
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  for (int i = 0; i < 3; ++i)
-    if (lo[i] - c > sb.mx[i] || hi[i] + c < sb.mn[i]) return true;
+  const double ct = c + tol;
+  if (span_gap2(sb, lo, hi) >= ct * ct) return true;
   return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
 }
 
 // Lower *best (m) to the distance of [p0, p1] to box b when that is smaller.
+// `scale` as for quick_tol: a span box farther than *best by the quick tolerance cannot lower it.
 inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], const SpanBox& sb,
-                    double* best) {
+                    double scale, double* best) {
+  if (span_far(b, sb, *best)) return;
   double lo[3], hi[3];
   box_bounds(b, lo, hi);
-  for (int i = 0; i < 3; ++i)  // far_apart with r = *best
-    if (lo[i] - *best > sb.mx[i] || hi[i] + *best < sb.mn[i]) return;
+  const double bt = *best + quick_tol(*best, scale);
+  if (span_gap2(sb, lo, hi) >= bt * bt) return;
   const double d2 = segment_box_d2(p0, p1, lo, hi);
   if (d2 < *best * *best) *best = sqrt(d2);
 }
@@ -261,9 +324,10 @@ inline void box_min(const tdo_box& b, const double p0[3], const double p1[3], co
 bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double c, uint32_t* hit) {
   if (g->n_boxes == 0) return true;
   const SpanBox whole = span_box(a, b);
+  const double tol = quick_tol(c, bounds_scale(g));
   if (!(c <= g->bucket_reach)) {
     for (uint32_t k = 0; k < g->n_boxes; ++k) {
-      if (!box_clear(g->boxes[k], a, b, whole, c)) {
+      if (!box_clear(g->boxes[k], a, b, whole, c, tol)) {
         *hit = k;
         return false;
       }
@@ -271,16 +335,16 @@ bool boxes_clear(const tdo_grid* g, const double a[3], const double b[3], double
     return true;
   }
   for (uint32_t k = 0; k < g->n_large; ++k) {
-    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c)) {
+    if (!box_clear(g->boxes[g->large_boxes[k]], a, b, whole, c, tol)) {
       *hit = g->large_boxes[k];
       return false;
     }
   }
   return for_each_cell_piece(
-      g, a, b, [g, c, hit](const double* p0, const double* p1, uint32_t cell) {
+      g, a, b, [g, c, tol, hit](const double* p0, const double* p1, uint32_t cell) {
         const SpanBox sb = span_box(p0, p1);
         for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r) {
-          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c)) {
+          if (!box_clear(g->boxes[g->box_refs[r]], p0, p1, sb, c, tol)) {
             *hit = g->box_refs[r];
             return false;
           }
@@ -304,6 +368,8 @@ bool box_certainly_violates(const tdo_grid* g, uint32_t k, const double a[3], co
   box_bounds(g->boxes[k], lo, hi);
   if (far_apart(a, b, lo, hi, c)) return false;
   const double m = c - kHintMargin;
+  // Quick: a point of the segment closer than m (its rounding is far below the margin too).
+  if (centre_point_d2(a, b, lo, hi) < m * m) return true;
   return segment_box_d2(a, b, lo, hi, m * m) < m * m;
 }
 
@@ -312,22 +378,26 @@ double boxes_min(const tdo_grid* g, const double a[3], const double b[3], double
   double best = cap;
   if (g->n_boxes == 0) return best;
   const SpanBox whole = span_box(a, b);
+  // Outside the bounds the segment's own coordinates count too.
+  double scale = bounds_scale(g);
+  for (int i = 0; i < 3; ++i) scale = dmax(scale, dmax(fabs(a[i]), fabs(b[i])));
   if (inside) {
     // Every box closer than bucket_reach to a point of the segment is listed in that point's cell:
     // a result below the reach (or a cap within it) is exact.
     const double reach = dmin(cap, g->bucket_reach);
     double near = reach;
     for (uint32_t k = 0; k < g->n_large; ++k)
-      box_min(g->boxes[g->large_boxes[k]], a, b, whole, &near);
-    for_each_cell_piece(g, a, b, [g, &near](const double* p0, const double* p1, uint32_t cell) {
-      const SpanBox sb = span_box(p0, p1);
-      for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
-        box_min(g->boxes[g->box_refs[r]], p0, p1, sb, &near);
-      return true;
-    });
+      box_min(g->boxes[g->large_boxes[k]], a, b, whole, scale, &near);
+    for_each_cell_piece(g, a, b,
+                        [g, scale, &near](const double* p0, const double* p1, uint32_t cell) {
+                          const SpanBox sb = span_box(p0, p1);
+                          for (uint32_t r = g->cell_start[cell]; r < g->cell_start[cell + 1]; ++r)
+                            box_min(g->boxes[g->box_refs[r]], p0, p1, sb, scale, &near);
+                          return true;
+                        });
     if (near < g->bucket_reach || !(cap > g->bucket_reach)) return near;
   }
-  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, &best);
+  for (uint32_t k = 0; k < g->n_boxes; ++k) box_min(g->boxes[k], a, b, whole, scale, &best);
   return best;
 }
 
@@ -502,9 +572,7 @@ uint32_t point_cell(const tdo_grid* g, const double p[3]) {
   const int32_t nc[3] = {g->ncx, g->ncy, g->ncz};
   int32_t cell[3];
   for (int i = 0; i < 3; ++i) {
-    double c = floor((p[i] - o[i]) / g->cell_edge);
-    c = c < 0.0 ? 0.0 : (c > nc[i] - 1 ? nc[i] - 1 : c);
-    cell[i] = static_cast<int32_t>(c);
+    cell[i] = clamped_floor((p[i] - o[i]) / g->cell_edge, nc[i]);
   }
   return static_cast<uint32_t>(cell[0] + nc[0] * (cell[1] + nc[1] * cell[2]));
 }
@@ -607,6 +675,18 @@ int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cl
   load(a, pa);
   load(b, pb);
   return segment_clear_hint(grid, pa, pb, clearance, hint) ? 1 : 0;
+}
+
+int segment_blocked_by_hint(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                            uint32_t hint) {
+  if (hint == 0u || !ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) ||
+      !isfinite(clearance))
+    return 0;
+  double pa[3], pb[3];
+  load(a, pa);
+  load(b, pb);
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  return box_certainly_violates(grid, hint - 1u, pa, pb, clearance) ? 1 : 0;
 }
 
 namespace {

@@ -18,6 +18,16 @@ namespace tdo_internal {
 int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
                          uint32_t* hint);
 
+/**
+ * 1 when box hint - 1 (hint as in segment_clear_hinted, 0: none) is certainly closer than the
+ * clearance to [a, b] (both inside the bounds), by more than the hint's rounding margin: then
+ * tdo_collision_segment_clear(a, b, clearance) is 0, and so is every query from a to a point
+ * between b and another end point b' the same box blocks (the end points p whose segment from a
+ * comes that close to a convex box form a convex set). 0 otherwise (no claim).
+ */
+int segment_blocked_by_hint(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                            uint32_t hint);
+
 /** State of point_distance_hinted between calls (valid = 0 to start). */
 struct PointHint {
   double q[3];    // m, world frame: the last point evaluated in full

@@ -258,23 +258,62 @@ void reverse_pts(tdo_correct* ctx, uint32_t m) {
   }
 }
 
+// `n` checks known to fail, counted as check() counts them: false (and the budget used up) when
+// the budget runs out before the last of them, as it would checking them one by one.
+bool count_failed(Run& r, uint32_t n) {
+  if (r.budget - r.checks < n) {
+    r.checks = r.budget;
+    return false;
+  }
+  r.checks += n;
+  return true;
+}
+
+// True when box `hint` certainly blocks [a, b] at the run's clearance (segment_blocked_by_hint).
+bool blocked(const Run& r, const tdo_vec3& a, const tdo_vec3& b, uint32_t hint) {
+  return tdo_internal::segment_blocked_by_hint(r.grid, a, b, r.clearance, hint) != 0;
+}
+
 // One forward sweep; returns false when the budget ran out.
+// Known failures are not checked again (they are counted): the end points p whose chord from w_i
+// one box certainly blocks form a convex set, so when that box blocks the chords to p(t) and to
+// w_j, every smaller t of the same segment fails; when it blocks the chords to w_j+1 and w_j,
+// all of segment j does. Same decisions and the same check count as checking each.
 bool shortcut_sweep(Run& r, uint32_t* m_io) {
   tdo_correct* ctx = r.ctx;
   uint32_t m = *m_io;
   bool ok_budget = true;
+  constexpr uint32_t kNT = sizeof(kShortT) / sizeof(kShortT[0]);
   // Bounded: i grows every iteration.
   for (uint32_t i = 0; i + 2u < m && ok_budget; ++i) {
     const uint32_t j_max = i + kShortReach < m - 2u ? i + kShortReach : m - 2u;
     bool done = false;
+    uint32_t far_box = 0u;  // hint of a box certainly blocking the chord w_i -> w_j+1 (0: none)
     for (uint32_t j = j_max; j > i && !done && ok_budget; --j) {
       const tdo_vec3 a = ctx->pts[j], b = ctx->pts[j + 1u];
-      for (double t : kShortT) {
+      if (far_box != 0u && blocked(r, ctx->pts[i], a, far_box)) {
+        ok_budget = count_failed(r, kNT);  // every p(t) lies between w_j and w_j+1
+        continue;
+      }
+      far_box = 0u;
+      for (uint32_t ti = 0; ti < kNT; ++ti) {
+        const double t = kShortT[ti];
         const tdo_vec3 p{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
         const int ok = check(r, ctx->pts[i], p);
         if (ok < 0) {
           ok_budget = false;
           break;
+        }
+        if (ok == 0) {
+          // Tried once per segment, at its first (largest) t; w_i -> w_i+1 is a verified
+          // segment, never blocked.
+          if (ti == 0u && j > i + 1u && blocked(r, ctx->pts[i], a, r.hint) &&
+              blocked(r, ctx->pts[i], p, r.hint)) {
+            far_box = r.hint;  // blocks the chord to w_j, the far end of segment j - 1
+            ok_budget = count_failed(r, kNT - ti - 1u);
+            break;
+          }
+          continue;
         }
         if (ok == 1) {
           // w_i+1 .. w_j become the single point p (at index i+1).

@@ -684,3 +684,40 @@ TEST_F(CollisionTest,
 }
 
 }  // namespace
+
+// The box tests decide some boxes before the exact segment-to-box distance (the distance of the
+// segment's bounding box, a point of the segment); those quick decisions must never change an
+// answer. Segments tangent to the circle of radius r around a box edge keep exactly r from the
+// box (touching it at one point, not at an end); r = c (1 +/- 1e-6 .. 1e-9): clear exactly when
+// r >= c, and the distance query returns r.
+TEST_F(CollisionTest, GivenSegmentsTangentNearABoxEdge_WhenQueried_ThenExactAtTheClearance) {
+  World w;
+  w.m = VoxelMap(16, 16, 16, 0.5, v3(0, 0, 0));
+  w.boxes.push_back(tdo_box{v3(2.0, 2.5, 1.0), v3(3.5, 3.25, 6.0)});
+  ASSERT_EQ(load(grid(), w, 0.5), TDO_OK);
+  Rng rng(91);
+  int clear = 0, blocked = 0;
+  for (int q = 0; q < 400; ++q) {
+    const double c = q % 4 == 3 ? 2.5 : rng.uniform(0.2, 0.9);  // inside and beyond the reach
+    const double rel = std::pow(10.0, -static_cast<double>(6 + q % 4));
+    const double r = c * (1.0 + (q % 2 == 0 ? rel : -rel));
+    const double phi = rng.uniform(0.15, 1.4);  // around the +x +y edge, between its faces
+    const double z = rng.uniform(1.5, 5.5);
+    const double cx = 3.5 + r * std::cos(phi), cy = 3.25 + r * std::sin(phi);
+    const tdo_vec3 u = v3(-std::sin(phi), std::cos(phi), 0.0);
+    const double l0 = rng.uniform(0.2, 1.5), l1 = rng.uniform(0.2, 1.5), dz = rng.uniform(-1, 1);
+    const tdo_vec3 a = v3(cx - l0 * u.x, cy - l0 * u.y, z - dz * 0.1);
+    const tdo_vec3 b = v3(cx + l1 * u.x, cy + l1 * u.y, z + dz * 0.1);
+    if (!w.inside(a) || !w.inside(b)) continue;
+    const double ref = brute_segment_box(a, b, w.boxes[0]);
+    ASSERT_NEAR(ref, r, 1e-12 * r) << "query " << q;  // the construction itself
+    const int want = r >= c ? 1 : 0;
+    ASSERT_EQ(tdo_collision_segment_clear(grid(), a, b, c), want) << "query " << q;
+    uint32_t hint = 1;  // box 0 as the hint
+    ASSERT_EQ(tdo_internal::segment_clear_hinted(grid(), a, b, c, &hint), want) << "query " << q;
+    EXPECT_NEAR(tdo_collision_segment_distance(grid(), a, b, 2.0 * c + 1.0), r, 1e-12 * r);
+    want ? ++clear : ++blocked;
+  }
+  EXPECT_GT(clear, 150);
+  EXPECT_GT(blocked, 150);
+}

@@ -463,4 +463,63 @@ TEST(
   EXPECT_GE(shorter, 1) << "the pass never shortened anything";
 }
 
+// The shortening counts every check it would make, also those it skips as known to fail (the
+// shortcut sweep's blocked chords): with a budget at least the unbounded run's count the output
+// is the same; with less, the run uses exactly the budget (the shortening stops where it runs out)
+// and every segment still keeps clearance (checked here).
+TEST(Correct, GivenEveryBudget_WhenShortened_ThenChecksUseItExactlyAndSegmentsKeepClearance) {
+  TestPlanner pl(tdo_test::make_cap(24 * 24 * 10, 24 * 24 * 10, 2000, 64, 20000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(23);
+  const double clearance = 0.5;
+  int runs = 0, cut = 0;
+  for (int map = 0; map < 40 && runs < 6; ++map) {
+    Map mp;
+    mp.m = VoxelMap(24, 24, 10, 0.5, v3(0.0, 0.0, 0.0));
+    for (int b = 0; b < 30; ++b) {
+      const double x = rng.uniform(0, 12), y = rng.uniform(0, 12);
+      mp.boxes.push_back(
+          tdo_box{v3(x, y, -0.5), v3(x + rng.uniform(0.3, 2.0), y + rng.uniform(0.3, 2.0), 6.0)});
+    }
+    ASSERT_EQ(load_boxes(pl.grid(), mp, clearance), TDO_OK);
+    const tdo_voxel s{rng.range(0, 5), rng.range(0, 5), 4};
+    const tdo_voxel g{rng.range(18, 23), rng.range(18, 23), 4};
+    if (tdo_grid_is_blocked(pl.grid(), s) || tdo_grid_is_blocked(pl.grid(), g)) continue;
+    std::vector<tdo_vec3> pts;
+    if (!grid_path(pl, tdo_grid_voxel_center(pl.grid(), s), tdo_grid_voxel_center(pl.grid(), g),
+                   &pts))
+      continue;
+    tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, clearance);
+    in.shorten = 1;
+    Corrector full(2000, 0);
+    tdo_correct_output ref{};
+    if (tdo_correct_run(full.ctx(), &in, &ref) != TDO_OK) continue;  // grazing grid path
+    ++runs;
+    const uint32_t n = ref.checks;
+    for (uint32_t budget = n + 2u; budget > 0u; budget = budget > 7u ? budget - 7u : budget - 1u) {
+      Corrector corr(2000, budget);
+      tdo_correct_output out{};
+      const tdo_status st = tdo_correct_run(corr.ctx(), &in, &out);
+      if (st == TDO_ERR_BUDGET) {  // before the shortening
+        EXPECT_EQ(out.checks, budget);
+        continue;
+      }
+      ASSERT_EQ(st, TDO_OK) << "map " << map << " budget " << budget;
+      if (budget >= n) {
+        EXPECT_EQ(out.checks, n) << "map " << map << " budget " << budget;
+        ASSERT_EQ(out.n_waypoints, ref.n_waypoints);
+        EXPECT_EQ(std::memcmp(out.waypoints, ref.waypoints, ref.n_waypoints * sizeof(tdo_vec3)), 0);
+        continue;
+      }
+      ++cut;
+      EXPECT_EQ(out.checks, budget) << "map " << map << " budget " << budget;
+      for (uint32_t i = 1; i < out.n_waypoints; ++i)
+        ASSERT_TRUE(mp.segment_ok(out.waypoints[i - 1], out.waypoints[i], clearance))
+            << "map " << map << " budget " << budget << " segment " << i;
+    }
+  }
+  EXPECT_GE(runs, 3);
+  EXPECT_GE(cut, 20);
+}
+
 }  // namespace
