@@ -18,6 +18,7 @@
 
 #include "collision_internal.h"
 #include "grid_internal.h"
+#include "vec3.h"
 
 namespace tdo_internal {
 namespace {
@@ -28,8 +29,6 @@ constexpr uint32_t kMaxPieces = 1u << 20;  // pieces of one cube query; beyond: 
 constexpr int kBezierStackCap = 40;        // Bezier subdivision stack entries
 constexpr uint32_t kMaxBezierPieces = 1u << 14;  // Bezier pieces of one query; beyond: "not clear"
 constexpr double kMinTolerance = 1e-9;           // m, smallest Bezier tolerance honoured
-
-bool finite3(const tdo_vec3& v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 inline void load(const tdo_vec3& v, double p[3]) {
   p[0] = v.x;
