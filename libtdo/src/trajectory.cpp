@@ -226,11 +226,15 @@ inline double bez_speed(const BezierCursor& b, double u) {
 /** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
 double bez_arclen(const BezierCursor& b, double a, double e) {
   const double span = e - a;
-  double n = ceil(fabs(span) / kCursorPanel);
-  if (n < 1.0) n = 1.0;
-  if (n > kCursorPanels) n = kCursorPanels;
-  const uint32_t panels = static_cast<uint32_t>(n);
-  const double h = span / panels;
+  // One panel for the short spans of consecutive samples (ceil gives 1 there and span / 1 is span).
+  uint32_t panels = 1u;
+  double h = span;
+  if (!(fabs(span) <= kCursorPanel)) {
+    double n = ceil(fabs(span) / kCursorPanel);
+    if (n > kCursorPanels) n = kCursorPanels;
+    panels = static_cast<uint32_t>(n);
+    h = span / panels;
+  }
   double total = 0.0;
   // Each pair of nodes m -/+ dx goes through the same operations as bez_speed, side by side in
   // a two-lane vector (lane-wise IEEE arithmetic: the same results as one at a time).
@@ -816,28 +820,35 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   const double v_lim = lim.v_max * (1.0 + kTolerance);
   const double a_lim = lim.a_max * (1.0 + kTolerance);
   const double j_lim = lim.j_max * (1.0 + kTolerance);
-  *energy = 0.0;
   src.rewind();
+  // Running sums and extremes in locals (written to the report at the end: same values).
+  double energy_sum = 0.0, max_speed = 0.0, max_acc = 0.0, max_jerk = 0.0;
+  double min_radius = HUGE_VAL;
+  const double inv_dt = 1.0 / dt, dt2 = dt * dt;
   // Rolling finite differences: v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt,
   // j_i = (a_{i+1} - a_i)/dt.
   V3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
+  double aa0 = 0.0;  // |a|^2 of sample i (the energy's trapezoid)
   for (uint32_t i = 0; i + 1u < n; ++i) {
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
-    *energy += energy_step(s0, s1);
-    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), 1.0 / dt);
+    if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
+    const double aa1 = dot(mk(s1.a), mk(s1.a));
+    energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
+    aa0 = aa1;
+    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), inv_dt);
     const double speed = norm(v);
-    rep->max_speed = dmax(rep->max_speed, speed);
+    max_speed = dmax(max_speed, speed);
     if (speed > v_lim) {
       add_violation(&r, s0.t + 0.5 * dt, TDO_QUANTITY_SPEED, speed, lim.v_max);
       mark(ctx, src, n, i, i + 1u);
     }
     if (i >= 1u) {  // a_{i-1} from v_{i-1} and v_i: centred at sample i
-      const V3 a = mul(sub(v, v_prev), 1.0 / dt);
+      const V3 a = mul(sub(v, v_prev), inv_dt);
       const double acc = norm(a);
-      rep->max_acc = dmax(rep->max_acc, acc);
+      max_acc = dmax(max_acc, acc);
       if (acc > a_lim) {
-        add_violation(&r, src.at(i).t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
+        add_violation(&r, s0.t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
         mark(ctx, src, n, i - 1u, i + 1u);
       }
       // Turn radius at sample i with the centred velocity (eq. 19).
@@ -848,22 +859,22 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
         const double ap = norm(sub(a, mul(u, dot(a, u))));
         // Below the rounding noise of a second difference of these positions the path is
         // straight (near rest that noise alone would give any radius).
-        const double noise = kRadiusNoise * (norm(mk(src.at(i).p)) + 1.0) / (dt * dt);
+        const double noise = kRadiusNoise * (norm(mk(s0.p)) + 1.0) / dt2;
         if (ap > noise) {
           const double radius = vn * vn / ap;
-          rep->min_turn_radius = dmin(rep->min_turn_radius, radius);
+          min_radius = dmin(min_radius, radius);
           const double need = vn * vn / lim.a_max;
           if (radius * (1.0 + kTolerance) < need) {
-            add_violation(&r, src.at(i).t, TDO_QUANTITY_TURN_RADIUS, radius, need);
+            add_violation(&r, s0.t, TDO_QUANTITY_TURN_RADIUS, radius, need);
             mark(ctx, src, n, i - 1u, i + 1u);
           }
         }
       }
       if (i >= 2u) {  // j_{i-2} from a_{i-2} and a_{i-1}: centred between samples i-1 and i
-        const double jerk = norm(mul(sub(a, a_prev), 1.0 / dt));
-        rep->max_jerk = dmax(rep->max_jerk, jerk);
+        const double jerk = norm(mul(sub(a, a_prev), inv_dt));
+        max_jerk = dmax(max_jerk, jerk);
         if (jerk > j_lim) {
-          add_violation(&r, src.at(i).t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
+          add_violation(&r, s0.t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
           mark(ctx, src, n, i - 2u, i + 1u);
         }
       }
@@ -871,6 +882,11 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     }
     v_prev = v;
   }
+  *energy = energy_sum;
+  rep->max_speed = max_speed;
+  rep->max_acc = max_acc;
+  rep->max_jerk = max_jerk;
+  rep->min_turn_radius = min_radius;
   if (in->grid != nullptr) {
     // The distance to the obstacles is 1-Lipschitz: a sample within `moved` (summed sample
     // steps) of the last evaluated one, whose distance was `ref`, is at least ref - moved away. It
