@@ -25,6 +25,9 @@
 
 #include <math.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "collision_internal.h"
 #include "sample_energy.h"
@@ -198,6 +201,8 @@ constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local a
 struct BezierCursor {
   V3 p[4];       // control points
   V3 d[3];       // P[i+1] - P[i]
+  V3 e[2];       // d[i+1] - d[i]
+  V3 d3;         // B''' = 6 (e[1] - e[0])
   V3 h[3];       // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
   double u;      // parameter of the last sample
   double s;      // m, arclength at u
@@ -215,12 +220,24 @@ inline V3 bez_d1(const BezierCursor& b, double u) {
   return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
 }
 inline V3 bez_d2(const BezierCursor& b, double u) {
-  return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
+  return mul(add(mul(b.e[0], 1.0 - u), mul(b.e[1], u)), 6.0);
 }
 inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
 /** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
 inline double bez_speed(const BezierCursor& b, double u) {
   return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
+}
+
+typedef double V2 __attribute__((vector_size(16)));  // two lanes of IEEE doubles
+
+/** sqrt(q[0]) + sqrt(q[1]); both roots in one instruction where SSE2 has it (same results). */
+inline double sqrt_pair_sum(V2 q) {
+#if defined(__SSE2__)
+  const V2 r = _mm_sqrt_pd(q);
+  return r[0] + r[1];
+#else
+  return sqrt(q[0]) + sqrt(q[1]);
+#endif
 }
 
 /** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
@@ -238,7 +255,6 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
   double total = 0.0;
   // Each pair of nodes m -/+ dx goes through the same operations as bez_speed, side by side in
   // a two-lane vector (lane-wise IEEE arithmetic: the same results as one at a time).
-  typedef double V2 __attribute__((vector_size(16)));
   const V2 h0x = {b.h[0].x, b.h[0].x}, h0y = {b.h[0].y, b.h[0].y}, h0z = {b.h[0].z, b.h[0].z};
   const V2 h1x = {b.h[1].x, b.h[1].x}, h1y = {b.h[1].y, b.h[1].y}, h1z = {b.h[1].z, b.h[1].z};
   const V2 h2x = {b.h[2].x, b.h[2].x}, h2y = {b.h[2].y, b.h[2].y}, h2z = {b.h[2].z, b.h[2].z};
@@ -252,7 +268,7 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
       const V2 y = h0y + (h1y + h2y * u) * u;
       const V2 z = h0z + (h1z + h2z * u) * u;
       const V2 q = x * x + y * y + z * z;
-      sum += kGlW[i] * (sqrt(q[0]) + sqrt(q[1]));
+      sum += kGlW[i] * sqrt_pair_sum(q);
     }
     total += 0.5 * h * sum;
   }
@@ -263,7 +279,9 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
   for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
   for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
   c->h[0] = mul(c->d[0], 3.0);
-  c->h[1] = mul(sub(c->d[1], c->d[0]), 6.0);
+  for (int i = 0; i < 2; ++i) c->e[i] = sub(c->d[i + 1], c->d[i]);
+  c->d3 = mul(sub(c->e[1], c->e[0]), 6.0);
+  c->h[1] = mul(c->e[0], 6.0);
   c->h[2] = mul(add(sub(c->d[0], mul(c->d[1], 2.0)), c->d[2]), 3.0);
   c->u = 0.0;
   c->s = 0.0;
@@ -272,8 +290,9 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
   c->have = 0;
 }
 
-/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
-void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+/** Moves the cursor to local arclength s (clamped to [0, len]) from its last position; the
+ *  derivatives at the new parameter are left in the cursor. */
+void cursor_seek(BezierCursor* c, double s) {
   double u = c->u, at = c->s;
   // Derivatives at u (the same expressions wherever u came from; computed once per u).
   V3 d1 = c->d1u, d2 = c->d2u;
@@ -331,18 +350,28 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
   c->spu = sp;
   c->curvu = curv;
   c->have = 1;
-  const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
-           a2 = lerp(c->p[2], c->p[3], u);
-  st->p = u <= 0.0 ? tv(c->p[0])
-                   : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
+}
+
+/** Position, unit tangent and dT/ds at the cursor's parameter (after cursor_seek). */
+void cursor_state(const BezierCursor& c, tdo_segment_state* st) {
+  const double u = c.u, sp = c.spu;
+  const V3 a0 = lerp(c.p[0], c.p[1], u), a1 = lerp(c.p[1], c.p[2], u), a2 = lerp(c.p[2], c.p[3], u);
+  st->p = u <= 0.0 ? tv(c.p[0])
+                   : (u >= 1.0 ? tv(c.p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
   if (!(sp > 0.0)) {
     st->t = tdo_vec3{0.0, 0.0, 0.0};
     st->kn = st->t;
     return;
   }
-  const V3 t = mul(d1, 1.0 / sp);
+  const V3 t = mul(c.d1u, 1.0 / sp);
   st->t = tv(t);
-  st->kn = tv(mul(sub(d2, mul(t, dot(d2, t))), 1.0 / (sp * sp)));  // dT/ds
+  st->kn = tv(mul(sub(c.d2u, mul(t, dot(c.d2u, t))), 1.0 / (sp * sp)));  // dT/ds
+}
+
+/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
+void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+  cursor_seek(c, s);
+  cursor_state(*c, st);
 }
 
 /** kappa and dkappa_ds at the cursor's parameter, as tdo_segment_eval computes them. */
@@ -352,7 +381,7 @@ void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   const double u = c.u;
   // cursor_eval left the derivatives at u in the cursor.
   const V3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
-  const V3 d3 = mul(sub(sub(c.d[2], c.d[1]), sub(c.d[1], c.d[0])), 6.0);
+  const V3 d3 = c.d3;
   const double sp = c.have ? c.spu : norm(d1);
   if (!(sp > 0.0)) return;
   const V3 cr = cross(d1, d2);
@@ -389,7 +418,7 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double* kappa, double* d
     tdo_segment_state st;
     const double s = i == kStations ? seg.length : h * i;
     if (bez) {
-      cursor_eval(&cursor, s, &st);
+      cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
     } else if (!tdo_segment_eval(&seg, s, &st)) {
       return TDO_ERR_INVALID_ARGUMENT;
