@@ -41,6 +41,7 @@ constexpr double kTolerance = 0.01;         // 1 % discretisation tolerance on v
 constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
 constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
 constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skipped-sample bound
+constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre-pass's points
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
 constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
@@ -849,6 +850,18 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   const double v_lim = lim.v_max * (1.0 + kTolerance);
   const double a_lim = lim.a_max * (1.0 + kTolerance);
   const double j_lim = lim.j_max * (1.0 + kTolerance);
+  // Clearance pre-pass, inside the dynamic pass: the distance of every kClearanceStride-th sample
+  // (skipped by the Lipschitz bound below when it cannot lower their minimum). That minimum is
+  // the distance of a sample, so the clearance pass may start from it: it skips every sample
+  // that cannot be below it, which is most of them, instead of only those that cannot be below
+  // the minimum of the samples before them.
+  const bool clear = in->grid != nullptr;
+  const double cap = in->clearance + kClearanceCapExtra;
+  const double floor_ok = in->clearance - kClearanceSlack;
+  double pre_min = HUGE_VAL, pre_ref = -HUGE_VAL;
+  V3 pre_at{0.0, 0.0, 0.0};
+  PointHint pre_hint;
+  pre_hint.valid = 0;
   src.rewind();
   // Running sums and extremes in locals (written to the report at the end: same values).
   double energy_sum = 0.0, max_speed = 0.0, max_acc = 0.0, max_jerk = 0.0;
@@ -861,6 +874,15 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   for (uint32_t i = 0; i + 1u < n; ++i) {
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
+    if (clear && (i % kClearanceStride) == 0u) {
+      const double lb = pre_ref - norm(sub(mk(s0.p), pre_at)) - kLipschitzSlack;
+      if (!(lb >= pre_min)) {
+        const double d = point_distance_hinted(in->grid, s0.p, cap, &pre_hint);
+        pre_ref = d;
+        pre_at = mk(s0.p);
+        pre_min = dmin(pre_min, d);
+      }
+    }
     if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
     const double aa1 = dot(mk(s1.a), mk(s1.a));
     energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
@@ -916,30 +938,27 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   rep->max_acc = max_acc;
   rep->max_jerk = max_jerk;
   rep->min_turn_radius = min_radius;
-  if (in->grid != nullptr) {
-    // The distance to the obstacles is 1-Lipschitz: a sample within `moved` (summed sample
-    // steps) of the last evaluated one, whose distance was `ref`, is at least ref - moved away. It
-    // is skipped when that bound cannot lower the minimum nor be a violation, so the minimum and
-    // the violations are those of evaluating every sample.
-    const double cap = in->clearance + kClearanceCapExtra;
-    const double floor_ok = in->clearance - kClearanceSlack;
-    double ref = -HUGE_VAL, moved = 0.0;
+  if (clear) {
+    // The distance to the obstacles is 1-Lipschitz: a sample at distance `dist` from the last
+    // evaluated one, whose distance was `ref`, is at least ref - dist away. It is skipped when that
+    // bound cannot lower the minimum nor be a violation, so the minimum and the violations (in
+    // sample order) are those of evaluating every sample. The minimum starts at the pre-pass's,
+    // the distance of one of the samples.
+    rep->min_clearance = pre_min;
+    double ref = -HUGE_VAL;
+    V3 at{0.0, 0.0, 0.0};
     PointHint hint;
     hint.valid = 0;
     src.rewind();
-    tdo_vec3 prev{0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < n; ++i) {
       const tdo_sample& si = src.at(i);
-      if (i > 0u) moved += norm(sub(mk(si.p), mk(prev)));
-      prev = si.p;
-      const double lb = ref - moved - kLipschitzSlack;
+      const double lb = ref - norm(sub(mk(si.p), at)) - kLipschitzSlack;
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
       const double d = point_distance_hinted(in->grid, si.p, cap, &hint);
       ref = d;
-      moved = 0.0;
+      at = mk(si.p);
       rep->min_clearance = dmin(rep->min_clearance, d);
-      if (d < in->clearance - kClearanceSlack)
-        add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
+      if (d < floor_ok) add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
     }
   }
   rep->ok = rep->n_violations_total == 0u ? 1 : 0;
