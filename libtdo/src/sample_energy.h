@@ -9,9 +9,13 @@
 
 namespace tdo_internal {
 
+/** energy_step from the squared accelerations aa = |a.a|^2 and ba = |b.a|^2 (m^2/s^4) and the
+ *  step b.t - a.t (s), for a pass that keeps |a|^2 of the previous sample. */
+inline double energy_step_sq(double aa, double ba, double step) { return 0.5 * (aa + ba) * step; }
+
 /** m^2/s^4 times s: integral |a|^2 dt from sample a to sample b by the trapezoid rule. */
 inline double energy_step(const tdo_sample& a, const tdo_sample& b) {
-  return 0.5 * (dot(a.a, a.a) + dot(b.a, b.a)) * (b.t - a.t);
+  return energy_step_sq(dot(a.a, a.a), dot(b.a, b.a), b.t - a.t);
 }
 
 }  // namespace tdo_internal

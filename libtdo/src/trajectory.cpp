@@ -25,6 +25,9 @@
 
 #include <math.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "collision_internal.h"
 #include "sample_energy.h"
@@ -38,6 +41,7 @@ constexpr double kTolerance = 0.01;         // 1 % discretisation tolerance on v
 constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
 constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
 constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skipped-sample bound
+constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre-pass's points
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
 constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
@@ -198,6 +202,8 @@ constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local a
 struct BezierCursor {
   V3 p[4];       // control points
   V3 d[3];       // P[i+1] - P[i]
+  V3 e[2];       // d[i+1] - d[i]
+  V3 d3;         // B''' = 6 (e[1] - e[0])
   V3 h[3];       // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
   double u;      // parameter of the last sample
   double s;      // m, arclength at u
@@ -215,7 +221,7 @@ inline V3 bez_d1(const BezierCursor& b, double u) {
   return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
 }
 inline V3 bez_d2(const BezierCursor& b, double u) {
-  return mul(add(mul(sub(b.d[1], b.d[0]), 1.0 - u), mul(sub(b.d[2], b.d[1]), u)), 6.0);
+  return mul(add(mul(b.e[0], 1.0 - u), mul(b.e[1], u)), 6.0);
 }
 inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
 /** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
@@ -223,18 +229,33 @@ inline double bez_speed(const BezierCursor& b, double u) {
   return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
 }
 
+typedef double V2 __attribute__((vector_size(16)));  // two lanes of IEEE doubles
+
+/** sqrt(q[0]) + sqrt(q[1]); both roots in one instruction where SSE2 has it (same results). */
+inline double sqrt_pair_sum(V2 q) {
+#if defined(__SSE2__)
+  const V2 r = _mm_sqrt_pd(q);
+  return r[0] + r[1];
+#else
+  return sqrt(q[0]) + sqrt(q[1]);
+#endif
+}
+
 /** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
 double bez_arclen(const BezierCursor& b, double a, double e) {
   const double span = e - a;
-  double n = ceil(fabs(span) / kCursorPanel);
-  if (n < 1.0) n = 1.0;
-  if (n > kCursorPanels) n = kCursorPanels;
-  const uint32_t panels = static_cast<uint32_t>(n);
-  const double h = span / panels;
+  // One panel for the short spans of consecutive samples (ceil gives 1 there and span / 1 is span).
+  uint32_t panels = 1u;
+  double h = span;
+  if (!(fabs(span) <= kCursorPanel)) {
+    double n = ceil(fabs(span) / kCursorPanel);
+    if (n > kCursorPanels) n = kCursorPanels;
+    panels = static_cast<uint32_t>(n);
+    h = span / panels;
+  }
   double total = 0.0;
   // Each pair of nodes m -/+ dx goes through the same operations as bez_speed, side by side in
   // a two-lane vector (lane-wise IEEE arithmetic: the same results as one at a time).
-  typedef double V2 __attribute__((vector_size(16)));
   const V2 h0x = {b.h[0].x, b.h[0].x}, h0y = {b.h[0].y, b.h[0].y}, h0z = {b.h[0].z, b.h[0].z};
   const V2 h1x = {b.h[1].x, b.h[1].x}, h1y = {b.h[1].y, b.h[1].y}, h1z = {b.h[1].z, b.h[1].z};
   const V2 h2x = {b.h[2].x, b.h[2].x}, h2y = {b.h[2].y, b.h[2].y}, h2z = {b.h[2].z, b.h[2].z};
@@ -248,7 +269,7 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
       const V2 y = h0y + (h1y + h2y * u) * u;
       const V2 z = h0z + (h1z + h2z * u) * u;
       const V2 q = x * x + y * y + z * z;
-      sum += kGlW[i] * (sqrt(q[0]) + sqrt(q[1]));
+      sum += kGlW[i] * sqrt_pair_sum(q);
     }
     total += 0.5 * h * sum;
   }
@@ -259,7 +280,9 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
   for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
   for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
   c->h[0] = mul(c->d[0], 3.0);
-  c->h[1] = mul(sub(c->d[1], c->d[0]), 6.0);
+  for (int i = 0; i < 2; ++i) c->e[i] = sub(c->d[i + 1], c->d[i]);
+  c->d3 = mul(sub(c->e[1], c->e[0]), 6.0);
+  c->h[1] = mul(c->e[0], 6.0);
   c->h[2] = mul(add(sub(c->d[0], mul(c->d[1], 2.0)), c->d[2]), 3.0);
   c->u = 0.0;
   c->s = 0.0;
@@ -268,8 +291,9 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
   c->have = 0;
 }
 
-/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
-void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+/** Moves the cursor to local arclength s (clamped to [0, len]) from its last position; the
+ *  derivatives at the new parameter are left in the cursor. */
+void cursor_seek(BezierCursor* c, double s) {
   double u = c->u, at = c->s;
   // Derivatives at u (the same expressions wherever u came from; computed once per u).
   V3 d1 = c->d1u, d2 = c->d2u;
@@ -327,18 +351,28 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
   c->spu = sp;
   c->curvu = curv;
   c->have = 1;
-  const V3 a0 = lerp(c->p[0], c->p[1], u), a1 = lerp(c->p[1], c->p[2], u),
-           a2 = lerp(c->p[2], c->p[3], u);
-  st->p = u <= 0.0 ? tv(c->p[0])
-                   : (u >= 1.0 ? tv(c->p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
+}
+
+/** Position, unit tangent and dT/ds at the cursor's parameter (after cursor_seek). */
+void cursor_state(const BezierCursor& c, tdo_segment_state* st) {
+  const double u = c.u, sp = c.spu;
+  const V3 a0 = lerp(c.p[0], c.p[1], u), a1 = lerp(c.p[1], c.p[2], u), a2 = lerp(c.p[2], c.p[3], u);
+  st->p = u <= 0.0 ? tv(c.p[0])
+                   : (u >= 1.0 ? tv(c.p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
   if (!(sp > 0.0)) {
     st->t = tdo_vec3{0.0, 0.0, 0.0};
     st->kn = st->t;
     return;
   }
-  const V3 t = mul(d1, 1.0 / sp);
+  const V3 t = mul(c.d1u, 1.0 / sp);
   st->t = tv(t);
-  st->kn = tv(mul(sub(d2, mul(t, dot(d2, t))), 1.0 / (sp * sp)));  // dT/ds
+  st->kn = tv(mul(sub(c.d2u, mul(t, dot(c.d2u, t))), 1.0 / (sp * sp)));  // dT/ds
+}
+
+/** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
+void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
+  cursor_seek(c, s);
+  cursor_state(*c, st);
 }
 
 /** kappa and dkappa_ds at the cursor's parameter, as tdo_segment_eval computes them. */
@@ -348,7 +382,7 @@ void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   const double u = c.u;
   // cursor_eval left the derivatives at u in the cursor.
   const V3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
-  const V3 d3 = mul(sub(sub(c.d[2], c.d[1]), sub(c.d[1], c.d[0])), 6.0);
+  const V3 d3 = c.d3;
   const double sp = c.have ? c.spu : norm(d1);
   if (!(sp > 0.0)) return;
   const V3 cr = cross(d1, d2);
@@ -385,7 +419,7 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double* kappa, double* d
     tdo_segment_state st;
     const double s = i == kStations ? seg.length : h * i;
     if (bez) {
-      cursor_eval(&cursor, s, &st);
+      cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
     } else if (!tdo_segment_eval(&seg, s, &st)) {
       return TDO_ERR_INVALID_ARGUMENT;
@@ -816,28 +850,56 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   const double v_lim = lim.v_max * (1.0 + kTolerance);
   const double a_lim = lim.a_max * (1.0 + kTolerance);
   const double j_lim = lim.j_max * (1.0 + kTolerance);
-  *energy = 0.0;
+  // Clearance pre-pass, inside the dynamic pass: the distance of every kClearanceStride-th sample
+  // (skipped by the Lipschitz bound below when it cannot lower their minimum). That minimum is
+  // the distance of a sample, so the clearance pass may start from it: it skips every sample
+  // that cannot be below it, which is most of them, instead of only those that cannot be below
+  // the minimum of the samples before them.
+  const bool clear = in->grid != nullptr;
+  const double cap = in->clearance + kClearanceCapExtra;
+  const double floor_ok = in->clearance - kClearanceSlack;
+  double pre_min = HUGE_VAL, pre_ref = -HUGE_VAL;
+  V3 pre_at{0.0, 0.0, 0.0};
+  PointHint pre_hint;
+  pre_hint.valid = 0;
   src.rewind();
+  // Running sums and extremes in locals (written to the report at the end: same values).
+  double energy_sum = 0.0, max_speed = 0.0, max_acc = 0.0, max_jerk = 0.0;
+  double min_radius = HUGE_VAL;
+  const double inv_dt = 1.0 / dt, dt2 = dt * dt;
   // Rolling finite differences: v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt,
   // j_i = (a_{i+1} - a_i)/dt.
   V3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
+  double aa0 = 0.0;  // |a|^2 of sample i (the energy's trapezoid)
   for (uint32_t i = 0; i + 1u < n; ++i) {
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
-    *energy += energy_step(s0, s1);
-    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), 1.0 / dt);
+    if (clear && (i % kClearanceStride) == 0u) {
+      const double lb = pre_ref - norm(sub(mk(s0.p), pre_at)) - kLipschitzSlack;
+      if (!(lb >= pre_min)) {
+        const double d = point_distance_hinted(in->grid, s0.p, cap, &pre_hint);
+        pre_ref = d;
+        pre_at = mk(s0.p);
+        pre_min = dmin(pre_min, d);
+      }
+    }
+    if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
+    const double aa1 = dot(mk(s1.a), mk(s1.a));
+    energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
+    aa0 = aa1;
+    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), inv_dt);
     const double speed = norm(v);
-    rep->max_speed = dmax(rep->max_speed, speed);
+    max_speed = dmax(max_speed, speed);
     if (speed > v_lim) {
       add_violation(&r, s0.t + 0.5 * dt, TDO_QUANTITY_SPEED, speed, lim.v_max);
       mark(ctx, src, n, i, i + 1u);
     }
     if (i >= 1u) {  // a_{i-1} from v_{i-1} and v_i: centred at sample i
-      const V3 a = mul(sub(v, v_prev), 1.0 / dt);
+      const V3 a = mul(sub(v, v_prev), inv_dt);
       const double acc = norm(a);
-      rep->max_acc = dmax(rep->max_acc, acc);
+      max_acc = dmax(max_acc, acc);
       if (acc > a_lim) {
-        add_violation(&r, src.at(i).t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
+        add_violation(&r, s0.t, TDO_QUANTITY_ACCELERATION, acc, lim.a_max);
         mark(ctx, src, n, i - 1u, i + 1u);
       }
       // Turn radius at sample i with the centred velocity (eq. 19).
@@ -848,22 +910,22 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
         const double ap = norm(sub(a, mul(u, dot(a, u))));
         // Below the rounding noise of a second difference of these positions the path is
         // straight (near rest that noise alone would give any radius).
-        const double noise = kRadiusNoise * (norm(mk(src.at(i).p)) + 1.0) / (dt * dt);
+        const double noise = kRadiusNoise * (norm(mk(s0.p)) + 1.0) / dt2;
         if (ap > noise) {
           const double radius = vn * vn / ap;
-          rep->min_turn_radius = dmin(rep->min_turn_radius, radius);
+          min_radius = dmin(min_radius, radius);
           const double need = vn * vn / lim.a_max;
           if (radius * (1.0 + kTolerance) < need) {
-            add_violation(&r, src.at(i).t, TDO_QUANTITY_TURN_RADIUS, radius, need);
+            add_violation(&r, s0.t, TDO_QUANTITY_TURN_RADIUS, radius, need);
             mark(ctx, src, n, i - 1u, i + 1u);
           }
         }
       }
       if (i >= 2u) {  // j_{i-2} from a_{i-2} and a_{i-1}: centred between samples i-1 and i
-        const double jerk = norm(mul(sub(a, a_prev), 1.0 / dt));
-        rep->max_jerk = dmax(rep->max_jerk, jerk);
+        const double jerk = norm(mul(sub(a, a_prev), inv_dt));
+        max_jerk = dmax(max_jerk, jerk);
         if (jerk > j_lim) {
-          add_violation(&r, src.at(i).t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
+          add_violation(&r, s0.t - 0.5 * dt, TDO_QUANTITY_JERK, jerk, lim.j_max);
           mark(ctx, src, n, i - 2u, i + 1u);
         }
       }
@@ -871,30 +933,32 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     }
     v_prev = v;
   }
-  if (in->grid != nullptr) {
-    // The distance to the obstacles is 1-Lipschitz: a sample within `moved` (summed sample
-    // steps) of the last evaluated one, whose distance was `ref`, is at least ref - moved away. It
-    // is skipped when that bound cannot lower the minimum nor be a violation, so the minimum and
-    // the violations are those of evaluating every sample.
-    const double cap = in->clearance + kClearanceCapExtra;
-    const double floor_ok = in->clearance - kClearanceSlack;
-    double ref = -HUGE_VAL, moved = 0.0;
+  *energy = energy_sum;
+  rep->max_speed = max_speed;
+  rep->max_acc = max_acc;
+  rep->max_jerk = max_jerk;
+  rep->min_turn_radius = min_radius;
+  if (clear) {
+    // The distance to the obstacles is 1-Lipschitz: a sample at distance `dist` from the last
+    // evaluated one, whose distance was `ref`, is at least ref - dist away. It is skipped when that
+    // bound cannot lower the minimum nor be a violation, so the minimum and the violations (in
+    // sample order) are those of evaluating every sample. The minimum starts at the pre-pass's,
+    // the distance of one of the samples.
+    rep->min_clearance = pre_min;
+    double ref = -HUGE_VAL;
+    V3 at{0.0, 0.0, 0.0};
     PointHint hint;
     hint.valid = 0;
     src.rewind();
-    tdo_vec3 prev{0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < n; ++i) {
       const tdo_sample& si = src.at(i);
-      if (i > 0u) moved += norm(sub(mk(si.p), mk(prev)));
-      prev = si.p;
-      const double lb = ref - moved - kLipschitzSlack;
+      const double lb = ref - norm(sub(mk(si.p), at)) - kLipschitzSlack;
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
       const double d = point_distance_hinted(in->grid, si.p, cap, &hint);
       ref = d;
-      moved = 0.0;
+      at = mk(si.p);
       rep->min_clearance = dmin(rep->min_clearance, d);
-      if (d < in->clearance - kClearanceSlack)
-        add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
+      if (d < floor_ok) add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
     }
   }
   rep->ok = rep->n_violations_total == 0u ? 1 : 0;

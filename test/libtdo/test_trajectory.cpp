@@ -3,6 +3,7 @@
 // here from the sampled positions, independently of the library's own report.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -794,6 +795,47 @@ TEST_F(TrajectoryClearance, GivenPathDippingTwiceTowardsABoxThenEveryCloseSample
     const uint32_t k = static_cast<uint32_t>(std::lround(v.t / in.dt));
     EXPECT_NEAR(tdo_test::distance_to_box(out.samples[k].p, obs_.boxes[0]), v.value, 1e-9);
   }
+}
+
+TEST_F(TrajectoryClearance,
+       GivenLongPathWhoseClosestDipIsLateThenEveryCloseSampleIsReportedInOrder) {
+  // GIVEN a path of over 1024 samples that dips towards the box twice: first to 0.45 m (closer
+  // than the clearance, farther than the minimum), later to 0.3 m (the verification takes its
+  // starting minimum from a sparse pre-pass over the samples, so the early dip is checked against
+  // a minimum that may come from the late one: it must still report every sample of both)
+  load_box(0.3, 0.0);
+  Traj t;
+  const std::vector<tdo_path_segment> segs{
+      line({1, -3, 2}, {6.5, -0.15, 2}), line({6.5, -0.15, 2}, {7.25, -3, 2}),
+      line({7.25, -3, 2}, {8.5, 0.0, 2}), line({8.5, 0.0, 2}, {15, -3, 2})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = input_on_grid(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INFEASIBLE);
+  ASSERT_GT(out.n_samples, 1024u);
+  // THEN the minimum is the exact minimum over all samples, and the violations are exactly the
+  // samples closer than the clearance, each once, in sample order, at its own distance
+  double best = kInfty;
+  std::vector<uint32_t> close;
+  for (uint32_t i = 0; i < out.n_samples; ++i) {
+    const double d = tdo_test::distance_to_box(out.samples[i].p, obs_.boxes[0]);
+    best = std::fmin(best, d);
+    if (d < in.clearance - 1e-9) close.push_back(i);
+  }
+  EXPECT_NEAR(out.report.min_clearance, best, 1e-9);
+  EXPECT_NEAR(best, 0.3, 1e-6);
+  ASSERT_EQ(out.report.n_violations_total, close.size());
+  ASSERT_EQ(out.report.n_violations, std::min<size_t>(close.size(), 32u));  // the list's capacity
+  bool early = false;
+  for (uint32_t i = 0; i < out.report.n_violations; ++i) {
+    const tdo_violation& v = out.report.violations[i];
+    EXPECT_EQ(v.what, TDO_QUANTITY_CLEARANCE);
+    const uint32_t k = static_cast<uint32_t>(std::lround(v.t / in.dt));
+    EXPECT_EQ(k, close[i]);
+    EXPECT_NEAR(tdo_test::distance_to_box(out.samples[k].p, obs_.boxes[0]), v.value, 1e-9);
+    early |= v.value > 0.4;  // a sample of the first dip
+  }
+  EXPECT_TRUE(early);
 }
 
 TEST_F(TrajectoryClearance, GivenPathTooCloseToAnObstacleThenInfeasibleWithoutRefinement) {
