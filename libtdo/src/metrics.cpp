@@ -20,6 +20,7 @@
 
 #include "sample_energy.h"
 #include "tdo/collision.h"
+#include "vec3.h"
 
 namespace tdo_internal {
 namespace {
@@ -53,7 +54,6 @@ inline V3 cross(const V3& a, const V3& b) {
   return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline V3 lerp(const V3& a, const V3& b, double t) { return add(a, mul(sub(b, a), t)); }
-inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 inline double dmin(double a, double b) { return a < b ? a : b; }
 inline double dmax(double a, double b) { return a > b ? a : b; }
 

@@ -32,6 +32,7 @@
 #include "collision_internal.h"
 #include "sample_energy.h"
 #include "tdo/collision.h"
+#include "vec3.h"
 
 namespace tdo_internal {
 namespace {
@@ -75,7 +76,6 @@ inline double norm(const V3& a) { return sqrt(dot(a, a)); }
 inline V3 cross(const V3& a, const V3& b) {
   return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline bool finite3(const tdo_vec3& a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 inline double dmin(double a, double b) { return a < b ? a : b; }
 inline double dmax(double a, double b) { return a > b ? a : b; }
 inline bool positive(double v) { return isfinite(v) && v > 0.0; }
