@@ -158,6 +158,8 @@ struct tdo_search {
   uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
   // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
   uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
+  // first_sharp[h]: how many leading entries of by_angle[h] lie in cand[h] (no sharp step there)
+  uint8_t first_sharp[tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
@@ -995,7 +997,9 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
                                                   t.vx, t.vy, t.vz, t.n)
                                    : 0.0;
     const double inv_lambda = dev_bound ? 1.0 / ctx->turn_lambda : 0.0;
-    for (int k = 0; k < kNumDirs && rest != 0; ++k) {
+    // Without D_th every sharp step lies beyond theta_max: the pivots start after the leading
+    // candidates of the order (D_th makes some candidates sharp).
+    for (int k = q.d_th > 0.0 ? 0 : ctx->first_sharp[u.heading]; k < kNumDirs && rest != 0; ++k) {
       const int d = order[k];
       if (((rest >> d) & 1u) == 0) continue;
       const double ng = g0 + turn_row[d];
@@ -1498,6 +1502,11 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
       }
     }
     ctx->cand[kHeadingNone] = (1u << kNumDirs) - 1u;
+    for (int a = 0; a < kNumDirs; ++a) {
+      int k = 0;
+      while (k < kNumDirs && ((ctx->cand[a] >> ctx->by_angle[a][k]) & 1u) != 0) ++k;
+      ctx->first_sharp[a] = static_cast<uint8_t>(k);
+    }
     ctx->cand_theta = theta_max;
   }
   if (!(ctx->turn_lambda < lambda) && !(lambda < ctx->turn_lambda)) return;  // cached
