@@ -113,6 +113,30 @@ bool grid_path(TestPlanner& pl, const tdo_vec3& start, const tdo_vec3& goal,
   return true;
 }
 
+/** A random pillar map in pl's grid (24 x 24 x 10 voxels of 0.5 m; n boxes with footprints of 0.3
+ *  to 2 m at x, y in [0, 12], from z = -0.5 up to 1 to 6 m) and the grid path between random
+ *  voxels near opposite corners, z in [z_lo, z_hi]. False when an end is blocked or no path exists.
+ */
+bool random_pillar_query(TestPlanner& pl, Rng& rng, int n, double clearance, int z_lo, int z_hi,
+                         Map* mp, std::vector<tdo_vec3>* pts) {
+  mp->m = VoxelMap(24, 24, 10, 0.5, v3(0.0, 0.0, 0.0));
+  mp->boxes.clear();
+  for (int b = 0; b < n; ++b) {
+    const double x = rng.uniform(0, 12), y = rng.uniform(0, 12);
+    const double wx = rng.uniform(0.3, 2.0), wy = rng.uniform(0.3, 2.0), h = rng.uniform(1.0, 6.0);
+    mp->boxes.push_back(tdo_box{v3(x, y, -0.5), v3(x + wx, y + wy, h)});
+  }
+  if (load_boxes(pl.grid(), *mp, clearance) != TDO_OK) {
+    ADD_FAILURE() << "the pillars do not load";
+    return false;
+  }
+  const tdo_voxel s{rng.range(0, 5), rng.range(0, 5), rng.range(z_lo, z_hi)};
+  const tdo_voxel g{rng.range(18, 23), rng.range(18, 23), rng.range(z_lo, z_hi)};
+  if (tdo_grid_is_blocked(pl.grid(), s) || tdo_grid_is_blocked(pl.grid(), g)) return false;
+  return grid_path(pl, tdo_grid_voxel_center(pl.grid(), s), tdo_grid_voxel_center(pl.grid(), g),
+                   pts);
+}
+
 const tdo_correct_mode kModes[] = {TDO_CORRECT_MULTISCALE, TDO_CORRECT_GREEDY_LOS,
                                    TDO_CORRECT_NONE};
 const char* mode_name(tdo_correct_mode m) {
@@ -415,22 +439,9 @@ TEST(
   int compared = 0, shorter = 0;
   for (int map = 0; map < 80; ++map) {
     Map mp;
-    mp.m = VoxelMap(24, 24, 10, 0.5, v3(0.0, 0.0, 0.0));
-    const int n_boxes = rng.range(10, 40);
-    for (int b = 0; b < n_boxes; ++b) {
-      const double x = rng.uniform(0, 12), y = rng.uniform(0, 12);
-      const double wx = rng.uniform(0.3, 2.0), wy = rng.uniform(0.3, 2.0),
-                   h = rng.uniform(1.0, 6.0);
-      mp.boxes.push_back(tdo_box{v3(x, y, -0.5), v3(x + wx, y + wy, h)});
-    }
-    ASSERT_EQ(load_boxes(pl.grid(), mp, clearance), TDO_OK);
-    const tdo_voxel s{rng.range(0, 5), rng.range(0, 5), rng.range(0, 9)};
-    const tdo_voxel g{rng.range(18, 23), rng.range(18, 23), rng.range(0, 9)};
-    if (tdo_grid_is_blocked(pl.grid(), s) || tdo_grid_is_blocked(pl.grid(), g)) continue;
     std::vector<tdo_vec3> pts;
-    if (!grid_path(pl, tdo_grid_voxel_center(pl.grid(), s), tdo_grid_voxel_center(pl.grid(), g),
-                   &pts))
-      continue;
+    const int n_boxes = rng.range(10, 40);
+    if (!random_pillar_query(pl, rng, n_boxes, clearance, 0, 9, &mp, &pts)) continue;
     tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, clearance);
     tdo_correct_output a{}, b{};
     if (tdo_correct_run(plain.ctx(), &in, &a) != TDO_OK) continue;  // grazing grid path
@@ -475,20 +486,8 @@ TEST(Correct, GivenEveryBudget_WhenShortened_ThenChecksUseItExactlyAndSegmentsKe
   int runs = 0, cut = 0;
   for (int map = 0; map < 40 && runs < 6; ++map) {
     Map mp;
-    mp.m = VoxelMap(24, 24, 10, 0.5, v3(0.0, 0.0, 0.0));
-    for (int b = 0; b < 30; ++b) {
-      const double x = rng.uniform(0, 12), y = rng.uniform(0, 12);
-      mp.boxes.push_back(
-          tdo_box{v3(x, y, -0.5), v3(x + rng.uniform(0.3, 2.0), y + rng.uniform(0.3, 2.0), 6.0)});
-    }
-    ASSERT_EQ(load_boxes(pl.grid(), mp, clearance), TDO_OK);
-    const tdo_voxel s{rng.range(0, 5), rng.range(0, 5), 4};
-    const tdo_voxel g{rng.range(18, 23), rng.range(18, 23), 4};
-    if (tdo_grid_is_blocked(pl.grid(), s) || tdo_grid_is_blocked(pl.grid(), g)) continue;
     std::vector<tdo_vec3> pts;
-    if (!grid_path(pl, tdo_grid_voxel_center(pl.grid(), s), tdo_grid_voxel_center(pl.grid(), g),
-                   &pts))
-      continue;
+    if (!random_pillar_query(pl, rng, 30, clearance, 4, 4, &mp, &pts)) continue;
     tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, clearance);
     in.shorten = 1;
     Corrector full(2000, 0);
