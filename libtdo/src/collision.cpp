@@ -549,6 +549,17 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
 
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }
 
+// The checks of a segment clearance query (a ready grid, finite end points, a finite clearance
+// >= 0) and its end points loaded into pa and pb; false: the query answers 0 (not clear).
+bool load_segment_query(const tdo_grid* g, const tdo_vec3& a, const tdo_vec3& b, double clearance,
+                        double pa[3], double pb[3]) {
+  if (!ready(g) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
+    return false;
+  load(a, pa);
+  load(b, pb);
+  return true;
+}
+
 // Lower *best (m) to the distance of point p to box b when that is smaller.
 // The sum of squares is that of point_box_d2; it stops at the first axis whose gap alone reaches
 // *best (rounding is monotone, so then d2 >= gap^2 >= best^2 and nothing changes).
@@ -668,22 +679,15 @@ namespace tdo_internal {
 
 int segment_clear_hinted(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
                          uint32_t* hint) {
-  if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
-    return 0;
   double pa[3], pb[3];
-  load(a, pa);
-  load(b, pb);
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
   return segment_clear_hint(grid, pa, pb, clearance, hint) ? 1 : 0;
 }
 
 int segment_blocked_by_hint(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
                             uint32_t hint) {
-  if (hint == 0u || !ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) ||
-      !isfinite(clearance))
-    return 0;
   double pa[3], pb[3];
-  load(a, pa);
-  load(b, pb);
+  if (hint == 0u || !load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
   if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
   return box_certainly_violates(grid, hint - 1u, pa, pb, clearance) ? 1 : 0;
 }
@@ -774,11 +778,8 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
 
 extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b,
                                            double clearance) {
-  if (!ready(grid) || !finite3(a) || !finite3(b) || !(clearance >= 0.0) || !isfinite(clearance))
-    return 0;
   double pa[3], pb[3];
-  load(a, pa);
-  load(b, pb);
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
   return segment_clear(grid, pa, pb, clearance) ? 1 : 0;
 }
 
