@@ -835,6 +835,23 @@ void mark(tdo_traj* ctx, Src& src, uint32_t n, uint32_t first, uint32_t last) {
   for (uint32_t i = a; i <= b; ++i) ctx->hit[src.owner(i)] = 1u;
 }
 
+/** Point distances along the samples, skipped by the 1-Lipschitz bound: a point at distance r from
+ *  the last evaluated one, whose distance was `ref`, is at least ref - r from the obstacles. */
+struct LipschitzProbe {
+  double ref = -HUGE_VAL;  // m, distance of the last evaluated point
+  V3 at{0.0, 0.0, 0.0};    // m, world frame: that point
+  PointHint hint;
+  LipschitzProbe() { hint.valid = 0; }
+  /** m, lower bound of the distance at p. */
+  double bound(const tdo_vec3& p) const { return ref - norm(sub(mk(p), at)) - kLipschitzSlack; }
+  /** m, the distance at p (capped at cap), evaluated. */
+  double eval(const tdo_grid* g, const tdo_vec3& p, double cap) {
+    ref = point_distance_hinted(g, p, cap, &hint);
+    at = mk(p);
+    return ref;
+  }
+};
+
 /** Two passes over the samples of `src` (dynamic limits and energy, then clearance), so the
  *  violations are listed in the same order whether the samples are stored or streamed. */
 template <typename Src>
@@ -858,10 +875,8 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   const bool clear = in->grid != nullptr;
   const double cap = in->clearance + kClearanceCapExtra;
   const double floor_ok = in->clearance - kClearanceSlack;
-  double pre_min = HUGE_VAL, pre_ref = -HUGE_VAL;
-  V3 pre_at{0.0, 0.0, 0.0};
-  PointHint pre_hint;
-  pre_hint.valid = 0;
+  double pre_min = HUGE_VAL;
+  LipschitzProbe pre;
   src.rewind();
   // Running sums and extremes in locals (written to the report at the end: same values).
   double energy_sum = 0.0, max_speed = 0.0, max_acc = 0.0, max_jerk = 0.0;
@@ -874,15 +889,8 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   for (uint32_t i = 0; i + 1u < n; ++i) {
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
-    if (clear && (i % kClearanceStride) == 0u) {
-      const double lb = pre_ref - norm(sub(mk(s0.p), pre_at)) - kLipschitzSlack;
-      if (!(lb >= pre_min)) {
-        const double d = point_distance_hinted(in->grid, s0.p, cap, &pre_hint);
-        pre_ref = d;
-        pre_at = mk(s0.p);
-        pre_min = dmin(pre_min, d);
-      }
-    }
+    if (clear && (i % kClearanceStride) == 0u && !(pre.bound(s0.p) >= pre_min))
+      pre_min = dmin(pre_min, pre.eval(in->grid, s0.p, cap));
     if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
     const double aa1 = dot(mk(s1.a), mk(s1.a));
     energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
@@ -939,24 +947,17 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   rep->max_jerk = max_jerk;
   rep->min_turn_radius = min_radius;
   if (clear) {
-    // The distance to the obstacles is 1-Lipschitz: a sample at distance `dist` from the last
-    // evaluated one, whose distance was `ref`, is at least ref - dist away. It is skipped when that
-    // bound cannot lower the minimum nor be a violation, so the minimum and the violations (in
-    // sample order) are those of evaluating every sample. The minimum starts at the pre-pass's,
-    // the distance of one of the samples.
+    // A sample is skipped when its Lipschitz bound (LipschitzProbe) cannot lower the minimum nor
+    // be a violation, so the minimum and the violations (in sample order) are those of evaluating
+    // every sample. The minimum starts at the pre-pass's, the distance of one of the samples.
     rep->min_clearance = pre_min;
-    double ref = -HUGE_VAL;
-    V3 at{0.0, 0.0, 0.0};
-    PointHint hint;
-    hint.valid = 0;
+    LipschitzProbe probe;
     src.rewind();
     for (uint32_t i = 0; i < n; ++i) {
       const tdo_sample& si = src.at(i);
-      const double lb = ref - norm(sub(mk(si.p), at)) - kLipschitzSlack;
+      const double lb = probe.bound(si.p);
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
-      const double d = point_distance_hinted(in->grid, si.p, cap, &hint);
-      ref = d;
-      at = mk(si.p);
+      const double d = probe.eval(in->grid, si.p, cap);
       rep->min_clearance = dmin(rep->min_clearance, d);
       if (d < floor_ok) add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
     }
