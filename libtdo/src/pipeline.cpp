@@ -240,6 +240,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.d_th = p.d_th;
   si.h_weight = p.h_weight;
   si.first_meet = p.first_meet;
+  si.grid_first = p.grid_first;
   si.max_expansions = p.max_expansions;
   out->status = tdo_search_run(pl->search, &si, &out->search);
   if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);

@@ -1647,6 +1647,35 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   return TDO_OK;
 }
 
+namespace tdo_internal {
+namespace {
+
+// Set up retry t + 1 of a turn-penalised search after try t: the grid-distance tables (built once,
+// before the first retry), the retry's weight, no deviation terms. False (the counts reported)
+// when the tables show that the goal cannot be reached.
+bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
+  if (t == 0) {
+    for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
+      if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
+        report_counts(q, out);
+        return false;
+      }
+      ctx->side[k].hx = ctx->hdist[k];
+    }
+  }
+  q.best = HUGE_VAL;
+  q.meet[0] = q.meet[1] = kNil;
+  q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
+  // The deviation term and the turn bound aim at the straight line to the target, through walls:
+  // they would flood as the octile distance did.
+  q.dev_terms = 0;
+  out->fallback = static_cast<uint32_t>(t + 1);
+  return true;
+}
+
+}  // namespace
+}  // namespace tdo_internal
+
 extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in,
                                      tdo_search_output* out) {
   if (ctx == nullptr || in == nullptr || out == nullptr || in->grid == nullptr)
@@ -1660,7 +1689,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   if (!isfinite(in->lambda) || !isfinite(in->mu) || in->lambda < 0.0 || in->mu < 0.0 ||
       !isfinite(in->theta_max) || !isfinite(in->d_th) || !isfinite(in->h_weight) ||
       in->h_weight < 0.0 || (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) ||
-      !finite3(in->start) || !finite3(in->goal))
+      !finite3(in->start) || !finite3(in->goal) ||
+      (in->grid_first != 0 && ctx->cfg.exact_heuristic == 0))  // grid_first needs the tables
     return TDO_ERR_INVALID_ARGUMENT;
   Query q;
   memset(&q, 0, sizeof(q));
@@ -1721,7 +1751,13 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
                        iabs(q.v[1].k - q.v[0].k), g->desc.res);
   tdo_status st = TDO_OK;
-  for (int t = 0; t <= retries; ++t) {  // bounded: retries + 1 tries
+  // grid_first: the octile try is skipped, the search starts as the first retry.
+  int t = 0;
+  if (in->grid_first != 0) {
+    if (!start_retry(ctx, q, 0, out)) return TDO_ERR_NO_PATH;
+    t = 1;
+  }
+  for (; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
     q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
     // The flood test (flooding) runs in the first try only: the retries follow the free space.
@@ -1733,22 +1769,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
         t < retries && q.expansions < budget &&
         (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY || st == TDO_ERR_OPEN_CAPACITY);
     if (!retry) break;
-    if (t == 0) {
-      for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-        if (!exact_lower_bounds(ctx, g, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
-          report_counts(q, out);
-          return TDO_ERR_NO_PATH;
-        }
-        ctx->side[k].hx = ctx->hdist[k];
-      }
-    }
-    q.best = HUGE_VAL;
-    q.meet[0] = q.meet[1] = kNil;
-    q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
-    // The deviation term and the turn bound aim at the straight line to the target, through walls:
-    // they would flood as the octile distance did.
-    q.dev_terms = 0;
-    out->fallback = static_cast<uint32_t>(t + 1);
+    if (!start_retry(ctx, q, t, out)) return TDO_ERR_NO_PATH;
   }
   report_counts(q, out);
   if (st != TDO_OK) return st;

@@ -518,25 +518,34 @@ tdo_capacity retry_cap(uint32_t n) {
   return cap;
 }
 
-// Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
-// its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
-// path, deterministically; plain searches never retry and stay optimal.
-TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
-  const int32_t nx = 64, ny = 32, nz = 8;
-  TestPlanner pl(retry_cap(static_cast<uint32_t>(nx * ny * nz)));
-  ASSERT_EQ(pl.status(), TDO_OK);
+// 64 x 32 x 8 voxels crossed by seven full walls whose one-voxel holes alternate between opposite
+// corners, start and goal at the two ends (`sealed`: no holes, so no path).
+constexpr int32_t kWallsNx = 64, kWallsNy = 32, kWallsNz = 8;
+Case walls_with_holes(bool sealed) {
   Case c;
-  c.map = VoxelMap(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
-  for (int32_t x = 8; x < nx; x += 8) {
+  c.map = VoxelMap(kWallsNx, kWallsNy, kWallsNz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  for (int32_t x = 8; x < kWallsNx; x += 8) {
     const bool low = (x / 8) % 2 == 1;  // holes alternate between (y, z) = (0, 0) and (31, 7)
-    for (int32_t z = 0; z < nz; ++z)
-      for (int32_t y = 0; y < ny; ++y)
-        if (!(low ? (y == 0 && z == 0) : (y == ny - 1 && z == nz - 1))) c.map.set(x, y, z);
+    for (int32_t z = 0; z < kWallsNz; ++z)
+      for (int32_t y = 0; y < kWallsNy; ++y) {
+        const bool hole = low ? (y == 0 && z == 0) : (y == kWallsNy - 1 && z == kWallsNz - 1);
+        if (sealed || !hole) c.map.set(x, y, z);
+      }
   }
   c.s = {2, 16, 4};
   c.g = {61, 16, 4};
   c.ps = c.map.center(c.s);
   c.pg = c.map.center(c.g);
+  return c;
+}
+
+// Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
+// its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
+// path, deterministically; plain searches never retry and stay optimal.
+TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_ThenARetryFinds) {
+  TestPlanner pl(retry_cap(static_cast<uint32_t>(kWallsNx * kWallsNy * kWallsNz)));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const Case c = walls_with_holes(false);
   ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
   const double want = tdo_test::reference_cost(c.map, c.s, c.g);
   ASSERT_LT(want, kInf);
@@ -558,6 +567,50 @@ TEST(SearchPenalty, GivenWallsWithHolesInOppositeCorners_WhenTheOctileTryFloods_
     EXPECT_GE(r.out.cost, want * (1.0 - 1e-9)) << "below the optimal length";
     EXPECT_TRUE(identical(r, run(pl.search(), in))) << "a second run differs";
   }
+}
+
+// grid_first skips the octile try: the search starts as the retry would, so on the walls above it
+// returns the retry's path (same voxels, same costs) with the octile try's expansions saved; with
+// the holes sealed the grid-distance tables show that no path exists; without tables it is refused.
+TEST(SearchPenalty, GivenGridFirst_WhenSearchingBehindWalls_ThenTheRetrysPathWithoutTheOctileTry) {
+  TestPlanner pl(retry_cap(static_cast<uint32_t>(kWallsNx * kWallsNy * kWallsNz)));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const Case c = walls_with_holes(false);
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {
+    SCOPED_TRACE(tdo_test::kind_name(kind));
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind, 50.0, 20.0);
+    in.theta_max = 0.25 * 3.14159265358979323846;
+    const Result a = run(pl.search(), in);
+    in.grid_first = 1;
+    const Result b = run(pl.search(), in);
+    ASSERT_EQ(a.status, TDO_OK) << tdo_status_str(a.status);
+    ASSERT_EQ(b.status, TDO_OK) << tdo_status_str(b.status);
+    ASSERT_GE(a.out.fallback, 1u);
+    EXPECT_EQ(b.out.fallback, a.out.fallback);
+    EXPECT_TRUE(tdo_test::valid_path(c.map, b.out, c.s, c.g));
+    EXPECT_EQ(bits(b.out.cost), bits(a.out.cost));
+    EXPECT_EQ(bits(b.out.penalized_cost), bits(a.out.penalized_cost));
+    ASSERT_EQ(b.path.size(), a.path.size());
+    for (size_t k = 0; k < a.path.size(); ++k)
+      EXPECT_TRUE(tdo_test::same_voxel(a.path[k], b.path[k])) << "path differs at " << k;
+    EXPECT_LT(b.out.expansions, a.out.expansions) << "the octile try was not skipped";
+    EXPECT_TRUE(identical(b, run(pl.search(), in))) << "a second run differs";
+  }
+  const Case sealed = walls_with_holes(true);
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), sealed.map), TDO_OK);
+  tdo_search_input in = make_input(pl.grid(), sealed.ps, sealed.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+  in.theta_max = 0.25 * 3.14159265358979323846;
+  in.grid_first = 1;
+  EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_NO_PATH);
+  tdo_capacity cap = retry_cap(static_cast<uint32_t>(kWallsNx * kWallsNy * kWallsNz));
+  cap.exact_heuristic = 0u;
+  TestPlanner no_tables(cap);
+  ASSERT_EQ(no_tables.status(), TDO_OK);
+  ASSERT_EQ(tdo_test::load_voxels(no_tables.grid(), c.map), TDO_OK);
+  in = make_input(no_tables.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+  in.grid_first = 1;
+  EXPECT_EQ(run(no_tables.search(), in).status, TDO_ERR_INVALID_ARGUMENT);
 }
 
 // The flood test must leave a first try alone that progresses steadily: a field of pillars that

@@ -67,7 +67,7 @@ def main():
     if doc["status"] != "ok":
         fail(f"status {doc['status']!r}", proc)
     for key in ("lambda", "mu", "theta_max_deg", "clearance", "v_max", "a_max", "j_max", "k", "dt",
-                "smoothing", "seed", "max_expansions", "max_nodes"):
+                "smoothing", "seed", "max_expansions", "max_nodes", "retry"):
         if key not in doc["params"]:
             fail(f"missing params.{key}", proc)
     m = doc["metrics"]

@@ -7,7 +7,9 @@
 // parameters (stages 1-3, 5 and the metrics), expansions, the arena footprint, and the quality
 // columns of tdo (turns and length of the final path) against raw A* (turns and length of its grid
 // path), then one "met" / "NOT met" line per goal of issue 3 (time: Map1-3 <= 1 ms, Map4-5 <= 5 ms
-// median; quality: turns <= 10 % of A*'s, length <= A*'s). Exit status 2 on bad arguments or
+// median; quality: turns <= 10 % of A*'s, length <= A*'s). A second table times tdo with
+// `grid_first` (the search starts with grid distances instead of the octile try) in the same
+// process, with its ratio to the default. Exit status 2 on bad arguments or
 // unreadable maps, 1 when a plan fails.
 #include <algorithm>
 #include <chrono>
@@ -44,7 +46,11 @@ Stats stats(std::vector<double> v) {
 struct Row {
   std::string map;
   Stats tdo;
+  Stats first;  // tdo with grid_first
   Stats astar;
+  uint32_t first_expansions = 0;
+  uint32_t first_turns = 0;
+  double first_length = 0.0;
   uint32_t tdo_expansions = 0;
   uint32_t astar_expansions = 0;
   uint32_t tdo_turns = 0;
@@ -135,6 +141,18 @@ int main(int argc, char** argv) {
     row.tdo_length = res.metrics.length_m;
     row.feasible = res.feasibility.ok;
 
+    req.params.grid_first = 1;
+    const std::vector<double> t_first = timed(pl, req, repeat, &res, &st);
+    if (st != TDO_OK) {
+      std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo grid_first: %s\n", name.c_str(),
+                   tdo_status_str(st));
+      return 1;
+    }
+    row.first = stats(t_first);
+    row.first_expansions = res.search.expansions;
+    row.first_turns = res.metrics.turns;
+    row.first_length = res.metrics.length_m;
+
     tdo_plan_params_default(&req.params);
     req.params.depth = TDO_PLAN_SEARCH;
     req.params.search = TDO_SEARCH_ASTAR;
@@ -171,6 +189,13 @@ int main(int argc, char** argv) {
                 r.astar_turns,
                 r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0,
                 r.tdo_length, r.astar_length, r.tdo_length / r.astar_length);
+  std::printf(
+      "\n| map | grid_first median ms | ratio to tdo | grid_first expansions | grid_first turns "
+      "| grid_first length m | length ratio to astar |\n|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const Row& r : rows)
+    std::printf("| %s | %.3f | %.3f | %u | %u | %.3f | %.3f |\n", r.map.c_str(), r.first.median_ms,
+                r.first.median_ms / r.tdo.median_ms, r.first_expansions, r.first_turns,
+                r.first_length, r.first_length / r.astar_length);
   // The goals of issue 3 (docs/performance.md), one line each.
   std::printf("\n");
   for (const Row& r : rows) {

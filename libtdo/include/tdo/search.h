@@ -37,7 +37,8 @@ typedef struct tdo_search_config {
   uint32_t dense_headings;  /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
                                  direction) for turn-penalised searches; 0: per-voxel chains */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the retry of a
-                                 flooding turn-penalised search (tdo_search_output.fallback) */
+                                 flooding turn-penalised search (tdo_search_output.fallback) and for
+                                 tdo_search_input.grid_first */
   uint32_t max_open;        /**< open-list items per direction (16 bytes each, 14 in tdo_index16,
                                  plus 27 entries of slack: one expansion's worth); a search whose
                                  open list holds more before an expansion stops with
@@ -66,6 +67,12 @@ typedef struct tdo_search_input {
   int first_meet;          /**< bidirectional only: 1 = stop as soon as the two searches meet (the
                                 paper's Algorithm 1, line 12); 0 = stop by the optimal rule (the
                                 smaller f of either side reaches the best meeting cost) */
+  int grid_first;          /**< turn-penalised searches: 1 = skip the octile try and start as its
+                                retry does (grid-distance heuristic weighted by 2, no deviation
+                                term or turn bound): faster where walls make the octile try flood,
+                                slower on open maps (docs/performance.md). Needs the tables
+                                (tdo_search_config.exact_heuristic), else
+                                TDO_ERR_INVALID_ARGUMENT. Plain A* and bidir ignore it */
 } tdo_search_input;
 
 /**
@@ -92,7 +99,8 @@ typedef struct tdo_search_output {
                               1 or 2 = by a retry with the obstacle-aware heuristic weighted by 2
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
                               expansions, progress towards the targets too slow to finish within
-                              half of them (first try only), or a full node pool). expansions
+                              half of them (first try only), or a full node pool; with
+                              grid_first the octile try is skipped, so at least 1). expansions
                               counts every try */
 } tdo_search_output;
 
