@@ -33,7 +33,11 @@
 
 namespace {
 
+using tdo_internal::add;
+using tdo_internal::dot;
 using tdo_internal::finite3;
+using tdo_internal::lerp;
+using tdo_internal::mul;
 using tdo_internal::norm;
 using tdo_internal::sub;
 
@@ -298,7 +302,7 @@ bool shortcut_sweep(Run& r, uint32_t* m_io) {
       far_box = 0u;
       for (uint32_t ti = 0; ti < kNT; ++ti) {
         const double t = kShortT[ti];
-        const tdo_vec3 p{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z)};
+        const tdo_vec3 p = lerp(a, b, t);
         const int ok = check(r, ctx->pts[i], p);
         if (ok < 0) {
           ok_budget = false;
@@ -336,14 +340,13 @@ bool relocate_sweep(Run& r, uint32_t m) {
   for (uint32_t k = 1; k + 1u < m; ++k) {
     const tdo_vec3 a = p[k - 1u], b = p[k], c = p[k + 1u];
     const tdo_vec3 d = sub(c, a), w = sub(b, a);
-    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+    const double dd = dot(d, d);
     if (!(dd > 0.0)) continue;
-    double t = (w.x * d.x + w.y * d.y + w.z * d.z) / dd;
+    double t = dot(w, d) / dd;
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    const tdo_vec3 foot{a.x + t * d.x, a.y + t * d.y, a.z + t * d.z};
+    const tdo_vec3 foot = add(a, mul(d, t));
     for (double sf : kRelocS) {
-      const tdo_vec3 q{b.x + sf * (foot.x - b.x), b.y + sf * (foot.y - b.y),
-                       b.z + sf * (foot.z - b.z)};
+      const tdo_vec3 q = lerp(b, foot, sf);
       const int ok1 = check(r, a, q);
       if (ok1 < 0) return false;
       if (ok1 == 0) continue;
