@@ -667,6 +667,11 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
     arcs.smoothing = TDO_SMOOTHING_ARC;
     arcs.depth = TDO_PLAN_SMOOTH;
     run_case(label + " (own query, arcs)", world, pl, clearance, map.start, map.goal, arcs, &tally);
+    // The option that starts with grid distances (tdo_plan_params.grid_first).
+    tdo_plan_params grid = params;
+    grid.grid_first = 1;
+    run_case(label + " (own query, grid_first)", world, pl, clearance, map.start, map.goal, grid,
+             &tally);
     if (HasFailure()) {
       ADD_FAILURE() << label << " failed; its map:\n" << gen.text;
       break;
@@ -681,7 +686,7 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
   EXPECT_GT(seen.beziers, 500);  // the checker had curves to judge
   EXPECT_GT(seen.arcs, 200);
   EXPECT_EQ(generated, kRandomMaps);
-  EXPECT_GE(tally.tdo_ok, 2 * generated);  // every own query is solvable (generate checked it)
+  EXPECT_GE(tally.tdo_ok, 3 * generated);  // every own query is solvable (generate checked it)
 }
 
 // The paper's maps at the default clearance 0.5 m: the map's query and 4 random ones each.
@@ -697,6 +702,11 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
     tdo_plan_params params;
     tdo_plan_params_default(&params);
     EXPECT_EQ(run_case(name, world, pl, clearance, map.start, map.goal, params, &tally), TDO_OK);
+    tdo_plan_params grid = params;
+    grid.grid_first = 1;
+    EXPECT_EQ(
+        run_case(name + " grid_first", world, pl, clearance, map.start, map.goal, grid, &tally),
+        TDO_OK);
     TestRng rng(100u + static_cast<uint64_t>(n));
     for (int q = 0; q < 4; ++q)
       run_case(name + " random", world, pl, clearance, random_point(rng, map.desc),
@@ -704,7 +714,7 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
   }
   std::printf("maps 1-5: %d queries, A* ok %d, tdo ok %d\n", tally.queries, tally.astar_ok,
               tally.tdo_ok);
-  EXPECT_GE(tally.tdo_ok, 5);
+  EXPECT_GE(tally.tdo_ok, 10);  // the own queries, default and grid_first
 }
 
 // tdo_capacity.stream_samples: the same plans, feasibility reports, metrics and samples (bit for
