@@ -246,6 +246,7 @@ tdo_plan_request sample_request() {
   p.d_th = 0.3;
   p.h_weight = 1.5;
   p.first_meet = 1;
+  p.grid_first = 1;
   p.max_expansions = 12345;
   p.correction = TDO_CORRECT_GREEDY_LOS;
   p.turn_threshold = 0.17;
@@ -291,6 +292,7 @@ TEST(RequestAdapter, RoundTripKeepsEveryParameter) {
   EXPECT_EQ(b.d_th, a.d_th);
   EXPECT_EQ(b.h_weight, a.h_weight);
   EXPECT_EQ(b.first_meet, a.first_meet);
+  EXPECT_EQ(b.grid_first, a.grid_first);
   EXPECT_EQ(b.max_expansions, a.max_expansions);
   EXPECT_EQ(b.correction, a.correction);
   EXPECT_EQ(b.turn_threshold, a.turn_threshold);

@@ -33,8 +33,8 @@ static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, 
 // plan_request_t carries every field of tdo_plan_params. When this fails, the library's parameters
 // changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
 // plan_request_to_msg and to the tests, then update the size here.
-// (tdo_plan_params.shorten and grid_first fit in padding and are not carried: plan_request_from_msg
-// sets them to their defaults, 1 and 0.)
+// (tdo_plan_params.shorten fits in padding and is not carried: plan_request_from_msg sets it to
+// the default 1.)
 static_assert(sizeof(tdo_plan_params) == 144, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
@@ -383,12 +383,12 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   p.d_th = m.d_th;
   p.h_weight = m.h_weight;
   p.first_meet = m.first_meet ? 1 : 0;
+  p.grid_first = m.grid_first ? 1 : 0;
   p.max_expansions = static_cast<uint32_t>(m.max_expansions);
   p.correction = static_cast<tdo_correct_mode>(m.correction);
   p.shorten = 1;  // not carried by plan_request_t (yet): the library's default
   p.turn_threshold = m.turn_threshold;
   p.smoothing = static_cast<tdo_smoothing>(m.smoothing);
-  p.grid_first = 0;  // not carried by plan_request_t (yet): the library's default
   p.k = m.k;
   p.v_max = m.v_max;
   p.a_max = m.a_max;
@@ -419,6 +419,7 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->d_th = p.d_th;
   out->h_weight = p.h_weight;
   out->first_meet = p.first_meet != 0;
+  out->grid_first = p.grid_first != 0;
   out->max_expansions = p.max_expansions > kMaxCount ? std::numeric_limits<int32_t>::max()
                                                      : static_cast<int32_t>(p.max_expansions);
   out->correction = static_cast<int8_t>(p.correction);
