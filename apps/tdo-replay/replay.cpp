@@ -31,6 +31,7 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
       {"h_weight", [](tdo::plan_request_t* m, double v) { m->h_weight = v; }},
       {"first_meet", [](tdo::plan_request_t* m, double v) { m->first_meet = std::fabs(v) > 0.0; }},
       {"grid_first", [](tdo::plan_request_t* m, double v) { m->grid_first = std::fabs(v) > 0.0; }},
+      {"shorten", [](tdo::plan_request_t* m, double v) { m->shorten = std::fabs(v) > 0.0; }},
       {"max_expansions",
        [](tdo::plan_request_t* m, double v) { m->max_expansions = static_cast<int32_t>(v); }},
       {"turn_threshold", [](tdo::plan_request_t* m, double v) { m->turn_threshold = v; }},

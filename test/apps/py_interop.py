@@ -37,6 +37,7 @@ r.start, r.goal, r.clearance = [1.25, 1.25, 1.25], [8.75, 1.25, 1.25], -1.0
 r.depth, r.search = tdo.plan_request_t.DEPTH_TRAJECTORY, tdo.plan_request_t.SEARCH_BIDIR
 r.lambda_turn, r.mu, r.theta_max, r.d_th, r.h_weight, r.first_meet = 50.0, 20.0, math.pi / 4, 0.0, 1.0, True
 r.max_expansions, r.correction, r.turn_threshold = 0, tdo.plan_request_t.CORRECT_MULTISCALE, math.radians(10)
+r.shorten = True
 r.smoothing, r.k = tdo.plan_request_t.SMOOTHING_G2, 1.0
 r.v_max, r.a_max, r.j_max, r.a_lat_max, r.v_cruise = 3.0, 3.0, 10.0, 3.0, 3.0
 r.stop_angle, r.dt = math.radians(150), 0.01

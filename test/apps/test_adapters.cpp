@@ -249,6 +249,7 @@ tdo_plan_request sample_request() {
   p.grid_first = 1;
   p.max_expansions = 12345;
   p.correction = TDO_CORRECT_GREEDY_LOS;
+  p.shorten = 0;  // not the library's default: the round trip must carry it
   p.turn_threshold = 0.17;
   p.smoothing = TDO_SMOOTHING_ARC;
   p.k = 1.5;
@@ -295,6 +296,7 @@ TEST(RequestAdapter, RoundTripKeepsEveryParameter) {
   EXPECT_EQ(b.grid_first, a.grid_first);
   EXPECT_EQ(b.max_expansions, a.max_expansions);
   EXPECT_EQ(b.correction, a.correction);
+  EXPECT_EQ(b.shorten, a.shorten);
   EXPECT_EQ(b.turn_threshold, a.turn_threshold);
   EXPECT_EQ(b.smoothing, a.smoothing);
   EXPECT_EQ(b.k, a.k);

@@ -32,9 +32,8 @@ static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, 
 
 // plan_request_t carries every field of tdo_plan_params. When this fails, the library's parameters
 // changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
-// plan_request_to_msg and to the tests, then update the size here.
-// (tdo_plan_params.shorten fits in padding and is not carried: plan_request_from_msg sets it to
-// the default 1.)
+// plan_request_to_msg and to the tests, then update the size here. (A field that fits in padding
+// does not change the size: shorten and grid_first did not. Check the field list by hand too.)
 static_assert(sizeof(tdo_plan_params) == 144, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
@@ -386,7 +385,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   p.grid_first = m.grid_first ? 1 : 0;
   p.max_expansions = static_cast<uint32_t>(m.max_expansions);
   p.correction = static_cast<tdo_correct_mode>(m.correction);
-  p.shorten = 1;  // not carried by plan_request_t (yet): the library's default
+  p.shorten = m.shorten ? 1 : 0;
   p.turn_threshold = m.turn_threshold;
   p.smoothing = static_cast<tdo_smoothing>(m.smoothing);
   p.k = m.k;
@@ -423,6 +422,7 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->max_expansions = p.max_expansions > kMaxCount ? std::numeric_limits<int32_t>::max()
                                                      : static_cast<int32_t>(p.max_expansions);
   out->correction = static_cast<int8_t>(p.correction);
+  out->shorten = p.shorten != 0;
   out->turn_threshold = p.turn_threshold;
   out->smoothing = static_cast<int8_t>(p.smoothing);
   out->k = p.k;
