@@ -189,8 +189,9 @@ struct Query {
   // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
   uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
   uint32_t try_first;  // expansions before the try
-  double h_root;       // m, octile distance from start to goal
-  double h_best[2];    // m, smallest octile distance to its target of a state each side expanded
+  double h_root;       // m, heuristic() of the start (its target: the goal)
+  double h_best[2];    // m, smallest heuristic() of a state each side expanded
+  int tables;          // 1: the grid-distance tables are built (side.hx)
   // results
   double best;
   uint32_t meet[2];
@@ -1321,7 +1322,8 @@ constexpr uint32_t kTryProbe = 8;
 constexpr double kFloodFactor = 2.0;
 
 // The flood test of such a try, after each expansion of a state. Progress is how much closer to
-// its target (octile distance, the try's own heuristic) the closest state each side has expanded
+// its target (the try's own heuristic: octile, or with the tables the grid distance) the closest
+// state each side has expanded
 // lies: the sides must together close the start-goal distance h_root before they can meet (the
 // straight-line picture). A try that has closed P of it in e expansions is projected to need
 // e * h_root / P; when that exceeds half the try's share it is stopped as if it had run out (the
@@ -1331,7 +1333,7 @@ constexpr double kFloodFactor = 2.0;
 // see stops all progress while the states flood the region behind it. Only the first try, which
 // has the retries behind it, is tested; a meeting ends the test (the search is about to stop).
 inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
-  const double h = octile(s, n.x, n.y, n.z, q.grid->desc.res);
+  const double h = heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res);
   if (h < q.h_best[back]) q.h_best[back] = h;
   const uint32_t spent = q.expansions - q.try_first;
   if (spent < q.try_share / kTryProbe || q.best < HUGE_VAL) return false;
@@ -1650,19 +1652,26 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
 namespace tdo_internal {
 namespace {
 
-// Set up retry t + 1 of a turn-penalised search after try t: the grid-distance tables (built once,
-// before the first retry), the retry's weight, no deviation terms. False (the counts reported)
-// when the tables show that the goal cannot be reached.
-bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
-  if (t == 0) {
-    for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-      if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
-        report_counts(q, out);
-        return false;
-      }
-      ctx->side[k].hx = ctx->hdist[k];
+// The grid-distance tables of the sides (once per query): side k's distances to its target.
+// False (the counts reported) when they show that the goal cannot be reached.
+bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
+  if (q.tables) return true;
+  for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
+    if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
+      report_counts(q, out);
+      return false;
     }
+    ctx->side[k].hx = ctx->hdist[k];
   }
+  q.tables = 1;
+  return true;
+}
+
+// Set up retry t + 1 of a turn-penalised search after try t: the grid-distance tables, the
+// retry's weight, no deviation terms. False (the counts reported) when the tables show that the
+// goal cannot be reached.
+bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
+  if (!build_tables(ctx, q, out)) return false;
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
   q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
@@ -1689,8 +1698,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   if (!isfinite(in->lambda) || !isfinite(in->mu) || in->lambda < 0.0 || in->mu < 0.0 ||
       !isfinite(in->theta_max) || !isfinite(in->d_th) || !isfinite(in->h_weight) ||
       in->h_weight < 0.0 || (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) ||
-      !finite3(in->start) || !finite3(in->goal) ||
-      (in->grid_first != 0 && ctx->cfg.exact_heuristic == 0))  // grid_first needs the tables
+      !finite3(in->start) || !finite3(in->goal) || in->grid_first < TDO_GRID_FIRST_OFF ||
+      in->grid_first > TDO_GRID_FIRST_TERMS ||
+      (in->grid_first != TDO_GRID_FIRST_OFF && ctx->cfg.exact_heuristic == 0))  // needs the tables
     return TDO_ERR_INVALID_ARGUMENT;
   Query q;
   memset(&q, 0, sizeof(q));
@@ -1751,11 +1761,17 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
                        iabs(q.v[1].k - q.v[0].k), g->desc.res);
   tdo_status st = TDO_OK;
-  // grid_first: the octile try is skipped, the search starts as the first retry.
+  // grid_first PLAIN: the octile try is skipped, the search starts as the first retry. TERMS: the
+  // first try has the tables too (its f otherwise unchanged), and its progress is measured in
+  // them.
   int t = 0;
-  if (in->grid_first != 0) {
+  if (in->grid_first == TDO_GRID_FIRST_PLAIN) {
     if (!start_retry(ctx, q, 0, out)) return TDO_ERR_NO_PATH;
     t = 1;
+  } else if (in->grid_first == TDO_GRID_FIRST_TERMS) {
+    if (!build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
+    const double d = ctx->side[0].hx[q.voxel[0]];
+    q.h_root = d > q.h_root ? d : q.h_root;  // heuristic() of the start
   }
   for (; t <= retries; ++t) {  // bounded: retries + 1 tries
     const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;

@@ -246,7 +246,7 @@ tdo_plan_request sample_request() {
   p.d_th = 0.3;
   p.h_weight = 1.5;
   p.first_meet = 1;
-  p.grid_first = 1;
+  p.grid_first = TDO_GRID_FIRST_TERMS;
   p.max_expansions = 12345;
   p.correction = TDO_CORRECT_GREEDY_LOS;
   p.shorten = 0;  // not the library's default: the round trip must carry it
@@ -374,6 +374,12 @@ TEST(RequestAdapter, EnumsAndRanges) {
                 Reason::bad_enum);
   EXPECT_REASON(tdo_lcm::plan_request_from_msg(
                     with([](tdo::plan_request_t* m) { m->smoothing = -2; }), 3, &out, nullptr),
+                Reason::bad_enum);
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(
+                    with([](tdo::plan_request_t* m) { m->grid_first = 3; }), 3, &out, nullptr),
+                Reason::bad_enum);
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(
+                    with([](tdo::plan_request_t* m) { m->grid_first = -1; }), 3, &out, nullptr),
                 Reason::bad_enum);
   EXPECT_REASON(tdo_lcm::plan_request_from_msg(
                     with([](tdo::plan_request_t* m) { m->max_expansions = -1; }), 3, &out, nullptr),

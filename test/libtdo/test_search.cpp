@@ -613,6 +613,100 @@ TEST(SearchPenalty, GivenGridFirst_WhenSearchingBehindWalls_ThenTheRetrysPathWit
   EXPECT_EQ(run(no_tables.search(), in).status, TDO_ERR_INVALID_ARGUMENT);
 }
 
+// grid_first TERMS keeps the first try's f and only adds the grid distances to h: with mu = 0 and
+// the optimal stop it must still return the optimal turn-penalised cost (the tables and the turn
+// bound stay lower bounds together), as the octile try does (the test above).
+TEST(SearchPenalty, GivenGridFirstTerms_WhenSearchingRandomGridsWithTheOptimalStop_ThenOptimal) {
+  tdo_capacity cap = make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30);
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(0x7AB1E5ull);
+  int reachable = 0;
+  for (int round = 0; round < 800; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    for (double lambda : {0.5, 50.0}) {
+      const double want = tdo_test::reference_penalised_cost(c.map, c.s, c.g, lambda);
+      if (want < kInf && lambda > 10.0) ++reachable;
+      for (tdo_search_kind kind : kKinds) {
+        tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind, lambda, 0.0);
+        in.first_meet = 0;
+        in.grid_first = TDO_GRID_FIRST_TERMS;
+        const Result r = run(pl.search(), in);
+        SCOPED_TRACE(::testing::Message() << "round " << round << " " << tdo_test::kind_name(kind)
+                                          << " lambda " << lambda << " start " << tdo_test::str(c.s)
+                                          << " goal " << tdo_test::str(c.g));
+        if (!(want < kInf)) {
+          EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+          continue;
+        }
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+        EXPECT_EQ(r.out.fallback, 0u);
+        EXPECT_TRUE(near_rel(r.out.penalized_cost, want))
+            << "penalized_cost " << r.out.penalized_cost << " reference " << want;
+      }
+    }
+  }
+  EXPECT_GE(reachable, 300);
+}
+
+// 48 x 24 x 8 voxels, one full wall across x = 24 but for a window along its side (y < 2): the
+// octile try heads for the wall's middle and floods in front of it.
+Case wall_with_side_window() {
+  Case c;
+  c.map = VoxelMap(48, 24, 8, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  for (int32_t z = 0; z < 8; ++z)
+    for (int32_t y = 2; y < 24; ++y) c.map.set(24, y, z);
+  c.s = {2, 12, 4};
+  c.g = {45, 12, 4};
+  c.ps = c.map.center(c.s);
+  c.pg = c.map.center(c.g);
+  return c;
+}
+
+// Without obstacles the grid distances equal the octile distance (the tables keep 1e-12 below
+// it), so TERMS must be the octile try bit for bit. In front of a wall it must expand fewer states
+// than the octile try and find the path in its first try (fallback 0: the retries drop the
+// deviation term, this try keeps it). Values outside tdo_grid_first are refused.
+TEST(SearchPenalty,
+     GivenGridFirstTerms_WhenComparedWithTheOctileTry_ThenSameInTheOpenFewerAtAWall) {
+  const Case wall = wall_with_side_window();
+  Case open = wall;
+  open.map = VoxelMap(48, 24, 8, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  TestPlanner pl(retry_cap(static_cast<uint32_t>(48 * 24 * 8)));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  for (tdo_search_kind kind : kKinds) {
+    SCOPED_TRACE(tdo_test::kind_name(kind));
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), open.map), TDO_OK);
+    tdo_search_input in = make_input(pl.grid(), open.ps, open.pg, kind, 50.0, 20.0);
+    in.theta_max = 0.25 * 3.14159265358979323846;
+    const Result octile = run(pl.search(), in);
+    in.grid_first = TDO_GRID_FIRST_TERMS;
+    const Result terms = run(pl.search(), in);
+    ASSERT_EQ(octile.status, TDO_OK) << tdo_status_str(octile.status);
+    EXPECT_TRUE(identical(terms, octile)) << "open map";
+
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), wall.map), TDO_OK);
+    in = make_input(pl.grid(), wall.ps, wall.pg, kind, 50.0, 20.0);
+    in.theta_max = 0.25 * 3.14159265358979323846;
+    const Result a = run(pl.search(), in);
+    in.grid_first = TDO_GRID_FIRST_TERMS;
+    const Result b = run(pl.search(), in);
+    ASSERT_EQ(a.status, TDO_OK) << tdo_status_str(a.status);
+    ASSERT_EQ(b.status, TDO_OK) << tdo_status_str(b.status);
+    EXPECT_EQ(b.out.fallback, 0u);
+    EXPECT_TRUE(tdo_test::valid_path(wall.map, b.out, wall.s, wall.g));
+    EXPECT_LT(4u * b.out.expansions, a.out.expansions)
+        << "the octile try expands " << a.out.expansions << " states, TERMS " << b.out.expansions;
+    EXPECT_TRUE(identical(b, run(pl.search(), in))) << "a second run differs";
+    for (int bad : {-1, 3}) {
+      in.grid_first = bad;
+      EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_INVALID_ARGUMENT) << "grid_first " << bad;
+    }
+  }
+}
+
 // The flood test must leave a first try alone that progresses steadily: a field of pillars that
 // the octile try crosses in 6,700 to 9,000 expansions (within kTryMin = 20,000, whose half a
 // projection must exceed to stop the try, and long enough for the test to be applied: more than

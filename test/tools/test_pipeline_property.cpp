@@ -667,11 +667,14 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
     arcs.smoothing = TDO_SMOOTHING_ARC;
     arcs.depth = TDO_PLAN_SMOOTH;
     run_case(label + " (own query, arcs)", world, pl, clearance, map.start, map.goal, arcs, &tally);
-    // The option that starts with grid distances (tdo_plan_params.grid_first).
+    // The options that start with grid distances (tdo_plan_params.grid_first).
     tdo_plan_params grid = params;
-    grid.grid_first = 1;
+    grid.grid_first = TDO_GRID_FIRST_PLAIN;
     run_case(label + " (own query, grid_first)", world, pl, clearance, map.start, map.goal, grid,
              &tally);
+    grid.grid_first = TDO_GRID_FIRST_TERMS;
+    run_case(label + " (own query, grid_first terms)", world, pl, clearance, map.start, map.goal,
+             grid, &tally);
     if (HasFailure()) {
       ADD_FAILURE() << label << " failed; its map:\n" << gen.text;
       break;
@@ -686,7 +689,7 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
   EXPECT_GT(seen.beziers, 500);  // the checker had curves to judge
   EXPECT_GT(seen.arcs, 200);
   EXPECT_EQ(generated, kRandomMaps);
-  EXPECT_GE(tally.tdo_ok, 3 * generated);  // every own query is solvable (generate checked it)
+  EXPECT_GE(tally.tdo_ok, 4 * generated);  // every own query is solvable (generate checked it)
 }
 
 // The paper's maps at the default clearance 0.5 m: the map's query and 4 random ones each.
@@ -703,10 +706,17 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
     tdo_plan_params_default(&params);
     EXPECT_EQ(run_case(name, world, pl, clearance, map.start, map.goal, params, &tally), TDO_OK);
     tdo_plan_params grid = params;
-    grid.grid_first = 1;
+    grid.grid_first = TDO_GRID_FIRST_PLAIN;
     EXPECT_EQ(
         run_case(name + " grid_first", world, pl, clearance, map.start, map.goal, grid, &tally),
         TDO_OK);
+    grid.grid_first = TDO_GRID_FIRST_TERMS;
+    for (double w : {1.0, 2.0}) {
+      grid.h_weight = w;
+      EXPECT_EQ(run_case(name + " grid_first terms, h_weight " + std::to_string(w), world, pl,
+                         clearance, map.start, map.goal, grid, &tally),
+                TDO_OK);
+    }
     TestRng rng(100u + static_cast<uint64_t>(n));
     for (int q = 0; q < 4; ++q)
       run_case(name + " random", world, pl, clearance, random_point(rng, map.desc),
@@ -714,7 +724,7 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
   }
   std::printf("maps 1-5: %d queries, A* ok %d, tdo ok %d\n", tally.queries, tally.astar_ok,
               tally.tdo_ok);
-  EXPECT_GE(tally.tdo_ok, 10);  // the own queries, default and grid_first
+  EXPECT_GE(tally.tdo_ok, 20);  // the own queries: default, grid_first plain and terms (w 1, 2)
 }
 
 // tdo_capacity.stream_samples: the same plans, feasibility reports, metrics and samples (bit for

@@ -7,10 +7,10 @@
 // parameters (stages 1-3, 5 and the metrics), expansions, the arena footprint, and the quality
 // columns of tdo (turns and length of the final path) against raw A* (turns and length of its grid
 // path), then one "met" / "NOT met" line per goal of issue 3 (time: Map1-3 <= 1 ms, Map4-5 <= 5 ms
-// median; quality: turns <= 10 % of A*'s, length <= A*'s). A second table times tdo with
-// `grid_first` (the search starts with grid distances instead of the octile try) in the same
-// process, with its ratio to the default. Exit status 2 on bad arguments or
-// unreadable maps, 1 when a plan fails.
+// median; quality: turns <= 10 % of A*'s, length <= A*'s). A last table times the variants of
+// `grid_first` (tdo_grid_first: the search starts with grid distances instead of the octile try;
+// TERMS also with h_weight 2) in the same process, each with its ratio to the default. Exit
+// status 2 on bad arguments or unreadable maps, 1 when a plan fails.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -43,14 +43,29 @@ Stats stats(std::vector<double> v) {
   return s;
 }
 
+// tdo with other parameters, timed beside the default.
+struct Variant {
+  const char* name;
+  int grid_first;  // tdo_grid_first
+  double h_weight;
+};
+const Variant kVariants[] = {{"grid_first plain", TDO_GRID_FIRST_PLAIN, 1.0},
+                             {"grid_first terms", TDO_GRID_FIRST_TERMS, 1.0},
+                             {"grid_first terms, h_weight 2", TDO_GRID_FIRST_TERMS, 2.0}};
+constexpr size_t kNumVariants = sizeof(kVariants) / sizeof(kVariants[0]);
+
+struct VariantRow {
+  Stats t;
+  uint32_t expansions = 0;
+  uint32_t turns = 0;
+  double length = 0.0;
+};
+
 struct Row {
   std::string map;
   Stats tdo;
-  Stats first;  // tdo with grid_first
   Stats astar;
-  uint32_t first_expansions = 0;
-  uint32_t first_turns = 0;
-  double first_length = 0.0;
+  VariantRow var[kNumVariants];
   uint32_t tdo_expansions = 0;
   uint32_t astar_expansions = 0;
   uint32_t tdo_turns = 0;
@@ -141,17 +156,22 @@ int main(int argc, char** argv) {
     row.tdo_length = res.metrics.length_m;
     row.feasible = res.feasibility.ok;
 
-    req.params.grid_first = 1;
-    const std::vector<double> t_first = timed(pl, req, repeat, &res, &st);
-    if (st != TDO_OK) {
-      std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo grid_first: %s\n", name.c_str(),
-                   tdo_status_str(st));
-      return 1;
+    for (size_t k = 0; k < kNumVariants; ++k) {
+      tdo_plan_params_default(&req.params);
+      req.params.grid_first = kVariants[k].grid_first;
+      req.params.h_weight = kVariants[k].h_weight;
+      const std::vector<double> t_var = timed(pl, req, repeat, &res, &st);
+      if (st != TDO_OK) {
+        std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo %s: %s\n", name.c_str(),
+                     kVariants[k].name, tdo_status_str(st));
+        return 1;
+      }
+      VariantRow& v = row.var[k];
+      v.t = stats(t_var);
+      v.expansions = res.search.expansions;
+      v.turns = res.metrics.turns;
+      v.length = res.metrics.length_m;
     }
-    row.first = stats(t_first);
-    row.first_expansions = res.search.expansions;
-    row.first_turns = res.metrics.turns;
-    row.first_length = res.metrics.length_m;
 
     tdo_plan_params_default(&req.params);
     req.params.depth = TDO_PLAN_SEARCH;
@@ -190,12 +210,15 @@ int main(int argc, char** argv) {
                 r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0,
                 r.tdo_length, r.astar_length, r.tdo_length / r.astar_length);
   std::printf(
-      "\n| map | grid_first median ms | ratio to tdo | grid_first expansions | grid_first turns "
-      "| grid_first length m | length ratio to astar |\n|---|---:|---:|---:|---:|---:|---:|\n");
+      "\n| map | tdo variant | median ms | ratio to tdo | expansions | turns | length m "
+      "| length ratio to astar |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows)
-    std::printf("| %s | %.3f | %.3f | %u | %u | %.3f | %.3f |\n", r.map.c_str(), r.first.median_ms,
-                r.first.median_ms / r.tdo.median_ms, r.first_expansions, r.first_turns,
-                r.first_length, r.first_length / r.astar_length);
+    for (size_t k = 0; k < kNumVariants; ++k) {
+      const VariantRow& v = r.var[k];
+      std::printf("| %s | %s | %.3f | %.3f | %u | %u | %.3f | %.3f |\n", r.map.c_str(),
+                  kVariants[k].name, v.t.median_ms, v.t.median_ms / r.tdo.median_ms, v.expansions,
+                  v.turns, v.length, v.length / r.astar_length);
+    }
   // The goals of issue 3 (docs/performance.md), one line each.
   std::printf("\n");
   for (const Row& r : rows) {

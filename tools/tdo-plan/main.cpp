@@ -183,7 +183,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   const uint32_t headings = (o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo") ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
-  cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first" needs the tables too
+  cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
@@ -340,7 +340,9 @@ tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   pp.theta_max = o.planner == "tdo" ? o.theta_max * kDeg : 0.0;
   pp.h_weight = o.h_weight;
   pp.first_meet = o.planner == "tdo" ? (o.stop == "first-meet" ? 1 : 0) : 0;
-  pp.grid_first = o.retry == "first" ? 1 : 0;
+  pp.grid_first = o.retry == "first"         ? TDO_GRID_FIRST_PLAIN
+                  : o.retry == "first-terms" ? TDO_GRID_FIRST_TERMS
+                                             : TDO_GRID_FIRST_OFF;
   pp.d_th = o.d_th;
   pp.max_expansions = static_cast<uint32_t>(o.max_expansions);
   pp.correction = o.correction == "greedy" ? TDO_CORRECT_GREEDY_LOS
@@ -562,7 +564,13 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     if (res.search.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
       std::printf("search_try       retry %" PRIu32 " (%s: grid-distance heuristic)\n",
                   res.search.fallback,
-                  o.retry == "first" ? "no octile try, --retry first" : "after the octile try");
+                  o.retry == "first"         ? "no octile try, --retry first"
+                  : o.retry == "first-terms" ? "after the first try, --retry first-terms"
+                                             : "after the octile try");
+    else if (o.retry == "first-terms")
+      std::printf(
+          "search_try       first (grid distances and the deviation term, --retry "
+          "first-terms)\n");
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
@@ -686,8 +694,9 @@ int run(int argc, char** argv) {
   app.add_option("--retry", o.retry,
                  "on: a tdo search whose octile-guided try floods restarts with grid distances "
                  "(24 bytes per voxel more; docs/performance.md) | first: it starts with them "
-                 "(maps whose walls make the octile try flood) | off")
-      ->check(CLI::IsMember({"on", "off", "first"}));
+                 "(maps whose walls make the octile try flood) | first-terms: its first try "
+                 "keeps the deviation term and the turn bound with grid distances in h | off")
+      ->check(CLI::IsMember({"on", "off", "first", "first-terms"}));
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))
       ->capture_default_str();

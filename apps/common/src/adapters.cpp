@@ -23,6 +23,9 @@ static_assert(tdo::plan_request_t::CORRECT_GREEDY_LOS == TDO_CORRECT_GREEDY_LOS,
 static_assert(tdo::plan_request_t::CORRECT_NONE == TDO_CORRECT_NONE, "correction");
 static_assert(tdo::plan_request_t::SMOOTHING_G2 == TDO_SMOOTHING_G2, "smoothing");
 static_assert(tdo::plan_request_t::SMOOTHING_ARC == TDO_SMOOTHING_ARC, "smoothing");
+static_assert(tdo::plan_request_t::GRID_FIRST_OFF == TDO_GRID_FIRST_OFF, "grid_first");
+static_assert(tdo::plan_request_t::GRID_FIRST_PLAIN == TDO_GRID_FIRST_PLAIN, "grid_first");
+static_assert(tdo::plan_request_t::GRID_FIRST_TERMS == TDO_GRID_FIRST_TERMS, "grid_first");
 static_assert(tdo::plan_request_t::SMOOTHING_NONE == TDO_SMOOTHING_NONE, "smoothing");
 static_assert(tdo::feasibility_t::QUANTITY_SPEED == TDO_QUANTITY_SPEED, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_ACCELERATION == TDO_QUANTITY_ACCELERATION, "quantity");
@@ -366,6 +369,9 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   if (m.smoothing < tdo::plan_request_t::SMOOTHING_G2 ||
       m.smoothing > tdo::plan_request_t::SMOOTHING_NONE)
     return fail(Reason::bad_enum, "smoothing " + std::to_string(m.smoothing));
+  if (m.grid_first < tdo::plan_request_t::GRID_FIRST_OFF ||
+      m.grid_first > tdo::plan_request_t::GRID_FIRST_TERMS)
+    return fail(Reason::bad_enum, "grid_first " + std::to_string(m.grid_first));
   if (m.max_expansions < 0)
     return fail(Reason::out_of_range,
                 "max_expansions " + std::to_string(m.max_expansions) + " < 0");
@@ -382,7 +388,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   p.d_th = m.d_th;
   p.h_weight = m.h_weight;
   p.first_meet = m.first_meet ? 1 : 0;
-  p.grid_first = m.grid_first ? 1 : 0;
+  p.grid_first = m.grid_first;
   p.max_expansions = static_cast<uint32_t>(m.max_expansions);
   p.correction = static_cast<tdo_correct_mode>(m.correction);
   p.shorten = m.shorten ? 1 : 0;
@@ -418,7 +424,7 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->d_th = p.d_th;
   out->h_weight = p.h_weight;
   out->first_meet = p.first_meet != 0;
-  out->grid_first = p.grid_first != 0;
+  out->grid_first = static_cast<int8_t>(p.grid_first);
   out->max_expansions = p.max_expansions > kMaxCount ? std::numeric_limits<int32_t>::max()
                                                      : static_cast<int32_t>(p.max_expansions);
   out->correction = static_cast<int8_t>(p.correction);

@@ -46,8 +46,8 @@ typedef struct tdo_plan_params {
                     and docs/performance.md); 0 = the paper's correction alone */
   double turn_threshold;   /**< rad, "straight" turns for the correction windows (default 10 deg) */
   tdo_smoothing smoothing; /**< g2 (default), arc, none */
-  int grid_first;          /**< 1: the search starts with grid distances instead of the octile try
-                                (tdo_search_input.grid_first; needs cap.exact_heuristic); default 0 */
+  int grid_first;          /**< a tdo_grid_first: what the search starts with (default OFF, the
+                                octile try; tdo_search_input.grid_first; needs cap.exact_heuristic) */
   double k;                /**< radius scale (default 1) */
   double v_max;            /**< m/s (default 3) */
   double a_max;            /**< m/s^2 (default 3) */

@@ -23,6 +23,18 @@ typedef enum tdo_search_kind {
   TDO_SEARCH_BIDIR = 1  /**< bidirectional A* with the optimal stopping rule */
 } tdo_search_kind;
 
+/** What a turn-penalised search starts with (tdo_search_input.grid_first). The grid distances
+ *  need the tables (tdo_search_config.exact_heuristic). docs/performance.md compares the three. */
+typedef enum tdo_grid_first {
+  TDO_GRID_FIRST_OFF = 0,   /**< pipeline.md s.1's search with the octile distance; grid distances
+                                 only in its retry, when it floods (default) */
+  TDO_GRID_FIRST_PLAIN = 1, /**< start as that retry: grid distances weighted by 2, no deviation
+                                 term or turn bound */
+  TDO_GRID_FIRST_TERMS = 2  /**< pipeline.md s.1's f with h = max(octile, grid distance), weighted
+                                 by h_weight, deviation term and turn bound kept; the retry as
+                                 with OFF when it floods */
+} tdo_grid_first;
+
 /** Opaque search context; carved from an arena by tdo_search_init. */
 typedef struct tdo_search tdo_search;
 
@@ -67,12 +79,13 @@ typedef struct tdo_search_input {
   int first_meet;          /**< bidirectional only: 1 = stop as soon as the two searches meet (the
                                 paper's Algorithm 1, line 12); 0 = stop by the optimal rule (the
                                 smaller f of either side reaches the best meeting cost) */
-  int grid_first;          /**< turn-penalised searches: 1 = skip the octile try and start as its
-                                retry does (grid-distance heuristic weighted by 2, no deviation
-                                term or turn bound): faster where walls make the octile try flood,
-                                slower on open maps (docs/performance.md). Needs the tables
-                                (tdo_search_config.exact_heuristic), else
-                                TDO_ERR_INVALID_ARGUMENT. Plain A* and bidir ignore it */
+  int grid_first;          /**< turn-penalised searches: a tdo_grid_first. PLAIN skips the octile
+                                try and starts as its retry does; TERMS keeps the f of the octile
+                                try with grid distances in h. Faster where walls make the octile
+                                try flood, slower on open maps (docs/performance.md). Needs the
+                                tables (tdo_search_config.exact_heuristic); without them, or
+                                outside 0..2: TDO_ERR_INVALID_ARGUMENT. Plain A* and bidir ignore
+                                it */
 } tdo_search_input;
 
 /**
