@@ -1323,15 +1323,14 @@ constexpr double kFloodFactor = 2.0;
 
 // The flood test of such a try, after each expansion of a state. Progress is how much closer to
 // its target (the try's own heuristic: octile, or with the tables the grid distance) the closest
-// state each side has expanded
-// lies: the sides must together close the start-goal distance h_root before they can meet (the
-// straight-line picture). A try that has closed P of it in e expansions is projected to need
-// e * h_root / P; when that exceeds half the try's share it is stopped as if it had run out (the
-// retry follows). The searches the octile guides well close the gap at a steady rate (on Map1-3
-// and Map5 the largest projection is 3,572 expansions, a third of half of kTryMin:
-// docs/performance.md); a wall the octile cannot
-// see stops all progress while the states flood the region behind it. Only the first try, which
-// has the retries behind it, is tested; a meeting ends the test (the search is about to stop).
+// state each side has expanded lies: the sides must together close the start-goal distance h_root
+// before they can meet (the straight-line picture). A try that has closed P of it in e expansions
+// is projected to need e * h_root / P; when that exceeds half the try's share it is stopped as if
+// it had run out (the retry follows). The searches the octile guides well close the gap at a
+// steady rate (on Map1-3 and Map5 the projections stay near a third of half of kTryMin:
+// docs/performance.md); a wall the octile cannot see stops all progress while the states flood the
+// region behind it. Only the first try, which has the retries behind it, is tested; a meeting ends
+// the test (the search is about to stop).
 inline bool flooding(Query& q, int back, const Side& s, const Node& n) {
   const double h = heuristic(s, n.voxel, n.x, n.y, n.z, q.grid->desc.res);
   if (h < q.h_best[back]) q.h_best[back] = h;

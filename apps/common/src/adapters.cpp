@@ -23,10 +23,10 @@ static_assert(tdo::plan_request_t::CORRECT_GREEDY_LOS == TDO_CORRECT_GREEDY_LOS,
 static_assert(tdo::plan_request_t::CORRECT_NONE == TDO_CORRECT_NONE, "correction");
 static_assert(tdo::plan_request_t::SMOOTHING_G2 == TDO_SMOOTHING_G2, "smoothing");
 static_assert(tdo::plan_request_t::SMOOTHING_ARC == TDO_SMOOTHING_ARC, "smoothing");
+static_assert(tdo::plan_request_t::SMOOTHING_NONE == TDO_SMOOTHING_NONE, "smoothing");
 static_assert(tdo::plan_request_t::GRID_FIRST_OFF == TDO_GRID_FIRST_OFF, "grid_first");
 static_assert(tdo::plan_request_t::GRID_FIRST_PLAIN == TDO_GRID_FIRST_PLAIN, "grid_first");
 static_assert(tdo::plan_request_t::GRID_FIRST_TERMS == TDO_GRID_FIRST_TERMS, "grid_first");
-static_assert(tdo::plan_request_t::SMOOTHING_NONE == TDO_SMOOTHING_NONE, "smoothing");
 static_assert(tdo::feasibility_t::QUANTITY_SPEED == TDO_QUANTITY_SPEED, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_ACCELERATION == TDO_QUANTITY_ACCELERATION, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_JERK == TDO_QUANTITY_JERK, "quantity");
