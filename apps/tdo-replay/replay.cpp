@@ -55,6 +55,17 @@ const std::vector<std::pair<std::string, Setter>>& setters() {
   return s;
 }
 
+// Integer fields and the range their type holds: their setters cast the value, and a cast of a
+// number outside it (or of a fraction) would be undefined or silently truncated.
+struct IntRange {
+  const char* name;
+  double lo, hi;
+};
+constexpr IntRange kIntegerFields[] = {
+    {"depth", -128.0, 127.0},      {"search", -128.0, 127.0},
+    {"correction", -128.0, 127.0}, {"smoothing", -128.0, 127.0},
+    {"grid_first", -128.0, 127.0}, {"max_expansions", -2147483648.0, 2147483647.0}};
+
 const Setter* find_setter(const std::string& name) {
   for (const auto& kv : setters())
     if (kv.first == name) return &kv.second;
@@ -241,6 +252,16 @@ bool parse_override(const std::string& text, Override* out, std::string* error) 
   if (v.empty() || end == nullptr || *end != '\0') {
     *error = "--override '" + text + "': '" + v + "' is not a number";
     return false;
+  }
+  for (const IntRange& r : kIntegerFields) {
+    if (out->name != r.name) continue;
+    const double whole = std::trunc(out->value);
+    if (!(out->value >= r.lo && out->value <= r.hi) || whole < out->value || whole > out->value) {
+      char range[64];
+      std::snprintf(range, sizeof range, "[%.0f, %.0f]", r.lo, r.hi);
+      *error = "--override '" + text + "': " + out->name + " takes an integer in " + range;
+      return false;
+    }
   }
   return true;
 }
