@@ -21,54 +21,59 @@ namespace {
 
 using Setter = std::function<void(tdo::plan_request_t*, double)>;
 
-const std::vector<std::pair<std::string, Setter>>& setters() {
-  static const std::vector<std::pair<std::string, Setter>> s = {
-      {"lambda", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }},
-      {"lambda_turn", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }},
-      {"mu", [](tdo::plan_request_t* m, double v) { m->mu = v; }},
-      {"theta_max", [](tdo::plan_request_t* m, double v) { m->theta_max = v; }},
-      {"d_th", [](tdo::plan_request_t* m, double v) { m->d_th = v; }},
-      {"h_weight", [](tdo::plan_request_t* m, double v) { m->h_weight = v; }},
-      {"first_meet", [](tdo::plan_request_t* m, double v) { m->first_meet = std::fabs(v) > 0.0; }},
-      {"grid_first",
-       [](tdo::plan_request_t* m, double v) { m->grid_first = static_cast<int8_t>(v); }},
-      {"shorten", [](tdo::plan_request_t* m, double v) { m->shorten = std::fabs(v) > 0.0; }},
+// A request field --override can set. An integer field's setter casts the value, and a cast of a
+// number outside its type's range (or of a fraction) would be undefined or silently truncated, so
+// parse_override lets only whole numbers in [lo, hi] through.
+struct Field {
+  std::string name;
+  Setter set;
+  bool integer;
+  double lo, hi;
+};
+
+Field real(const char* name, Setter set) { return {name, std::move(set), false, 0.0, 0.0}; }
+
+Field int8(const char* name, int8_t tdo::plan_request_t::*member) {
+  return {name, [member](tdo::plan_request_t* m, double v) { m->*member = static_cast<int8_t>(v); },
+          true, -128.0, 127.0};
+}
+
+const std::vector<Field>& fields() {
+  static const std::vector<Field> s = {
+      real("lambda", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }),
+      real("lambda_turn", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }),
+      real("mu", [](tdo::plan_request_t* m, double v) { m->mu = v; }),
+      real("theta_max", [](tdo::plan_request_t* m, double v) { m->theta_max = v; }),
+      real("d_th", [](tdo::plan_request_t* m, double v) { m->d_th = v; }),
+      real("h_weight", [](tdo::plan_request_t* m, double v) { m->h_weight = v; }),
+      real("first_meet",
+           [](tdo::plan_request_t* m, double v) { m->first_meet = std::fabs(v) > 0.0; }),
+      int8("grid_first", &tdo::plan_request_t::grid_first),
+      real("shorten", [](tdo::plan_request_t* m, double v) { m->shorten = std::fabs(v) > 0.0; }),
       {"max_expansions",
-       [](tdo::plan_request_t* m, double v) { m->max_expansions = static_cast<int32_t>(v); }},
-      {"turn_threshold", [](tdo::plan_request_t* m, double v) { m->turn_threshold = v; }},
-      {"k", [](tdo::plan_request_t* m, double v) { m->k = v; }},
-      {"v_max", [](tdo::plan_request_t* m, double v) { m->v_max = v; }},
-      {"a_max", [](tdo::plan_request_t* m, double v) { m->a_max = v; }},
-      {"j_max", [](tdo::plan_request_t* m, double v) { m->j_max = v; }},
-      {"a_lat_max", [](tdo::plan_request_t* m, double v) { m->a_lat_max = v; }},
-      {"v_cruise", [](tdo::plan_request_t* m, double v) { m->v_cruise = v; }},
-      {"stop_angle", [](tdo::plan_request_t* m, double v) { m->stop_angle = v; }},
-      {"dt", [](tdo::plan_request_t* m, double v) { m->dt = v; }},
-      {"clearance", [](tdo::plan_request_t* m, double v) { m->clearance = v; }},
-      {"depth", [](tdo::plan_request_t* m, double v) { m->depth = static_cast<int8_t>(v); }},
-      {"search", [](tdo::plan_request_t* m, double v) { m->search = static_cast<int8_t>(v); }},
-      {"correction",
-       [](tdo::plan_request_t* m, double v) { m->correction = static_cast<int8_t>(v); }},
-      {"smoothing",
-       [](tdo::plan_request_t* m, double v) { m->smoothing = static_cast<int8_t>(v); }},
+       [](tdo::plan_request_t* m, double v) { m->max_expansions = static_cast<int32_t>(v); }, true,
+       -2147483648.0, 2147483647.0},
+      real("turn_threshold", [](tdo::plan_request_t* m, double v) { m->turn_threshold = v; }),
+      real("k", [](tdo::plan_request_t* m, double v) { m->k = v; }),
+      real("v_max", [](tdo::plan_request_t* m, double v) { m->v_max = v; }),
+      real("a_max", [](tdo::plan_request_t* m, double v) { m->a_max = v; }),
+      real("j_max", [](tdo::plan_request_t* m, double v) { m->j_max = v; }),
+      real("a_lat_max", [](tdo::plan_request_t* m, double v) { m->a_lat_max = v; }),
+      real("v_cruise", [](tdo::plan_request_t* m, double v) { m->v_cruise = v; }),
+      real("stop_angle", [](tdo::plan_request_t* m, double v) { m->stop_angle = v; }),
+      real("dt", [](tdo::plan_request_t* m, double v) { m->dt = v; }),
+      real("clearance", [](tdo::plan_request_t* m, double v) { m->clearance = v; }),
+      int8("depth", &tdo::plan_request_t::depth),
+      int8("search", &tdo::plan_request_t::search),
+      int8("correction", &tdo::plan_request_t::correction),
+      int8("smoothing", &tdo::plan_request_t::smoothing),
   };
   return s;
 }
 
-// Integer fields and the range their type holds: their setters cast the value, and a cast of a
-// number outside it (or of a fraction) would be undefined or silently truncated.
-struct IntRange {
-  const char* name;
-  double lo, hi;
-};
-constexpr IntRange kIntegerFields[] = {
-    {"depth", -128.0, 127.0},      {"search", -128.0, 127.0},
-    {"correction", -128.0, 127.0}, {"smoothing", -128.0, 127.0},
-    {"grid_first", -128.0, 127.0}, {"max_expansions", -2147483648.0, 2147483647.0}};
-
-const Setter* find_setter(const std::string& name) {
-  for (const auto& kv : setters())
-    if (kv.first == name) return &kv.second;
+const Field* find_field(const std::string& name) {
+  for (const Field& f : fields())
+    if (f.name == name) return &f;
   return nullptr;
 }
 
@@ -230,7 +235,7 @@ struct Answers {
 
 std::string override_names() {
   std::string s;
-  for (const auto& kv : setters()) s += (s.empty() ? "" : ", ") + kv.first;
+  for (const Field& f : fields()) s += (s.empty() ? "" : ", ") + f.name;
   return s;
 }
 
@@ -241,7 +246,8 @@ bool parse_override(const std::string& text, Override* out, std::string* error) 
     return false;
   }
   out->name = text.substr(0, eq);
-  if (find_setter(out->name) == nullptr) {
+  const Field* field = find_field(out->name);
+  if (field == nullptr) {
     *error = "--override '" + text + "': unknown field '" + out->name +
              "' (known: " + override_names() + ")";
     return false;
@@ -253,15 +259,13 @@ bool parse_override(const std::string& text, Override* out, std::string* error) 
     *error = "--override '" + text + "': '" + v + "' is not a number";
     return false;
   }
-  for (const IntRange& r : kIntegerFields) {
-    if (out->name != r.name) continue;
-    const double whole = std::trunc(out->value);
-    if (!(out->value >= r.lo && out->value <= r.hi) || whole < out->value || whole > out->value) {
-      char range[64];
-      std::snprintf(range, sizeof range, "[%.0f, %.0f]", r.lo, r.hi);
-      *error = "--override '" + text + "': " + out->name + " takes an integer in " + range;
-      return false;
-    }
+  const double whole = std::trunc(out->value);
+  if (field->integer && (!(out->value >= field->lo && out->value <= field->hi) ||
+                         whole < out->value || whole > out->value)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "[%.0f, %.0f]", field->lo, field->hi);
+    *error = "--override '" + text + "': " + out->name + " takes an integer in " + range;
+    return false;
   }
   return true;
 }
@@ -269,12 +273,12 @@ bool parse_override(const std::string& text, Override* out, std::string* error) 
 bool apply_overrides(const std::vector<Override>& overrides, tdo::plan_request_t* m,
                      std::string* error) {
   for (const Override& o : overrides) {
-    const Setter* s = find_setter(o.name);
-    if (s == nullptr) {
+    const Field* f = find_field(o.name);
+    if (f == nullptr) {
       *error = "unknown override field '" + o.name + "'";
       return false;
     }
-    (*s)(m, o.value);
+    f->set(m, o.value);
   }
   return true;
 }
