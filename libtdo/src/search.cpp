@@ -191,7 +191,6 @@ struct Query {
   uint32_t try_first;  // expansions before the try
   double h_root;       // m, heuristic() of the start (its target: the goal)
   double h_best[2];    // m, smallest heuristic() of a state each side expanded
-  int tables;          // 1: the grid-distance tables are built (side.hx)
   // results
   double best;
   uint32_t meet[2];
@@ -1651,10 +1650,11 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
 namespace tdo_internal {
 namespace {
 
-// The grid-distance tables of the sides (once per query): side k's distances to its target.
-// False (the counts reported) when they show that the goal cannot be reached.
+// The grid-distance tables of the sides (once per query: tdo_search_run clears side.hx before
+// it): side k's distances to its target. False (the counts reported) when they show that the goal
+// cannot be reached.
 bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
-  if (q.tables) return true;
+  if (ctx->side[0].hx != nullptr) return true;
   for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
     if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
       report_counts(q, out);
@@ -1662,7 +1662,6 @@ bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
     }
     ctx->side[k].hx = ctx->hdist[k];
   }
-  q.tables = 1;
   return true;
 }
 
