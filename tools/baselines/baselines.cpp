@@ -18,7 +18,8 @@ constexpr double kClearanceCap = 10.0;      // m, metrics' clearance cap (as the
 }  // namespace
 
 std::unique_ptr<Environment> Environment::create(const tdo_io::Map& map, double clearance,
-                                                 uint32_t node_cap, std::string* error) {
+                                                 uint32_t node_cap, std::string* error,
+                                                 uint32_t headings) {
   std::unique_ptr<Environment> env(new Environment());
   env->map_ = map;
   env->clearance_ = clearance;
@@ -27,8 +28,9 @@ std::unique_ptr<Environment> Environment::create(const tdo_io::Map& map, double 
   env->hi_ =
       tdo_vec3{d.origin.x + d.nx * d.res, d.origin.y + d.ny * d.res, d.origin.z + d.nz * d.res};
   tdo_planner_config cfg{};
-  cfg.cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
+  cfg.cap = tdo_io::capacity_for(map, clearance, headings, node_cap);
   const size_t bytes = tdo_planner_footprint(&cfg);
+  env->planner_bytes_ = bytes;
   if (bytes == 0) {
     if (error) *error = "invalid planner configuration for " + map.path;
     return nullptr;

@@ -14,6 +14,7 @@
 #ifndef TDO_BASELINES_BASELINES_H
 #define TDO_BASELINES_BASELINES_H
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -31,10 +32,15 @@ class Environment {
   /**
    * @brief Load `map` into a fresh libtdo planner finished at `clearance` (m).
    * @param node_cap search states per direction (sizes the arena); 0 = as many as the grid has
+   * @param headings capacities for searches with heading costs (27, the default) or without (1),
+   *        as tdo_io::capacity_for
    * @return null with `error` on a set-up failure (capacity, bad map).
    */
   static std::unique_ptr<Environment> create(const tdo_io::Map& map, double clearance,
-                                             uint32_t node_cap, std::string* error);
+                                             uint32_t node_cap, std::string* error,
+                                             uint32_t headings = 27u);
+  /** Arena bytes of the planner (tdo_planner_footprint of its configuration). */
+  size_t planner_bytes() const { return planner_bytes_; }
   ~Environment();
   Environment(const Environment&) = delete;
   Environment& operator=(const Environment&) = delete;
@@ -69,6 +75,7 @@ class Environment {
   tdo_smooth* smooth_ = nullptr;
   tdo_traj* traj_ = nullptr;
   uint32_t max_polyline_ = 0;
+  size_t planner_bytes_ = 0;
 };
 
 /** What one planning call produced, measured identically for every planner. */

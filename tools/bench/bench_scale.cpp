@@ -1,0 +1,211 @@
+// tdo-bench-scale: the full tdo pipeline, plain A* and OMPL RRTConnect + simplify in one process on
+// real maps (geb079, MovingAI Simple and Complex, the forest_gen forests, Map1-5), interleaved per
+// query so drifts in machine speed hit all planners alike; a textbook A* checks A*'s costs. Prints
+// the tables and the goals of issue 19 (docs/performance.md, "Scale benchmark"). Figures, not a
+// timed test.
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scale_report.h"
+#include "scale_runner.h"
+#include "scale_workloads.h"
+
+#ifndef TDO_BENCH_SCALE_MAPS_DIR
+#define TDO_BENCH_SCALE_MAPS_DIR "maps"
+#endif
+
+namespace {
+
+using tdo_bench::kScalePlanners;
+
+struct Options {
+  std::string maps_dir = TDO_BENCH_SCALE_MAPS_DIR;
+  std::vector<std::string> workloads;  // default: all
+  uint64_t limit = 0;                  // queries per map; 0 = MovingAI 1000, others all
+  uint64_t repeat = 1;                 // best of R per query and planner
+  uint64_t warmup = 3;                 // untimed queries per map before timing
+  uint64_t seed = 1;                   // RRTConnect: query i of a workload has seed + i
+  bool rrt_movingai = true;            // RRTConnect + simplify on MovingAI too
+  uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
+};
+
+void usage(FILE* f) {
+  std::fprintf(
+      f,
+      "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
+      "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--maps-dir DIR]\n"
+      "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
+      "                   (default: all, in that order)\n"
+      "  --limit N        at most N queries per map (default: 1000 on MovingAI, all elsewhere)\n"
+      "  --repeat R       time each query R times per planner, keep the best (default 1)\n"
+      "  --warmup W       untimed queries per map before timing (default 3)\n"
+      "  --seed S         RRTConnect seed of a workload's first query (default 1)\n"
+      "  --no-rrt-movingai  skip RRTConnect + simplify on the MovingAI maps ('-' rows)\n"
+      "  --max-nodes N    search states per direction of the tdo and A* planners, as\n"
+      "                   tdo-plan --max-nodes (default 4000000; 0 = voxels x headings)\n"
+      "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
+      "Exit status: 0 done, 1 tdo missed a query A* solved or A*'s cost differs from the\n"
+      "textbook A*'s, 2 bad arguments, missing files or a failed set-up.\n",
+      TDO_BENCH_SCALE_MAPS_DIR);
+}
+
+bool parse_count(const char* s, uint64_t min, uint64_t max, uint64_t* out) {
+  if (s == nullptr || *s == '\0' || *s == '-' || *s == '+') return false;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s, &end, 10);
+  if (errno != 0 || *end != '\0' || v < min || v > max) return false;
+  *out = v;
+  return true;
+}
+
+// 0 on success, 2 after a message for a bad command line, 3 for --help.
+int parse_args(int argc, char** argv, Options* o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-h" || a == "--help") {
+      usage(stdout);
+      return 3;
+    }
+    if (a == "--no-rrt-movingai") {
+      o->rrt_movingai = false;
+      continue;
+    }
+    const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
+                             a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
+                             a == "--max-nodes";
+    if (!takes_value) {
+      std::fprintf(stderr, "tdo-bench-scale: unknown argument '%s'\n", a.c_str());
+      usage(stderr);
+      return 2;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "tdo-bench-scale: %s needs a value\n", a.c_str());
+      return 2;
+    }
+    const char* v = argv[++i];
+    bool ok = *v != '\0';
+    if (a == "--workload")
+      o->workloads.emplace_back(v);
+    else if (a == "--maps-dir")
+      o->maps_dir = v;
+    else if (a == "--limit")
+      ok = parse_count(v, 1, UINT32_MAX, &o->limit);
+    else if (a == "--repeat")
+      ok = parse_count(v, 1, 1000, &o->repeat);
+    else if (a == "--warmup")
+      ok = parse_count(v, 0, 1000, &o->warmup);
+    else if (a == "--max-nodes")
+      ok = parse_count(v, 0, 0xFFFFFFF0u, &o->max_nodes);
+    else
+      ok = parse_count(v, 0, UINT32_MAX, &o->seed);
+    if (!ok) {
+      std::fprintf(stderr, "tdo-bench-scale: bad value '%s' for %s\n", v, a.c_str());
+      return 2;
+    }
+  }
+  if (o->workloads.empty()) o->workloads = tdo_bench::workload_names();
+  return 0;
+}
+
+// One map of a workload: load it, set the planners up, warm up, then every query on every planner
+// in a rotating order. Returns 0, or 2 after a message.
+int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::ScaleMap& sm,
+            tdo_bench::WorkloadRecord* rec) {
+  tdo_io::Map map;
+  std::string err;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!tdo_io::load_map(sm.file, sm.load, &map, &err)) {
+    std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
+    return 2;
+  }
+  rec->load_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<tdo_bench::ScaleQuery> queries = sm.queries;
+  if (sm.map_query) {
+    if (!map.has_start || !map.has_goal) {
+      std::fprintf(stderr, "tdo-bench-scale: %s: no start and goal in the file\n", sm.file.c_str());
+      return 2;
+    }
+    queries.push_back(tdo_bench::ScaleQuery{map.start, map.goal, "map"});
+  }
+  std::unique_ptr<tdo_bench::ScaleMapRun> run = tdo_bench::ScaleMapRun::create(
+      map, sm.clearance, static_cast<uint32_t>(o.max_nodes), w.rrt, &err);
+  if (!run) {
+    std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
+    return 2;
+  }
+  for (int p = 0; p < kScalePlanners; ++p) {
+    tdo_bench::ScaleSetup& s = rec->p[p].setup;
+    const tdo_bench::ScaleSetup& m = run->setup(p);
+    s = tdo_bench::ScaleSetup{std::max(s.arena_bytes, m.arena_bytes), std::max(s.rss_mb, m.rss_mb),
+                              std::max(s.ms, m.ms)};
+  }
+  const uint64_t base = rec->labels.size();  // workload-wide query index of this map's first
+  for (uint64_t i = 0; i < o.warmup && i < queries.size(); ++i)
+    for (int p = 0; p < kScalePlanners; ++p)
+      if (run->has(p)) (void)run->run(p, queries[i], o.seed + base + i, 1);
+  for (size_t qi = 0; qi < queries.size(); ++qi) {
+    tdo_bench::ScaleOutcome oc[kScalePlanners];
+    for (int k = 0; k < kScalePlanners; ++k) {
+      const int p = static_cast<int>((qi + static_cast<size_t>(k)) % kScalePlanners);
+      if (run->has(p)) oc[p] = run->run(p, queries[qi], o.seed + base + qi, o.repeat);
+    }
+    for (int p = 0; p < kScalePlanners; ++p) rec->p[p].q.push_back(oc[p]);
+    rec->labels.push_back(queries[qi].label);
+    if ((qi + 1) % 100 == 0)
+      std::fprintf(stderr, "tdo-bench-scale: %s: %zu of %zu queries\n", sm.file.c_str(), qi + 1,
+                   queries.size());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  const int pa = parse_args(argc, argv, &o);
+  if (pa == 3) return 0;
+  if (pa != 0) return pa;
+  // Every workload is described (query files read, map files checked) before anything runs.
+  std::vector<tdo_bench::Workload> workloads;
+  for (const std::string& name : o.workloads) {
+    tdo_bench::Workload w;
+    std::string err;
+    if (!tdo_bench::make_workload(name, o.maps_dir, o.limit, o.rrt_movingai, &w, &err)) {
+      std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
+      return 2;
+    }
+    workloads.push_back(w);
+  }
+  std::vector<tdo_bench::WorkloadRecord> records;
+  for (const tdo_bench::Workload& w : workloads) {
+    tdo_bench::WorkloadRecord rec;
+    rec.name = w.name;
+    rec.what = w.what;
+    rec.peak_reset = tdo_bench::rss_reset_peak();
+    std::fprintf(stderr, "tdo-bench-scale: %s: %s\n", w.name.c_str(), w.what.c_str());
+    for (const tdo_bench::ScaleMap& sm : w.maps) {
+      const int st = run_map(o, w, sm, &rec);
+      if (st != 0) return st;
+    }
+    rec.peak_rss_mb = tdo_bench::rss_peak_mb();
+    records.push_back(rec);
+  }
+  std::printf("tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu%s\n",
+              static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
+              static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
+              o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+  for (const tdo_bench::WorkloadRecord& r : records)
+    std::printf("workload %s: %s\n", r.name.c_str(), r.what.c_str());
+  std::printf("\n");
+  tdo_bench::print_tables(records);
+  return tdo_bench::print_goals(records) ? 0 : 1;
+}
