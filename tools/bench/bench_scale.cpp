@@ -190,6 +190,7 @@ int main(int argc, char** argv) {
     tdo_bench::WorkloadRecord rec;
     rec.name = w.name;
     rec.what = w.what;
+    rec.start_rss_mb = tdo_bench::rss_now_mb();
     rec.peak_reset = tdo_bench::rss_reset_peak();
     std::fprintf(stderr, "tdo-bench-scale: %s: %s\n", w.name.c_str(), w.what.c_str());
     for (const tdo_bench::ScaleMap& sm : w.maps) {

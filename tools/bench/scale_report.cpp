@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 
 namespace tdo_bench {
 namespace {
@@ -140,6 +141,30 @@ bool checks(const WorkloadRecord& w) {
   return good && differ == 0;
 }
 
+// Why planners failed: per workload and planner, each status with its count and first queries.
+void print_failures(const std::vector<WorkloadRecord>& ws) {
+  constexpr size_t kShown = 3;  // query labels listed per status
+  std::printf("\n");
+  size_t lines = 0;
+  for (const WorkloadRecord& w : ws)
+    for (int p = 0; p < kScalePlanners; ++p) {
+      std::map<std::string, std::pair<size_t, std::string>> by_status;
+      for (size_t i = 0; i < w.labels.size(); ++i) {
+        const ScaleOutcome& o = w.p[p].q[i];
+        if (!o.ran || o.ok) continue;
+        auto& e = by_status[o.status];
+        if (++e.first <= kShown) e.second += (e.first > 1 ? ", " : "") + w.labels[i];
+      }
+      for (const auto& kv : by_status) {
+        std::printf("failures %s %s: %s on %zu queries (%s%s)\n", w.name.c_str(),
+                    scale_planner_name(p), kv.first.c_str(), kv.second.first,
+                    kv.second.second.c_str(), kv.second.first > kShown ? ", ..." : "");
+        ++lines;
+      }
+    }
+  if (lines == 0) std::printf("failures: none\n");
+}
+
 // Per-query rows of the workloads with few queries (geb079, Map1-5).
 void print_per_query(const std::vector<WorkloadRecord>& ws) {
   constexpr size_t kMaxRows = 10;
@@ -227,22 +252,27 @@ void print_tables(const std::vector<WorkloadRecord>& ws) {
             s.ratio_median, s.ratio_max, r.setup.rss_mb);
         continue;
       }
+      char rss[32] = "-";  // RRTConnect has no set-up of its own (astar's Environment)
+      if (p != kScaleRrt) std::snprintf(rss, sizeof rss, "%.1f", r.setup.rss_mb);
       std::printf(
-          "| %s | %s | %zu/%zu | %.3f | %.3f | %.3f | %.2f | %.2f | %llu | %.1f | %.3f | "
-          "%s | %.1f |\n",
+          "| %s | %s | %zu/%zu | %.3f | %.3f | %.3f | %.2f | %.2f | %llu | %.1f | %.3f | %s | %s "
+          "|\n",
           w.name.c_str(), scale_planner_name(p), s.ok, s.n, s.median, s.mean, s.p90, s.ratio_median,
-          s.ratio_max, s.turns_total, s.turns_median, s.length_total, arena, r.setup.rss_mb);
+          s.ratio_max, s.turns_total, s.turns_median, s.length_total, arena, rss);
     }
   std::printf(
       "\n| workload | queries | common | tdo ok_infeasible | load_map ms | tdo set-up ms | astar "
-      "set-up ms | peak RSS MB |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
+      "set-up ms | RSS at start MB | peak RSS MB "
+      "|\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const WorkloadRecord& w : ws) {
     const Summary t = summarize(w, kScaleTdo);
-    std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f | %.1f | %.1f%s |\n", w.name.c_str(),
+    std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f | %.1f | %.1f | %.1f%s |\n", w.name.c_str(),
                 w.labels.size(), t.common, t.infeasible, w.load_ms, w.p[kScaleTdo].setup.ms,
-                w.p[kScaleAstar].setup.ms, w.peak_rss_mb, w.peak_reset ? "" : " (process)");
+                w.p[kScaleAstar].setup.ms, w.start_rss_mb, w.peak_rss_mb,
+                w.peak_reset ? "" : " (process)");
   }
   print_per_query(ws);
+  print_failures(ws);
 }
 
 bool print_goals(const std::vector<WorkloadRecord>& ws) {

@@ -24,8 +24,10 @@ struct WorkloadRecord {
   std::vector<std::string> labels; /**< per query */
   PlannerRecord p[kScalePlanners]; /**< indexed by ScalePlanner */
   double load_ms = 0.0;            /**< ms, tdo_io::load_map of its maps, summed */
-  double peak_rss_mb = 0.0;        /**< MB, VmHWM at the end of the workload */
-  bool peak_reset = false;         /**< the peak was reset before the workload's maps loaded */
+  double start_rss_mb = 0.0; /**< MB, VmRSS before the workload's first map loaded (memory earlier
+                                  workloads left resident is part of the peak) */
+  double peak_rss_mb = 0.0;  /**< MB, VmHWM at the end of the workload */
+  bool peak_reset = false;   /**< the peak was reset before the workload's maps loaded */
 };
 
 /** Figures of one planner on one workload. */
