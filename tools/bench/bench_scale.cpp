@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "host_info.h"
 #include "scale_report.h"
 #include "scale_runner.h"
 #include "scale_workloads.h"
@@ -185,6 +186,7 @@ int main(int argc, char** argv) {
     }
     workloads.push_back(w);
   }
+  const std::string load_before = tdo_bench::load_average();
   std::vector<tdo_bench::WorkloadRecord> records;
   for (const tdo_bench::Workload& w : workloads) {
     tdo_bench::WorkloadRecord rec;
@@ -204,6 +206,10 @@ int main(int argc, char** argv) {
               static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
               static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
               o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+  std::printf("command:");
+  for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
+  std::printf("\ncpu: %s; load average before %s, after %s\n", tdo_bench::cpu_model().c_str(),
+              load_before.c_str(), tdo_bench::load_average().c_str());
   for (const tdo_bench::WorkloadRecord& r : records)
     std::printf("workload %s: %s\n", r.name.c_str(), r.what.c_str());
   std::printf("\n");

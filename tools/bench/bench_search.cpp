@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "host_info.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 #include "textbook_astar.h"
@@ -295,25 +296,6 @@ int run_map(const Options& o, const std::string& name, MapResult* res) {
   return 0;
 }
 
-std::string load_average() {
-  std::ifstream f("/proc/loadavg");
-  std::string a, b, c;
-  if (!(f >> a >> b >> c)) return "unknown";
-  return a + " " + b + " " + c;
-}
-
-std::string cpu_model() {
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line)) {
-    if (line.rfind("model name", 0) == 0) {
-      const size_t c = line.find(':');
-      if (c != std::string::npos) return line.substr(c + 2);
-    }
-  }
-  return "unknown";
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -333,7 +315,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  const std::string load_before = load_average();
+  const std::string load_before = tdo_bench::load_average();
   std::vector<MapResult> results;
   for (const std::string& name : o.maps) {
     results.emplace_back();
@@ -345,8 +327,8 @@ int main(int argc, char** argv) {
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
   std::printf("\nmachine: %u hardware threads, CPU %s; load average %s before, %s after\n",
-              std::thread::hardware_concurrency(), cpu_model().c_str(), load_before.c_str(),
-              load_average().c_str());
+              std::thread::hardware_concurrency(), tdo_bench::cpu_model().c_str(),
+              load_before.c_str(), tdo_bench::load_average().c_str());
   std::printf("queries per map: %s, repeat %llu (min kept), warm-up %llu, tolerance %g\n\n",
               o.limit > 0 ? std::to_string(o.limit).c_str() : "all",
               static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
