@@ -93,20 +93,25 @@ int parse_args(int argc, char** argv, Options* o) {
     }
     const char* v = argv[++i];
     bool ok = *v != '\0';
-    if (a == "--workload")
-      o->workloads.emplace_back(v);
-    else if (a == "--maps-dir")
+    if (a == "--workload") {
+      if (std::find(o->workloads.begin(), o->workloads.end(), v) != o->workloads.end()) {
+        std::fprintf(stderr, "tdo-bench-scale: workload '%s' given twice\n", v);
+        return 2;
+      }
+      o->workloads.emplace_back(v);  // an unknown name is refused with the known ones listed
+    } else if (a == "--maps-dir") {
       o->maps_dir = v;
-    else if (a == "--limit")
+    } else if (a == "--limit") {
       ok = parse_count(v, 1, UINT32_MAX, &o->limit);
-    else if (a == "--repeat")
+    } else if (a == "--repeat") {
       ok = parse_count(v, 1, 1000, &o->repeat);
-    else if (a == "--warmup")
+    } else if (a == "--warmup") {
       ok = parse_count(v, 0, 1000, &o->warmup);
-    else if (a == "--max-nodes")
+    } else if (a == "--max-nodes") {
       ok = parse_count(v, 0, 0xFFFFFFF0u, &o->max_nodes);
-    else
+    } else {
       ok = parse_count(v, 0, UINT32_MAX, &o->seed);
+    }
     if (!ok) {
       std::fprintf(stderr, "tdo-bench-scale: bad value '%s' for %s\n", v, a.c_str());
       return 2;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 
@@ -109,6 +110,37 @@ void goal_forest(const WorkloadRecord& w) {
       "goal forest: tdo total length %.3f m <= astar total length %.3f m (ratio %.4f): %s\n",
       t.length_total, a.length_total, t.length_total / a.length_total,
       verdict(t.length_total <= a.length_total));
+}
+
+// Map1-5 against today's tdo row of docs/results.md (Table 6/7, tdo-bench at clearance 0.5 m):
+// turns and length no worse, plan time at most today's. Lengths there are rounded to 0.01 m; the
+// time is from another tool and run, so its verdict is context, not a same-run ratio.
+void goal_map(const WorkloadRecord& w) {
+  struct Today {
+    const char* map;
+    uint32_t turns;
+    double length_m;
+    double time_ms;
+  };
+  static const Today kToday[] = {{"map1", 3, 32.98, 1.8},
+                                 {"map2", 4, 32.64, 1.7},
+                                 {"map3", 7, 33.64, 2.1},
+                                 {"map4", 19, 111.57, 6.3},
+                                 {"map5", 5, 76.51, 2.1}};
+  for (const Today& t : kToday) {
+    if (w.name != t.map || w.labels.empty()) continue;
+    const ScaleOutcome& o = w.p[kScaleTdo].q[0];
+    if (!o.ok) {
+      std::printf("goal %s: tdo failed (%s): NOT met\n", t.map, o.status.c_str());
+      return;
+    }
+    std::printf(
+        "goal %s: tdo turns %u <= %u and length %.3f m <= %.2f m (docs/results.md): %s; plan "
+        "time %.3f ms <= %.1f ms (absolute, other run): %s\n",
+        t.map, o.turns, t.turns, o.length, t.length_m,
+        verdict(o.turns <= t.turns && o.length <= t.length_m + 0.005), o.ms, t.time_ms,
+        verdict(o.ms <= t.time_ms));
+  }
 }
 
 // Completeness and the textbook check on one workload; false when either fails.
@@ -281,6 +313,7 @@ bool print_goals(const std::vector<WorkloadRecord>& ws) {
     if (const WorkloadRecord* w = find(ws, name)) goal_movingai(*w);
   if (const WorkloadRecord* w = find(ws, "geb079")) goal_geb079(*w);
   if (const WorkloadRecord* w = find(ws, "forest")) goal_forest(*w);
+  for (const WorkloadRecord& w : ws) goal_map(w);
   bool good = true;
   for (const WorkloadRecord& w : ws) good = checks(w) && good;
   return good;
