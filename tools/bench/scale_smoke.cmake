@@ -24,6 +24,7 @@ set(rows
   "\ngoal simple: tdo median "
   "\ngoal simple: tdo mean "
   "\ngoal simple: tdo arena "
+  "\ngoal map1: tdo turns "
   "\ncheck map1 tdo: solved every query astar solved (1)\n"
   "\ncheck map1 rrtconnect-simplify: solved every query astar solved (1)\n"
   "\ncheck map1 astar: cost equals textbook-astar's on 1 of 1 queries both solved\n"
