@@ -77,7 +77,7 @@ void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_o
   pl->n_grid_path = m;
 }
 
-// pipeline.md s.0: every point of the output keeps the clearance, the exact start and goal
+// docs/design.md s.0: every point of the output keeps the clearance, the exact start and goal
 // included. The search checks their voxels (the centre rule); this checks the points themselves,
 // at every depth, so the raw searches and the full pipeline agree on what is plannable.
 tdo_status check_end_points(const tdo_grid* grid, const tdo_plan_request& req, double clearance) {

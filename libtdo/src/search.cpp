@@ -1,4 +1,4 @@
-// Stage 1: A* and bidirectional A* over (voxel, heading) states (pipeline.md s.1).
+// Stage 1: A* and bidirectional A* over (voxel, heading) states (docs/design.md s.1).
 //
 // Without penalties a voxel is one state (the heading field only remembers the last step), so the
 // search is plain A* over voxels. With lambda or mu > 0 a state is (voxel, heading); the states of

@@ -1,5 +1,5 @@
 // Stage 5: time parameterisation, dynamic feasibility verification and refinement
-// (pipeline.md s.5, paper eq. 15-19).
+// (docs/design.md s.5, paper eq. 15-19).
 //
 // Speed profile. Every segment of positive length is a "plateau" with a constant speed ceiling
 // (the minimum over the segment of v_max, its v_limit, sqrt(a_lat / kappa) and the lateral-jerk

@@ -1,4 +1,4 @@
-// Stage 1 search (search.h, pipeline.md s.0-1): optimal costs against an independent reference
+// Stage 1 search (search.h, docs/design.md s.0-1): optimal costs against an independent reference
 // Dijkstra, path validity, named statuses, budgets and capacities, determinism, and completeness
 // with turn penalties.
 #include <gtest/gtest.h>
@@ -337,7 +337,7 @@ TEST(SearchDeterminism,
 // ---------------------------------------------------------------------------------------------
 // (f) turn penalties keep completeness; cost is never below the optimum.
 
-// Direction constraints of pipeline.md s.1: unconstrained, theta_max = 45 degrees (the default),
+// Direction constraints of docs/design.md s.1: unconstrained, theta_max = 45 degrees (the default),
 // and 45 degrees plus the deviation threshold D_th = 0.5.
 struct Constraint {
   double theta_max;  // rad
@@ -493,7 +493,7 @@ int optimal_penalised_rounds(TestPlanner& pl, uint64_t seed, int rounds,
 }
 
 // The optimal stop (first_meet = 0) with mu = 0 and no direction constraint must return the
-// optimal turn-penalised cost, so the turn part of h must stay a lower bound (pipeline.md s.1).
+// optimal turn-penalised cost, so the turn part of h must stay a lower bound (docs/design.md s.1).
 TEST(SearchPenalty, GivenRandomGrids_WhenSearchingWithTheOptimalStop_ThenPenalisedCostsAreOptimal) {
   TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
   ASSERT_EQ(pl.status(), TDO_OK);
@@ -505,7 +505,7 @@ TEST(SearchPenalty, GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithPenalt
   narrow_penalised(kUnconstrained);
 }
 
-// pipeline.md s.1: the direction constraint (theta_max) and the deviation threshold (D_th) must
+// docs/design.md s.1: the direction constraint (theta_max) and the deviation threshold (D_th) must
 // never cost completeness, and a pivot must not make a turn cheaper than lambda * (theta/pi)^2.
 TEST(SearchConstrained,
      GivenRandomGrids_WhenSearchingWithDirectionConstraints_ThenAPathIsFoundWheneverOneExists) {

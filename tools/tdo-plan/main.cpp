@@ -1,4 +1,5 @@
-// tdo-plan: plan on a map file with libtdo (interfaces.md). Exit 0 planned, 1 no plan, 2 bad input.
+// tdo-plan: plan on a map file with libtdo (docs/design.md s.10). Exit 0 planned, 1 no plan, 2 bad
+// input.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>

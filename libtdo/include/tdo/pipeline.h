@@ -30,7 +30,7 @@ typedef enum tdo_plan_depth {
   TDO_PLAN_TRAJECTORY = 3 /**< plus time parameterisation and feasibility (default) */
 } tdo_plan_depth;
 
-/** Every parameter of the pipeline (names as in pipeline.md). */
+/** Every parameter of the pipeline (names as in docs/design.md). */
 typedef struct tdo_plan_params {
   tdo_plan_depth depth;        /**< stages to run */
   tdo_search_kind search;      /**< bidirectional (default) or A* */
@@ -99,7 +99,7 @@ typedef struct tdo_plan_result {
  *         v_max, a_max, j_max, a_lat_max, v_cruise or stop_angle (smoothing) or dt (trajectory);
  *         the search statuses; TDO_ERR_START_BLOCKED / TDO_ERR_GOAL_BLOCKED also when the start
  *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
- *         obstacle, at every depth (pipeline.md s.0: every point of the output keeps it);
+ *         obstacle, at every depth (docs/design.md s.0: every point of the output keeps it);
  * TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the limits; capacity and budget
  * statuses.
  */
