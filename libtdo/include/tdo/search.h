@@ -36,6 +36,14 @@ typedef enum tdo_grid_first {
                                 with OFF when it floods */
 } tdo_grid_first;
 
+/** The states of a turn-penalised search (tdo_search_input.states). */
+typedef enum tdo_state_space {
+  TDO_STATES_HEADING = 0, /**< (voxel, heading): the turn cost is exact per heading (default) */
+  TDO_STATES_VOXEL = 1    /**< one state per voxel, whose heading is the step it was reached by:
+                               plain A*'s states and memory; the turn and deviation terms are
+                               those of its parent chain, so the cost is not optimal */
+} tdo_state_space;
+
 /** Opaque search context; carved from an arena by tdo_search_init. */
 typedef struct tdo_search tdo_search;
 
@@ -87,6 +95,8 @@ typedef struct tdo_search_input {
                                 tables (tdo_search_config.exact_heuristic); without them, or
                                 outside 0..2: TDO_ERR_INVALID_ARGUMENT. Plain A* and bidir ignore
                                 it */
+  int states;              /**< turn-penalised searches: a tdo_state_space (0 = heading states);
+                                outside 0..1: TDO_ERR_INVALID_ARGUMENT */
 } tdo_search_input;
 
 /**
