@@ -424,14 +424,23 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
   uint64_t expansions = 0;
   std::size_t passed = 0;
   std::size_t failed = 0;
+  // The search as the pipeline runs it for this planner (plan_params): for tdo its direction
+  // constraint, stopping rule, retry and states too.
+  const tdo_plan_params pp = plan_params(o, kind);
   for (const tdo_io::ScenQuery& q : queries) {
     tdo_search_input in{};
     in.grid = p.grid;
     in.start = q.start;
     in.goal = q.goal;
     in.kind = kind;
-    in.lambda = o.lambda;
-    in.mu = o.mu;
+    in.lambda = pp.lambda;
+    in.mu = pp.mu;
+    in.theta_max = pp.theta_max;
+    in.d_th = pp.d_th;
+    in.h_weight = pp.h_weight;
+    in.first_meet = pp.first_meet;
+    in.grid_first = pp.grid_first;
+    in.states = pp.states;
     in.max_expansions = static_cast<uint32_t>(o.max_expansions);
     tdo_search_output out{};
     const auto t0 = std::chrono::steady_clock::now();
