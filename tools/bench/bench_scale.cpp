@@ -35,13 +35,15 @@ struct Options {
   uint64_t seed = 1;                   // RRTConnect: query i of a workload has seed + i
   bool rrt_movingai = true;            // RRTConnect + simplify on MovingAI too
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
+  std::string states = "heading";      // tdo's state space: heading | voxel
 };
 
 void usage(FILE* f) {
   std::fprintf(
       f,
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
-      "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--maps-dir DIR]\n"
+      "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
+      "                       [--maps-dir DIR]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
       "  --limit N        at most N queries per map (default: 1000 on MovingAI, all elsewhere)\n"
@@ -51,6 +53,8 @@ void usage(FILE* f) {
       "  --no-rrt-movingai  skip RRTConnect + simplify on the MovingAI maps ('-' rows)\n"
       "  --max-nodes N    search states per direction of the tdo and A* planners, as\n"
       "                   tdo-plan --max-nodes (default 4000000; 0 = voxels x headings)\n"
+      "  --states S       tdo's search states: heading (the library's default) or voxel\n"
+      "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "Exit status: 0 done, 1 tdo missed a query A* solved or A*'s cost differs from the\n"
       "textbook A*'s, 2 bad arguments, missing files or a failed set-up.\n",
@@ -81,7 +85,7 @@ int parse_args(int argc, char** argv, Options* o) {
     }
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
                              a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
-                             a == "--max-nodes";
+                             a == "--max-nodes" || a == "--states";
     if (!takes_value) {
       std::fprintf(stderr, "tdo-bench-scale: unknown argument '%s'\n", a.c_str());
       usage(stderr);
@@ -101,6 +105,9 @@ int parse_args(int argc, char** argv, Options* o) {
       o->workloads.emplace_back(v);  // an unknown name is refused with the known ones listed
     } else if (a == "--maps-dir") {
       o->maps_dir = v;
+    } else if (a == "--states") {
+      o->states = v;
+      ok = o->states == "heading" || o->states == "voxel";
     } else if (a == "--limit") {
       ok = parse_count(v, 1, UINT32_MAX, &o->limit);
     } else if (a == "--repeat") {
@@ -143,7 +150,8 @@ int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::Sca
     queries.push_back(tdo_bench::ScaleQuery{map.start, map.goal, "map"});
   }
   std::unique_ptr<tdo_bench::ScaleMapRun> run = tdo_bench::ScaleMapRun::create(
-      map, sm.clearance, static_cast<uint32_t>(o.max_nodes), w.rrt, &err);
+      map, sm.clearance, static_cast<uint32_t>(o.max_nodes),
+      o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING, w.rrt, &err);
   if (!run) {
     std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
     return 2;
@@ -207,10 +215,12 @@ int main(int argc, char** argv) {
     rec.peak_rss_mb = tdo_bench::rss_peak_mb();
     records.push_back(rec);
   }
-  std::printf("tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu%s\n",
-              static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
-              static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
-              o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+  std::printf(
+      "tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu, states "
+      "%s%s\n",
+      static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
+      static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
+      o.states.c_str(), o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
   std::printf("\ncpu: %s; load average before %s, after %s\n", tdo_bench::cpu_model().c_str(),

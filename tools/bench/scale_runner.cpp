@@ -71,15 +71,19 @@ bool rss_reset_peak() {
 ScaleMapRun::~ScaleMapRun() = default;
 
 std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double clearance,
-                                                 uint32_t node_cap, bool rrt, std::string* error) {
+                                                 uint32_t node_cap, int states, bool rrt,
+                                                 std::string* error) {
   std::unique_ptr<ScaleMapRun> r(new ScaleMapRun());
   r->clearance_ = clearance;
+  r->states_ = states;
 
   // tdo: the library's footprint of the configuration with heading costs.
   double rss0 = rss_now_mb();
   auto t0 = Clock::now();
   tdo_planner_config cfg{};
-  cfg.cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
+  const bool voxel = states == TDO_STATES_VOXEL;
+  cfg.cap = tdo_io::capacity_for(map, clearance, voxel ? 1u : 27u, node_cap);
+  cfg.cap.exact_heuristic = 1u;  // the retry's tables (capacity_for sets them for 27 headings)
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";
@@ -138,6 +142,7 @@ ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
   req.start = q.start;
   req.goal = q.goal;
   tdo_plan_params_default(&req.params);
+  req.params.states = states_;
   tdo_plan_result res{};
   tdo_status st = TDO_OK;
   ScaleOutcome o;

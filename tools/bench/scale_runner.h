@@ -51,10 +51,13 @@ class ScaleMapRun {
    *        tools/baselines Environment also serves RRTConnect's collision checks and the path
    *        measurements), RRTConnect + simplify when `rrt`, and the textbook A* on A*'s blocked
    *        voxels. `node_cap`: search states per direction of both libtdo planners (capacity_for;
-   *        0 = voxels x headings). @return null with `error` on a set-up failure.
+   *        0 = voxels x headings). `states`: the tdo search's tdo_state_space; with
+   *        TDO_STATES_VOXEL tdo is sized without headings but keeps the retry tables, as tdo-plan
+   *        --states voxel. @return null with `error` on a set-up failure.
    */
   static std::unique_ptr<ScaleMapRun> create(const tdo_io::Map& map, double clearance,
-                                             uint32_t node_cap, bool rrt, std::string* error);
+                                             uint32_t node_cap, int states, bool rrt,
+                                             std::string* error);
   ~ScaleMapRun();
   ScaleMapRun(const ScaleMapRun&) = delete;
   ScaleMapRun& operator=(const ScaleMapRun&) = delete;
@@ -73,6 +76,7 @@ class ScaleMapRun {
   ScaleOutcome run_textbook(const ScaleQuery& q, uint64_t repeat);
 
   double clearance_ = 0.0;
+  int states_ = TDO_STATES_HEADING;  // tdo_plan_params.states of tdo
   std::unique_ptr<unsigned char[]> tdo_memory_;
   tdo_planner* tdo_ = nullptr;
   std::unique_ptr<tdo_baselines::Environment> env_;  // A*'s planner
