@@ -1,8 +1,8 @@
 // tdo-bench-scale: the full tdo pipeline, plain A* and OMPL RRTConnect + simplify in one process on
 // real maps (geb079, MovingAI Simple and Complex, the forest_gen forests, Map1-5), interleaved per
 // query so drifts in machine speed hit all planners alike; a textbook A* checks A*'s costs. Prints
-// the tables and the goals of issue 19 (docs/performance.md, "Scale benchmark"). Figures, not a
-// timed test.
+// the tables and the goals of issue 19 (docs/performance.md, "Real maps: the scale benchmark").
+// Figures, not a timed test.
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
