@@ -15,6 +15,7 @@
 
 #include "baselines.h"
 #include "path_metrics.h"
+#include "va_optimum.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 
@@ -37,6 +38,7 @@ struct Options {
   std::vector<double> goal;
   std::string planner = "tdo";
   bool json = false;
+  bool optimum = false; /**< print the v/a time optimum along the plan's own path */
   double clearance = 0.0; /**< m; default depends on the map kind */
   long long max_expansions = 0;
   long long max_nodes = 4000000;
@@ -458,6 +460,14 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
   return failed == 0 ? kExitOk : kExitNoPlan;
 }
 
+/** The v/a time optimum along the samples of a plan (va_optimum.h); time 0 without samples. */
+tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) {
+  std::vector<tdo_vec3> pts;
+  pts.reserve(res.n_samples);
+  for (uint32_t i = 0; i < res.n_samples; ++i) pts.push_back(res.samples[i].p);
+  return tdo_tools::va_optimum(pts, o.v_max, o.a_max);
+}
+
 /** One query: plan, print JSON or a summary. */
 int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_search_kind kind) {
   tdo_vec3 start{};
@@ -491,6 +501,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const bool planned = st == TDO_OK || st == TDO_ERR_INFEASIBLE;
   const tdo_metrics& m = res.metrics;
+  const bool optimum = o.optimum && planned && res.n_samples > 1;
+  const tdo_tools::VaOptimum opt = optimum ? plan_optimum(res, o) : tdo_tools::VaOptimum{};
+  const double ratio = opt.time_s > 0.0 ? m.flight_time_s / opt.time_s : 0.0;
 
   if (o.json) {
     nlohmann::json j;
@@ -525,6 +538,8 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       j["metrics"] = {{"plan_time_ms", plan_ms}, {"expansions", res.search.expansions}};
     }
     if (res.reached == TDO_PLAN_TRAJECTORY) j["feasibility"] = feasibility_json(res.feasibility);
+    if (optimum)
+      j["va_optimum"] = {{"time_s", opt.time_s}, {"ratio", ratio}, {"length_m", opt.length_m}};
     if (st == TDO_OK || planned) j["search_cost"] = res.search.cost;
     j["arena_bytes"] = p.bytes;
     std::cout << j.dump() << std::endl;
@@ -554,6 +569,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
         std::printf("flight_time_s    %.2f\n", m.flight_time_s);
         std::printf("feasible         %s (max speed %.3f, acc %.3f, jerk %.3f; %u violations)\n",
                     f.ok ? "yes" : "no", f.max_speed, f.max_acc, f.max_jerk, f.n_violations_total);
+        if (optimum)
+          std::printf("va_optimum_s     %.2f (v/a optimum along this path; flight/optimum %.3f)\n",
+                      opt.time_s, ratio);
       }
     }
     std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
@@ -667,6 +685,9 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember(planner_choices()))
       ->capture_default_str();
   app.add_flag("--json", o.json, "print one JSON object on stdout");
+  app.add_flag("--optimum", o.optimum,
+               "also print the v/a time optimum along the plan's own sampled path (|v| <= v-max, "
+               "total |a| <= a-max, rest to rest, no jerk limit) and flight_time / optimum");
   app.add_option(
       "--clearance", o.clearance,
       "m kept from obstacles (default 0.5 for .tdomap, 0 for .3dmap: MovingAI grid rules alone)");
