@@ -53,6 +53,7 @@ struct Options {
   double j_max = 10.0;     /**< m/s^3 */
   double k = 1.0;          /**< corner radius scale */
   double dt = 0.01;        /**< s, trajectory sample period */
+  double corner_time = 1.0; /**< G2 corner shapes for flight time (0 = Yang-Sukkarieh) */
   std::string smoothing = "g2";
   std::string correction = "multiscale";
   std::string shorten = "on";
@@ -118,6 +119,9 @@ void validate(const Options& o) {
   check_positive(o.j_max, "--j-max");
   check_positive(o.k, "--k");
   check_positive(o.dt, "--dt");
+  check_nonneg(o.corner_time, "--corner-time");
+  if (o.corner_time > 1.0)
+    throw BadInput{"--corner-time must be at most 1, got " + fmt(o.corner_time)};
   check_finite(o.h_weight, "--h-weight");
   if (o.h_weight < 1.0) throw BadInput{"--h-weight must be >= 1, got " + fmt(o.h_weight)};
   check_nonneg(o.d_th, "--d-th");
@@ -324,6 +328,7 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["j_max"] = o.j_max;
   p["k"] = o.k;
   p["dt"] = o.dt;
+  p["corner_time"] = o.corner_time;
   p["smoothing"] = o.smoothing;
   p["seed"] = o.seed;
   p["max_expansions"] = max_expansions;
@@ -362,6 +367,7 @@ tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   pp.v_cruise = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
   pp.stop_angle = o.stop_angle * kDeg;
   pp.dt = o.dt;
+  pp.corner_time = o.corner_time;
   pp.depth = (o.planner == "astar" || o.planner == "bidir") ? TDO_PLAN_SEARCH : TDO_PLAN_TRAJECTORY;
   return pp;
 }
@@ -742,6 +748,10 @@ int run(int argc, char** argv) {
   app.add_option("--stop-angle", o.stop_angle, "deg, sharper corners become stop points")
       ->capture_default_str();
   app.add_option("--dt", o.dt, "s, trajectory sample period")->capture_default_str();
+  app.add_option("--corner-time", o.corner_time,
+                 "in [0, 1]: how far G2 corner shapes trade the Yang-Sukkarieh shape for flight "
+                 "time (0 = Yang-Sukkarieh)")
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (stochastic planners; unused by tdo)")
       ->capture_default_str();
   // Advanced, hidden from --help: capacities for tests of the overflow paths.

@@ -66,8 +66,13 @@ typedef struct tdo_feasibility {
 
 typedef struct tdo_traj tdo_traj;
 
-/** Constant-jerk pieces of the speed profile per path segment, at most (sizes max_profile). */
-#define TDO_TRAJ_PIECES_PER_SEGMENT 8u
+/**
+ * Constant-jerk pieces of the speed profile per path segment, at most (sizes max_profile): a
+ * curved segment is flown as up to 4 equal parts ("plateaus", each with its own speed ceiling from
+ * its own curvature) of at most 8 pieces each, a line as one. With less capacity (at least 8 per
+ * segment + 1) curved segments get fewer parts: the same checks, a slower profile.
+ */
+#define TDO_TRAJ_PIECES_PER_SEGMENT 32u
 
 /** Capacities. Every one sizes an arena array; see tdo_traj_footprint. */
 typedef struct tdo_traj_config {
