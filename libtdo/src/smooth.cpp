@@ -61,7 +61,7 @@ constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximu
 constexpr double kGentleG = 0.32;   // |B1 - B0| / d
 constexpr double kGentleH = 0.32;   // |B2 - B1| / d
 constexpr int kShapeBlends = 4;     // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
-constexpr double kTimeJerkShare = 0.5;  // of j_max: lateral jerk the jerk radius designs for
+constexpr double kTimeJerkShare = 0.4;  // of j_max: lateral jerk the jerk radius designs for
 
 struct V {
   double x, y, z;

@@ -1,10 +1,13 @@
 // Stage 5: time parameterisation, dynamic feasibility verification and refinement
 // (pipeline.md s.5, paper eq. 15-19).
 //
-// Speed profile. Every segment of positive length is a "plateau" with a constant speed ceiling
-// (the minimum over the segment of v_max, its v_limit, sqrt(a_lat / kappa) and the lateral-jerk
-// bound) and its own tangential acceleration and jerk limits, chosen so that the total
-// acceleration and jerk (tangential plus every curvature term) stay inside a_max and j_max. The
+// Speed profile. Every line of positive length is a "plateau", every curved segment up to kSubMax
+// equal parts (as many as the profile capacity allows, curve_parts), so the speed ceiling follows
+// the curvature along a curve instead of taking its worst point for all of it. A plateau has a
+// constant speed ceiling (the minimum over it of v_max, the segment's v_limit,
+// sqrt(a_lat / kappa) and the lateral-jerk bounds) and its own tangential acceleration and jerk
+// limits, chosen so that the total acceleration (friction circle) and the tangential and normal
+// parts of the jerk (plateau_limits) stay inside a_max and j_max. The
 // boundaries between plateaus are the critical points: the vehicle passes them with zero
 // tangential acceleration at a boundary speed no higher than either neighbour's ceiling (0 at the
 // ends, at stop points and at tangent kinks; lower where the curvature jumps, because the finite
@@ -25,8 +28,6 @@
 
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -47,13 +48,14 @@ constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skip
 constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre-pass's points
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
-constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
+constexpr double kLineShare = 0.95;     // tangential jerk on straight plateaus
+constexpr double kLineAcc = 0.99;       // tangential acceleration on straight plateaus
 constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
 constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
 constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
-constexpr double kJerkGeo = 0.75;       // of each part: the curvature terms at the ceiling
-constexpr double kCurveAccLat = 0.78;   // lateral acceleration (0.6^2 + 0.78^2 < 0.99^2)
-constexpr double kCurveJerk = 0.9;      // total jerk on curved plateaus
+constexpr double kJerkGeo = 0.92;       // of each part: the curvature terms at the ceiling
+constexpr double kCurveAccLat = 0.9;    // lateral acceleration at the ceiling (of a_max)
+constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
 constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
 constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
 constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
@@ -64,7 +66,7 @@ constexpr uint32_t kStations = 16;     // curvature stations per curved plateau
 constexpr uint32_t kSubMax = 4;        // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
 constexpr uint32_t kPiecesPerPlateau = 8;  // 7 of the accelerate/cruise/decelerate profile + a dwell
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
-constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
+constexpr double kDKappaMargin = 1.03;  // on the sampled curvature-rate maximum
 // Profile.
 constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
@@ -593,12 +595,12 @@ void plateau_limits(Plateau* p, const Limits& lim) {
   double level = p->cap;
   if (!(p->kappa > 0.0)) {
     p->level = level * p->scale;
-    p->acc = kLineShare * lim.a_max * p->scale;
+    p->acc = kLineAcc * lim.a_max * p->scale;
     p->jerk = jb * p->scale;
     return;
   }
   const double k = p->kappa, dk = p->dkappa;
-  // Lateral acceleration kappa v^2 <= min(a_lat, 0.78 a_max).
+  // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
   level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
   // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
   level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
@@ -685,7 +687,6 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   for (uint32_t k = n; k > 0; --k)
     bd[k - 1].v = dmin(
         bd[k - 1].v, reach(bd[k].v, pl[k - 1].len, pl[k - 1].level, pl[k - 1].acc, pl[k - 1].jerk));
-  if (getenv("TDO_DBG")) for (uint32_t k = 0; k < n; ++k) fprintf(stderr, "pl %u seg %u len %.3f kappa %.3f dk %.3f level %.3f acc %.3f jerk %.3f b0 %.3f b1 %.3f\n", k, pl[k].seg, pl[k].len, pl[k].kappa, pl[k].dkappa, pl[k].level, pl[k].acc, pl[k].jerk, bd[k].v, bd[k+1].v);
   ctx->n_phases = 0;
   Cursor c{0.0, 0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < n; ++k) {

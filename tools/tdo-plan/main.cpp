@@ -545,7 +545,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     }
     if (res.reached == TDO_PLAN_TRAJECTORY) j["feasibility"] = feasibility_json(res.feasibility);
     if (optimum)
-      j["va_optimum"] = {{"time_s", opt.time_s}, {"ratio", ratio}, {"length_m", opt.length_m}};
+      j["va_optimum"] = {{"time_s", opt.time_s},
+                         {"ratio", ratio},
+                         {"length_m", opt.length_m},
+                         {"refinements", res.refinements}};
     if (st == TDO_OK || planned) j["search_cost"] = res.search.cost;
     j["arena_bytes"] = p.bytes;
     std::cout << j.dump() << std::endl;

@@ -33,7 +33,7 @@ def row(name, j):
             "opt": o.get("time_s", float("nan")), "ratio": o.get("ratio", float("nan")),
             "length": m.get("length_m", float("nan")), "turns": m.get("turns", -1),
             "viol": f.get("violations_total", -1), "energy": m.get("energy", float("nan")),
-            "plan_ms": m.get("plan_time_ms", float("nan"))}
+            "plan_ms": m.get("plan_time_ms", float("nan")), "refine": o.get("refinements", -1)}
 
 
 def table(rows):
@@ -51,7 +51,8 @@ def table(rows):
           f"worst {max(ratios):.3f}; total flight {sum(r['flight'] for r in ok):.2f} s "
           f"(optimum {sum(r['opt'] for r in ok):.2f} s); total length "
           f"{sum(r['length'] for r in ok):.2f} m; turns {sum(r['turns'] for r in ok)}; "
-          f"FD violations {sum(max(r['viol'], 0) for r in rows)}")
+          f"FD violations {sum(max(r['viol'], 0) for r in rows)}; refinement rounds "
+          f"{sum(max(r['refine'], 0) for r in rows)}")
     print()
 
 

@@ -82,9 +82,9 @@ typedef struct tdo_smooth_input {
                                   corner, of the shapes blended up to this fraction of the way
                                   towards one whose curvature changes gently (inner control points
                                   at 0.32 and 0.64 of the tangent length), the one allowing the
-                                  highest speed, with the jerk radius for 0.5 j_max (the share the
-                                  time parameterisation gives the curvature rate); peak curvature
-                                  stays 1/r. The tdo pipeline's default is 1 */
+                                  highest speed, with the jerk radius for 0.4 j_max (wanting larger
+                                  corners where there is room); peak curvature stays 1/r. The tdo
+                                  pipeline's default is 1 */
 } tdo_smooth_input;
 
 /** Output path; storage in the context, valid until the next run. */

@@ -98,8 +98,8 @@ typedef struct tdo_traj_input {
   double v_max;         /**< m/s, > 0 */
   double a_max;         /**< m/s^2, > 0 */
   double j_max;         /**< m/s^3, > 0 */
-  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.78 a_max
-                             is used, so that tangential plus lateral stays within a_max) */
+  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.9 a_max
+                             is used; the tangential acceleration gets the rest of 0.98 a_max) */
   double dt;            /**< s, sample period, > 0 (default 0.01) */
 } tdo_traj_input;
 
