@@ -62,11 +62,11 @@ constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (r
 constexpr double kKinkStop = 1e-3;      // rad: tangent kinks above this are stop points
 constexpr double kGapTolerance = 1e-6;  // m: segment end points further apart are invalid input
 // Geometry summary of a curved segment.
-constexpr uint32_t kStations = 16;     // curvature stations per curved plateau
+constexpr uint32_t kStations = 16;     // curvature stations per curved segment, shared by its parts
 constexpr uint32_t kSubMax = 4;        // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
 constexpr uint32_t kPiecesPerPlateau = 8;  // 7 of the accelerate/cruise/decelerate profile + a dwell
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
-constexpr double kDKappaMargin = 1.03;  // on the sampled curvature-rate maximum
+constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
 constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
@@ -420,18 +420,19 @@ struct Limits {
 };
 
 /** Curvature and curvature-rate bounds of the part [a, a + len] of a curved segment from
- *  kStations + 1 stations. */
-tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, double* kappa,
-                           double* dkappa) {
+ *  `stations` + 1 stations (the segment's kStations shared by its parts: the same evaluations
+ *  as for the whole segment; what they miss, the verification finds and refinement corrects). */
+tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
+                           double* kappa, double* dkappa) {
   double km = 0.0, dkm = 0.0, prev = 0.0;
-  const double h = len / kStations;
+  const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
   const bool bez = seg.kind == TDO_SEGMENT_BEZIER;
   BezierCursor cursor;
   cursor_reset(&cursor, seg, 0u);
-  for (uint32_t i = 0; i <= kStations; ++i) {
+  for (uint32_t i = 0; i <= stations; ++i) {
     tdo_segment_state st;
-    const double s = i == kStations ? a + len : a + h * i;
+    const double s = i == stations ? a + len : a + h * i;
     if (bez) {
       cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
@@ -550,7 +551,7 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.cap = dmin(lim.v_max, seg.v_limit);
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
-        const tdo_status st = summarise_curve(seg, p.off, p.len, &p.kappa, &p.dkappa);
+        const tdo_status st = summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dkappa);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];
