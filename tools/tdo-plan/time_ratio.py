@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Flight time against the v/a time optimum along each plan's own path (tdo-plan --optimum).
 
-    time_ratio.py TDO_PLAN [--forest N] [extra tdo-plan options...]
+    time_ratio.py TDO_PLAN [--forest N] [--max-median R] [extra tdo-plan options...]
 
-Plans Map1-Map5 and the first N forest_gen queries of forests 0-2 (default 10 each, 30 pairs)
-with `tdo-plan --json --optimum`, prints one markdown table per set and the summary lines
+Plans Map1-Map5 and the first N forest_gen queries of forests 0-2 (default 10 each, 30 pairs;
+0: none) with `tdo-plan --json --optimum`, prints one markdown table per set and the summary lines
 (median and worst ratio, total flight time, violations of the finite-difference check).
+--max-median R: exit status 1 unless every plan is ok without violations and the median ratio of
+each set is at most R (a regression check for CTest).
 """
 import csv
 import json
@@ -45,7 +47,7 @@ def table(rows):
               f"{r['ratio']:.3f} | {r['length']:.2f} | {r['turns']} | {r['viol']} | "
               f"{r['energy']:.2f} |")
     ok = [r for r in rows if r["status"] == "ok"]
-    ratios = [r["ratio"] for r in ok]
+    ratios = [r["ratio"] for r in ok] or [float("nan")]
     print()
     print(f"{len(ok)}/{len(rows)} ok; ratio median {statistics.median(ratios):.3f}, "
           f"worst {max(ratios):.3f}; total flight {sum(r['flight'] for r in ok):.2f} s "
@@ -54,6 +56,8 @@ def table(rows):
           f"FD violations {sum(max(r['viol'], 0) for r in rows)}; refinement rounds "
           f"{sum(max(r['refine'], 0) for r in rows)}")
     print()
+    bad = len(ok) != len(rows) or any(r["viol"] != 0 for r in rows)
+    return bad, statistics.median(ratios)
 
 
 def main():
@@ -62,15 +66,19 @@ def main():
         raise SystemExit(__doc__)
     exe = argv.pop(0)
     n_forest = 10
-    if argv[:1] == ["--forest"]:
-        n_forest = int(argv[1])
+    max_median = None
+    while argv[:1] in (["--forest"], ["--max-median"]):
+        if argv[0] == "--forest":
+            n_forest = int(argv[1])
+        else:
+            max_median = float(argv[1])
         argv = argv[2:]
     maps = []
     for i in range(1, 6):
         j = plan(exe, ["--map", os.path.join(ROOT, "maps", f"map{i}.tdomap")], argv)
         maps.append(row(f"map{i}", j))
     print("**Map1-Map5**\n")
-    table(maps)
+    results = [table(maps)]
     forest = []
     with open(os.path.join(ROOT, "maps", "forest_gen", "start_and_end.csv")) as fh:
         queries = [q for q in csv.reader(fh) if q and not q[0].startswith("#")]
@@ -80,9 +88,17 @@ def main():
             j = plan(exe, ["--map", os.path.join(ROOT, "maps", "forest_gen", f"forest{fid}.bt"),
                            "--start", q[2], q[3], q[4], "--goal", q[5], q[6], q[7]], argv)
             forest.append(row(f"forest{fid} #{q[0]}", j))
-    print(f"**forest_gen: the first {n_forest} queries of forests 0-2**\n")
-    table(forest)
+    if forest:
+        print(f"**forest_gen: the first {n_forest} queries of forests 0-2**\n")
+        results.append(table(forest))
+    if max_median is not None:
+        for bad, median in results:
+            if bad or not median <= max_median:
+                print(f"FAIL: a plan failed or violated a limit, or median {median:.3f} > "
+                      f"{max_median}")
+                return 1
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())
