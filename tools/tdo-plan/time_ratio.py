@@ -35,17 +35,18 @@ def row(name, j):
             "opt": o.get("time_s", float("nan")), "ratio": o.get("ratio", float("nan")),
             "length": m.get("length_m", float("nan")), "turns": m.get("turns", -1),
             "viol": f.get("violations_total", -1), "energy": m.get("energy", float("nan")),
+            "smooth": m.get("smoothness", float("nan")),
             "plan_ms": m.get("plan_time_ms", float("nan")), "refine": o.get("refinements", -1)}
 
 
 def table(rows):
     print("| query | status | flight s | v/a optimum s | ratio | length m | turns | FD violations "
-          "| energy m^2/s^3 |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+          "| energy m^2/s^3 | smoothness |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         print(f"| {r['name']} | {r['status']} | {r['flight']:.2f} | {r['opt']:.2f} | "
               f"{r['ratio']:.3f} | {r['length']:.2f} | {r['turns']} | {r['viol']} | "
-              f"{r['energy']:.2f} |")
+              f"{r['energy']:.2f} | {r['smooth']:.3f} |")
     ok = [r for r in rows if r["status"] == "ok"]
     ratios = [r["ratio"] for r in ok] or [float("nan")]
     print()
