@@ -58,9 +58,9 @@ constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximu
 // Time-oriented corner shapes (tdo_smooth_input.corner_time): the inner control points at these
 // fractions of the tangent length spread the curvature change over the whole curve (max|dkappa/ds|
 // about 5x lower than Yang-Sukkarieh's for the same tangent length up to ~60 degrees).
-constexpr double kGentleG = 0.32;   // |B1 - B0| / d
-constexpr double kGentleH = 0.32;   // |B2 - B1| / d
-constexpr int kShapeBlends = 4;     // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
+constexpr double kGentleG = 0.32;  // |B1 - B0| / d
+constexpr double kGentleH = 0.32;  // |B2 - B1| / d
+constexpr int kShapeBlends = 4;    // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
 constexpr double kTimeJerkShare = 0.4;  // of j_max: lateral jerk the jerk radius designs for
 
 struct V {
@@ -243,7 +243,7 @@ void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
   const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
   const double k = max_on_unit([&](double t) { return g2_kappa_at(px, py, t); }) * kRateMargin;
   const double f = max_on_unit([&](double t) { return g2_rate_at(px, py, t); }) * kRateMargin;
-  *tau = k;           // d = 1 has peak curvature k: radius 1/k, so d = k r
+  *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
   *rate = f / (k * k);  // max|dkappa/ds| = f / d^2 = f / (k r)^2
 }
 

@@ -62,9 +62,10 @@ constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (r
 constexpr double kKinkStop = 1e-3;      // rad: tangent kinks above this are stop points
 constexpr double kGapTolerance = 1e-6;  // m: segment end points further apart are invalid input
 // Geometry summary of a curved segment.
-constexpr uint32_t kStations = 16;     // curvature stations per curved segment, shared by its parts
-constexpr uint32_t kSubMax = 4;        // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
-constexpr uint32_t kPiecesPerPlateau = 8;  // 7 of the accelerate/cruise/decelerate profile + a dwell
+constexpr uint32_t kStations = 16;  // curvature stations per curved segment, shared by its parts
+constexpr uint32_t kSubMax = 4;     // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
+constexpr uint32_t kPiecesPerPlateau =
+    8;                                 // 7 of the accelerate/cruise/decelerate profile + a dwell
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
@@ -136,7 +137,7 @@ struct tdo_traj {
   tdo_internal::Boundary* bounds;   // plateau_cap + 1
   uint8_t* hit;                     // plateau_cap: plateau flagged by a violation
   tdo_internal::Phase* phases;      // max_profile
-  uint32_t plateau_cap;  // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
+  uint32_t plateau_cap;             // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
   uint32_t n_plateaus;
   uint32_t n_phases;
   double total;  // m, path length
@@ -525,7 +526,8 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
   return TDO_OK;
 }
 
-/** Plateaus (curved segments in `parts` equal parts), boundary caps and the curvature-jump flags. */
+/** Plateaus (curved segments in `parts` equal parts), boundary caps and the curvature-jump flags.
+ */
 tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
   const tdo_path& path = in->path;
   const uint32_t parts = curve_parts(ctx, path);
@@ -551,7 +553,8 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.cap = dmin(lim.v_max, seg.v_limit);
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
-        const tdo_status st = summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dkappa);
+        const tdo_status st =
+            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dkappa);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];

@@ -1111,7 +1111,8 @@ TEST(SmoothProperty, GivenSameInput_WhenRunTwice_ThenBitIdentical) {
 // ---------------------------------------------------------------------------------------------
 // Corner shapes for flight time (corner_time, issue 23).
 
-TEST(SmoothTime, GivenRoomLimitedCorners_WhenCornerTimeOne_ThenCurvatureChangesGentlerAndCapIsHigher) {
+TEST(SmoothTime,
+     GivenRoomLimitedCorners_WhenCornerTimeOne_ThenCurvatureChangesGentlerAndCapIsHigher) {
   for (double deg_theta : {20.0, 30.0, 45.0}) {
     SCOPED_TRACE(deg_theta);
     // GIVEN a corner whose legs (1 m) are shorter than the corner wants

@@ -15,9 +15,9 @@
 
 #include "baselines.h"
 #include "path_metrics.h"
-#include "va_optimum.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
+#include "va_optimum.h"
 
 namespace {
 
@@ -38,21 +38,21 @@ struct Options {
   std::vector<double> goal;
   std::string planner = "tdo";
   bool json = false;
-  bool optimum = false; /**< print the v/a time optimum along the plan's own path */
+  bool optimum = false;   /**< print the v/a time optimum along the plan's own path */
   double clearance = 0.0; /**< m; default depends on the map kind */
   long long max_expansions = 0;
   long long max_nodes = 4000000;
   long long max_open = 0; /**< open-list items per direction; 0 = max_nodes */
   std::string scen_path;
   long long limit = 0;
-  double lambda = 0.0;     /**< m of cost per (turn/pi)^2 */
-  double mu = 0.0;         /**< m of f per unit deviation */
-  double theta_max = 45.0; /**< deg, direction constraint of the tdo search */
-  double v_max = 3.0;      /**< m/s */
-  double a_max = 3.0;      /**< m/s^2 */
-  double j_max = 10.0;     /**< m/s^3 */
-  double k = 1.0;          /**< corner radius scale */
-  double dt = 0.01;        /**< s, trajectory sample period */
+  double lambda = 0.0;      /**< m of cost per (turn/pi)^2 */
+  double mu = 0.0;          /**< m of f per unit deviation */
+  double theta_max = 45.0;  /**< deg, direction constraint of the tdo search */
+  double v_max = 3.0;       /**< m/s */
+  double a_max = 3.0;       /**< m/s^2 */
+  double j_max = 10.0;      /**< m/s^3 */
+  double k = 1.0;           /**< corner radius scale */
+  double dt = 0.01;         /**< s, trajectory sample period */
   double corner_time = 1.0; /**< G2 corner shapes for flight time (0 = Yang-Sukkarieh) */
   std::string smoothing = "g2";
   std::string correction = "multiscale";

@@ -33,8 +33,7 @@ double tangential(double a_max, double kappa, double v) {
 
 }  // namespace
 
-VaOptimum va_optimum(const std::vector<tdo_vec3>& points, double v_max, double a_max,
-                     double span) {
+VaOptimum va_optimum(const std::vector<tdo_vec3>& points, double v_max, double a_max, double span) {
   VaOptimum r;
   if (!(v_max > 0.0) || !(a_max > 0.0) || !(span > 0.0)) return r;
   std::vector<tdo_vec3> p;

@@ -19,10 +19,10 @@ namespace tdo_tools {
 
 /** Result of va_optimum. */
 struct VaOptimum {
-  double time_s = 0.0;      /**< s, rest-to-rest time of the v/a-optimal profile */
-  double length_m = 0.0;    /**< m, arclength of the sampled path */
-  double max_kappa = 0.0;   /**< 1/m, largest curvature estimate along the path */
-  std::size_t nodes = 0;    /**< distinct positions the passes ran over */
+  double time_s = 0.0;    /**< s, rest-to-rest time of the v/a-optimal profile */
+  double length_m = 0.0;  /**< m, arclength of the sampled path */
+  double max_kappa = 0.0; /**< 1/m, largest curvature estimate along the path */
+  std::size_t nodes = 0;  /**< distinct positions the passes ran over */
 };
 
 /**
