@@ -652,10 +652,14 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
     *h_out = static_cast<float>(h);
     return f;
   }
-  const double h = octile_voxel(s, n.x, n.y, n.z);
+  double h = octile_voxel(s, n.x, n.y, n.z);
+  if (q.voxel_turns && s.hx != nullptr) {
+    const double e = s.hx[n.voxel] * q.inv_res;
+    h = e > h ? e : h;
+  }
   *h_out = static_cast<float>(h);
   if (!q.voxel_turns) return n.g + h;
-  if (n.heading >= kNumDirs) return n.g + q.h_weight * h;
+  if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
   const double dev = deviation(ctx, s, back ? dir_opposite(n.heading) : n.heading, n.x, n.y, n.z);
   return n.g + q.h_weight * (h + turn_bound(ctx, q, dev) * q.inv_res) + q.mu * q.inv_res * dev;
 }
@@ -1725,12 +1729,20 @@ double path_penalty(const tdo_search* ctx, const Query& q, uint32_t n, uint32_t*
   return pen;
 }
 
-tdo_status run_voxel_turns(tdo_search* ctx, Query& q, tdo_search_output* out) {
+tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search_output* out) {
   q.voxel_turns = 1;
   q.inv_res = 1.0 / q.grid->desc.res;
+  // grid_first: the grid-distance tables in h (metres, so scaled to voxel edges in priority); PLAIN
+  // as the heading search's first retry (weight 2, no deviation terms), TERMS with the f unchanged.
+  if (grid_first != TDO_GRID_FIRST_OFF && !build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
+  if (grid_first == TDO_GRID_FIRST_PLAIN) {
+    q.h_weight = q.h_weight > kRetryWeight[0] ? q.h_weight : kRetryWeight[0];
+    q.dev_terms = 0;
+  }
   const tdo_status st = run_search<false>(ctx, q);
   report_counts(q, out);
   if (st != TDO_OK) return st;
+  if (grid_first == TDO_GRID_FIRST_PLAIN) out->fallback = 1;  // as the heading search reports it
   const tdo_status wp = write_path(ctx, q, out);
   if (wp != TDO_OK) return wp;
   uint32_t sharp = 0;
@@ -1794,7 +1806,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
   const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
-  if (headed && in->states == TDO_STATES_VOXEL) return run_voxel_turns(ctx, q, out);
+  if (headed && in->states == TDO_STATES_VOXEL) return run_voxel_turns(ctx, q, in->grid_first, out);
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
     const tdo_status st = run_search<false>(ctx, q);
     report_counts(q, out);

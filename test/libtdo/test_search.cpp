@@ -594,6 +594,59 @@ Case walls_with_holes(bool sealed) {
   return c;
 }
 
+// Voxel states with grid_first: the grid-distance tables in h. On random grids a path whenever
+// one exists, with the penalised cost recomputed from the path; behind the walls the octile guide
+// cannot see, PLAIN (tables, weight 2, no deviation terms) expands fewer states than the octile
+// guide, and the sealed walls are no_path either way.
+TEST(SearchVoxelStates, GivenGridFirst_WhenSearchingWithVoxelStates_ThenCompleteAndGuidedByTables) {
+  const uint32_t n = static_cast<uint32_t>(kWallsNx * kWallsNy * kWallsNz);
+  tdo_capacity cap = make_cap(n, n, n + 1u);
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(4242);
+  for (int round = 0; round < 200; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    for (int first : {TDO_GRID_FIRST_PLAIN, TDO_GRID_FIRST_TERMS}) {
+      tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+      in.theta_max = 0.25 * 3.14159265358979323846;
+      in.states = TDO_STATES_VOXEL;
+      in.grid_first = first;
+      const Result r = run(pl.search(), in);
+      SCOPED_TRACE(::testing::Message() << "round " << round << " grid_first " << first);
+      if (!(want < kInf)) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+        continue;
+      }
+      ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+      EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+      const double turns = tdo_test::turn_penalty(r.out, 50.0);
+      const double surcharge = r.out.pivots * tdo_search_pivot_cost(50.0, in.theta_max);
+      EXPECT_TRUE(near_rel(r.out.penalized_cost, r.out.cost + turns + surcharge));
+    }
+  }
+  for (bool sealed : {false, true}) {
+    const Case c = walls_with_holes(sealed);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+    in.states = TDO_STATES_VOXEL;
+    const Result octile = run(pl.search(), in);
+    in.grid_first = TDO_GRID_FIRST_PLAIN;
+    const Result tables = run(pl.search(), in);
+    if (sealed) {
+      EXPECT_EQ(octile.status, TDO_ERR_NO_PATH);
+      EXPECT_EQ(tables.status, TDO_ERR_NO_PATH);
+      continue;
+    }
+    ASSERT_EQ(octile.status, TDO_OK);
+    ASSERT_EQ(tables.status, TDO_OK);
+    EXPECT_TRUE(tdo_test::valid_path(c.map, tables.out, c.s, c.g));
+    EXPECT_LT(tables.out.expansions, octile.out.expansions) << "the tables guide through the holes";
+  }
+}
+
 // Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and
 // its retry with the obstacle-aware heuristic (tdo_search_output.fallback) must still find a valid
 // path, deterministically; plain searches never retry and stay optimal.

@@ -41,7 +41,8 @@ typedef enum tdo_state_space {
   TDO_STATES_HEADING = 0, /**< (voxel, heading): the turn cost is exact per heading (default) */
   TDO_STATES_VOXEL = 1    /**< one state per voxel, whose heading is the step it was reached by:
                                plain A*'s states and memory; the turn and deviation terms are
-                               those of its parent chain, so the cost is not optimal */
+                               those of its parent chain, so the cost is not optimal;
+                               grid_first puts the grid distances in h as for heading states */
 } tdo_state_space;
 
 /** Opaque search context; carved from an arena by tdo_search_init. */
