@@ -63,6 +63,7 @@ const std::vector<Field>& fields() {
       real("v_cruise", [](tdo::plan_request_t* m, double v) { m->v_cruise = v; }),
       real("stop_angle", [](tdo::plan_request_t* m, double v) { m->stop_angle = v; }),
       real("dt", [](tdo::plan_request_t* m, double v) { m->dt = v; }),
+      real("corner_time", [](tdo::plan_request_t* m, double v) { m->corner_time = v; }),
       real("clearance", [](tdo::plan_request_t* m, double v) { m->clearance = v; }),
       int8("depth", &tdo::plan_request_t::depth),
       int8("search", &tdo::plan_request_t::search),

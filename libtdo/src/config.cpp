@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "planner_internal.h"
+#include "tdo/trajectory.h"
 
 extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny, int32_t nz,
                                       double clear_ratio, uint32_t headings, uint32_t node_cap) {
@@ -38,7 +39,7 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   // A flight of 64 samples (0.64 s at dt = 0.01 s) per path voxel covers a slow, stop-heavy path.
   const uint64_t samples = 64u * static_cast<uint64_t>(cap->max_path) + 1024u;
   cap->max_samples = static_cast<uint32_t>(samples < (1u << 22) ? samples : (1u << 22));
-  cap->max_profile = 8u * (3u * cap->max_path + 4u) + 1u;  // 8 pieces per path segment
+  cap->max_profile = TDO_TRAJ_PIECES_PER_SEGMENT * (3u * cap->max_path + 4u) + 1u;
   cap->max_violations = 64u;  // enough to show a pattern; the total is always counted
   cap->max_refinements = 8u;  // each round lowers local limits by 20 %: 8 rounds reach 17 %
 }

@@ -39,7 +39,8 @@ tdo_status check_params(const tdo_plan_params& p) {
   if (p.depth >= TDO_PLAN_SMOOTH &&
       (!positive(p.k) || !positive(p.v_max) || !positive(p.a_max) || !positive(p.j_max) ||
        !positive(p.a_lat_max) || !positive(p.v_cruise) || !positive(p.stop_angle) ||
-       p.smoothing < TDO_SMOOTHING_G2 || p.smoothing > TDO_SMOOTHING_NONE))
+       p.smoothing < TDO_SMOOTHING_G2 || p.smoothing > TDO_SMOOTHING_NONE ||
+       !(p.corner_time >= 0.0 && p.corner_time <= 1.0)))
     return TDO_ERR_INVALID_ARGUMENT;
   if (p.depth >= TDO_PLAN_TRAJECTORY && !positive(p.dt)) return TDO_ERR_INVALID_ARGUMENT;
   return TDO_OK;
@@ -212,6 +213,7 @@ extern "C" void tdo_plan_params_default(tdo_plan_params* p) {
   p->v_cruise = 3.0;
   p->stop_angle = 150.0 * kPi / 180.0;
   p->dt = 0.01;
+  p->corner_time = 1.0;
 }
 
 extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* req,
@@ -294,6 +296,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   mi.a_lat_max = p.a_lat_max;
   mi.j_max = p.j_max;
   mi.stop_angle = p.stop_angle;
+  mi.corner_time = p.corner_time;
   const uint32_t rounds = p.depth == TDO_PLAN_TRAJECTORY ? 3u : 1u;
   tdo_traj_output to;
   memset(&to, 0, sizeof(to));

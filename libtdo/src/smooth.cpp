@@ -56,6 +56,13 @@ constexpr uint32_t kMaxChords = 64u;        // chords per arc clearance check
 constexpr int kRateSamples = 32;            // t samples of the curvature-rate maximum search
 constexpr int kRateGolden = 40;  // golden-section steps refining it (bracket 1/16 -> 1e-10)
 constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximum
+// Time-oriented corner shapes (tdo_smooth_input.corner_time): the inner control points at these
+// fractions of the tangent length spread the curvature change over the whole curve (max|dkappa/ds|
+// about 5x lower than Yang-Sukkarieh's for the same tangent length up to ~60 degrees).
+constexpr double kGentleG = 0.32;  // |B1 - B0| / d
+constexpr double kGentleH = 0.32;  // |B2 - B1| / d
+constexpr int kShapeBlends = 4;    // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
+constexpr double kTimeJerkShare = 0.4;  // of j_max: lateral jerk the jerk radius designs for
 
 struct V {
   double x, y, z;
@@ -85,6 +92,7 @@ struct Corner {
   V w;             // m, waypoint
   V u;             // unit direction of the segment from this waypoint to the next
   double len;      // m, length of that segment
+  double gf, hf;   // G2 shape: |B1 - B0| and |B2 - B1| as fractions of the tangent length
   double tau;      // tangent length per metre of radius (dimensionless)
   double rate;     // max|dkappa/ds| * r^2 of the G2 shape (dimensionless); 0 for arcs
   double r_des;    // m, wanted radius
@@ -173,6 +181,73 @@ double g2_rate(double beta) {
   return dmax(best_v, dmax(f1, f2)) * kRateMargin;
 }
 
+/** kappa (signed, >= 0 for a left turn) at parameter t of a planar Bezier (see g2_rate_at). */
+double g2_kappa_at(const double px[4], const double py[4], double t) {
+  const double u = 1.0 - t;
+  double d1[2], d2[2];
+  const double* p[2] = {px, py};
+  for (int i = 0; i < 2; ++i) {
+    const double* c = p[i];
+    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
+    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
+  }
+  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
+  if (!(sp2 > 0.0)) return 0.0;
+  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
+}
+
+/** Maximum over t in [0, 1] of f: kRateSamples + 1 samples, golden-section refinement. */
+template <typename F>
+double max_on_unit(F f) {
+  int best = 0;
+  double best_v = -HUGE_VAL;
+  for (int i = 0; i <= kRateSamples; ++i) {
+    const double v = f(static_cast<double>(i) / kRateSamples);
+    if (v > best_v) {
+      best_v = v;
+      best = i;
+    }
+  }
+  double lo = static_cast<double>(best > 0 ? best - 1 : 0) / kRateSamples;
+  double hi = static_cast<double>(best < kRateSamples ? best + 1 : kRateSamples) / kRateSamples;
+  const double gr = 0.6180339887498948482;
+  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < kRateGolden; ++it) {
+    if (f1 < f2) {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + gr * (hi - lo);
+      f2 = f(x2);
+    } else {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - gr * (hi - lo);
+      f1 = f(x1);
+    }
+  }
+  return dmax(best_v, dmax(f1, f2));
+}
+
+/**
+ * Tangent length per metre of radius (tau) and rate = max|dkappa/ds| r^2 of the G2 corner whose
+ * inner control points sit at fractions gf, hf of the tangent length, with half-deflection beta:
+ * "radius" r = 1 / max kappa, so that the corner of radius r has tangent length tau r, peak
+ * curvature 1/r and max|dkappa/ds| = rate / r^2, as for the Yang-Sukkarieh shape.
+ */
+void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
+  const double theta = 2.0 * beta;
+  const double b2 = 1.0 - gf - hf;  // unit tangent length
+  const double px[4] = {-1.0, -(1.0 - gf), -b2, 0.5 * (-b2 + b2 * cos(theta))};
+  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
+  const double k = max_on_unit([&](double t) { return g2_kappa_at(px, py, t); }) * kRateMargin;
+  const double f = max_on_unit([&](double t) { return g2_rate_at(px, py, t); }) * kRateMargin;
+  *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
+  *rate = f / (k * k);  // max|dkappa/ds| = f / d^2 = f / (k r)^2
+}
+
 tdo_path_segment blank_segment(tdo_segment_kind kind) {
   tdo_path_segment s;
   memset(&s, 0, sizeof(s));
@@ -181,9 +256,9 @@ tdo_path_segment blank_segment(tdo_segment_kind kind) {
 }
 
 /** The two Beziers of a G2 corner at waypoint w with tangent length d from entry to exit. */
-void g2_corner(const V& w, const V& u_in, const V& u_out, double d, const V& entry, const V& exit,
-               tdo_path_segment out[2]) {
-  const double h = kC3 * d, g = kC2 * h;
+void g2_corner(const V& w, const V& u_in, const V& u_out, double gf, double hf, double d,
+               const V& entry, const V& exit, tdo_path_segment out[2]) {
+  const double h = hf * d, g = gf * d;
   const V b1 = sub(w, mul(u_in, d - g));
   const V b2 = sub(w, mul(u_in, d - g - h));
   const V e1 = add(w, mul(u_out, d - g));
@@ -237,7 +312,7 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   const V exit = add(c.w, mul(c.u, c.t));
   if (in.mode == TDO_SMOOTHING_G2) {
     tdo_path_segment b[2];
-    g2_corner(c.w, prev.u, c.u, c.t, entry, exit, b);
+    g2_corner(c.w, prev.u, c.u, c.gf, c.hf, c.t, entry, exit, b);
     for (int i = 0; i < 2; ++i) {
       ++*checks;
       if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) return 0;
@@ -267,6 +342,52 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   return 1;
 }
 
+/**
+ * Shape, tau, rate and wanted radius of a G2 corner. corner_time 0: the Yang-Sukkarieh shape, the
+ * radius the larger of eq. 8's and the jerk radius for j_max. Otherwise the blends of it with the
+ * gentle shape, up to corner_time of the way, each with the jerk radius for kTimeJerkShare j_max,
+ * and the one whose curve allows the highest speed (lateral acceleration and jerk) with the
+ * tangent length it can surely have (at most half of each neighbouring line): ties keep the
+ * shape closer to Yang-Sukkarieh.
+ */
+void g2_choose(const tdo_smooth_input& in, double theta, double r8, double v_c, double half_room,
+               Corner* k) {
+  const double beta = 0.5 * theta;
+  const double ys_g = kC2 * kC3, ys_h = kC3;
+  if (!(in.corner_time > 0.0)) {
+    k->gf = ys_g;
+    k->hf = ys_h;
+    k->tau = g2_tau(beta);
+    k->rate = g2_rate(beta);
+    k->r_des = dmax(r8, sqrt(v_c * v_c * v_c * k->rate / in.j_max));
+    return;
+  }
+  const double j_design = kTimeJerkShare * in.j_max;
+  double best_v = -1.0;
+  for (int b = 0; b <= kShapeBlends; ++b) {
+    const double lam = in.corner_time * b / kShapeBlends;
+    const double gf = ys_g + lam * (kGentleG - ys_g), hf = ys_h + lam * (kGentleH - ys_h);
+    double tau, rate;
+    if (b == 0) {
+      tau = g2_tau(beta);
+      rate = g2_rate(beta);
+    } else {
+      g2_shape(beta, gf, hf, &tau, &rate);
+    }
+    const double r_des = dmax(r8, sqrt(v_c * v_c * v_c * rate / j_design));
+    const double r = dmin(r_des, half_room / tau);  // the radius it surely fits with
+    const double v = dmin(sqrt(in.a_lat_max * r), cbrt(j_design * r * r / rate));
+    if (v > best_v * (1.0 + 1e-9)) {
+      best_v = v;
+      k->gf = gf;
+      k->hf = hf;
+      k->tau = tau;
+      k->rate = rate;
+      k->r_des = r_des;
+    }
+  }
+}
+
 bool valid_input(const tdo_smooth_input& in) {
   if (in.waypoints == nullptr || in.n_waypoints < 2u) return false;
   if (in.mode != TDO_SMOOTHING_G2 && in.mode != TDO_SMOOTHING_ARC && in.mode != TDO_SMOOTHING_NONE)
@@ -276,6 +397,7 @@ bool valid_input(const tdo_smooth_input& in) {
       !positive(in.j_max) || !positive(in.stop_angle))
     return false;
   if (!isfinite(in.min_radius) || in.min_radius < 0.0) return false;
+  if (!(in.corner_time >= 0.0 && in.corner_time <= 1.0)) return false;
   // R_min and the jerk radius must stay finite.
   const double r_min = in.v_cruise * in.v_cruise / in.a_lat_max;
   if (!positive(r_min) || !positive(r_min * in.k)) return false;
@@ -361,10 +483,8 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
     k.kind = kCornerCurve;
     const double r8 = in.k * theta / (2.0 * sin(0.5 * theta)) * r_min;  // paper eq. 8
     if (in.mode == TDO_SMOOTHING_G2) {
-      k.tau = g2_tau(0.5 * theta);
-      k.rate = g2_rate(0.5 * theta);
-      const double r_jerk = sqrt(v_c * v_c * v_c * k.rate / in.j_max);
-      k.r_des = dmax(r8, r_jerk);
+      const double half_room = 0.5 * dmin(c[i - 1u].len, k.len);
+      g2_choose(in, theta, r8, v_c, half_room, &k);
     } else {
       k.tau = tan(0.5 * theta);
       k.rate = 0.0;
@@ -464,7 +584,7 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
     tdo_path_segment cs[2];
     uint32_t m = 1u;
     if (in.mode == TDO_SMOOTHING_G2) {
-      g2_corner(b.w, a.u, b.u, b.t, b.entry, b.exit, cs);
+      g2_corner(b.w, a.u, b.u, b.gf, b.hf, b.t, b.entry, b.exit, cs);
       m = 2u;
     } else {
       cs[0] = arc_corner(b.w, a.u, b.u, b.r, b.t, b.entry, b.exit);

@@ -1,10 +1,13 @@
 // Stage 5: time parameterisation, dynamic feasibility verification and refinement
 // (docs/design.md s.5, paper eq. 15-19).
 //
-// Speed profile. Every segment of positive length is a "plateau" with a constant speed ceiling
-// (the minimum over the segment of v_max, its v_limit, sqrt(a_lat / kappa) and the lateral-jerk
-// bound) and its own tangential acceleration and jerk limits, chosen so that the total
-// acceleration and jerk (tangential plus every curvature term) stay inside a_max and j_max. The
+// Speed profile. Every line of positive length is a "plateau", every curved segment up to kSubMax
+// equal parts (as many as the profile capacity allows, curve_parts), so the speed ceiling follows
+// the curvature along a curve instead of taking its worst point for all of it. A plateau has a
+// constant speed ceiling (the minimum over it of v_max, the segment's v_limit,
+// sqrt(a_lat / kappa) and the lateral-jerk bounds) and its own tangential acceleration and jerk
+// limits, chosen so that the total acceleration (friction circle) and the tangential and normal
+// parts of the jerk (plateau_limits) stay inside a_max and j_max. The
 // boundaries between plateaus are the critical points: the vehicle passes them with zero
 // tangential acceleration at a boundary speed no higher than either neighbour's ceiling (0 at the
 // ends, at stop points and at tangent kinks; lower where the curvature jumps, because the finite
@@ -50,17 +53,24 @@ constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre
 constexpr double kClearanceEvalMargin = 0.05;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
-constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
-constexpr double kCurveAccT = 0.6;      // tangential acceleration on curved plateaus
-constexpr double kCurveAccLat = 0.78;   // lateral acceleration (0.6^2 + 0.78^2 < 0.99^2)
-constexpr double kCurveJerk = 0.9;      // total jerk on curved plateaus
+constexpr double kLineShare = 0.95;     // tangential jerk on straight plateaus
+constexpr double kLineAcc = 0.99;       // tangential acceleration on straight plateaus
+constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
+constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
+constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
+constexpr double kJerkGeo = 0.92;       // of each part: the curvature terms at the ceiling
+constexpr double kCurveAccLat = 0.9;    // lateral acceleration at the ceiling (of a_max)
+constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
 constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
 constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
 constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
 constexpr double kKinkStop = 1e-3;      // rad: tangent kinks above this are stop points
 constexpr double kGapTolerance = 1e-6;  // m: segment end points further apart are invalid input
 // Geometry summary of a curved segment.
-constexpr uint32_t kStations = 16;     // curvature stations per curved segment
+constexpr uint32_t kStations = 16;  // curvature stations per curved segment, shared by its parts
+constexpr uint32_t kSubMax = 4;     // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
+constexpr uint32_t kPiecesPerPlateau =
+    8;                                 // 7 of the accelerate/cruise/decelerate profile + a dwell
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
@@ -85,9 +95,11 @@ inline double dmin(double a, double b) { return a < b ? a : b; }
 inline double dmax(double a, double b) { return a > b ? a : b; }
 inline bool positive(double v) { return isfinite(v) && v > 0.0; }
 
-/** A segment of positive length with its speed ceiling and tangential limits. */
+/** A segment of positive length, or one of the equal parts of a curved segment, with its speed
+ *  ceiling and tangential limits. */
 struct Plateau {
   uint32_t seg;   // index of the path segment
+  double off;     // m, arclength inside the segment where the plateau starts
   double s0;      // m, path arclength at its start
   double len;     // m
   double kappa;   // 1/m, curvature bound (0 on lines)
@@ -126,10 +138,11 @@ struct tdo_traj {
   tdo_sample* samples;              // max_samples; nullptr with stream_samples
   uint32_t* owner;                  // max_samples: plateau of each sample; nullptr when streamed
   tdo_violation* violations;        // max_violations
-  tdo_internal::Plateau* plateaus;  // max_segments
-  tdo_internal::Boundary* bounds;   // max_segments + 1
-  uint8_t* hit;                     // max_segments: plateau flagged by a violation
+  tdo_internal::Plateau* plateaus;  // plateau_cap
+  tdo_internal::Boundary* bounds;   // plateau_cap + 1
+  uint8_t* hit;                     // plateau_cap: plateau flagged by a violation
   tdo_internal::Phase* phases;      // max_profile
+  uint32_t plateau_cap;             // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
   uint32_t n_plateaus;
   uint32_t n_phases;
   double total;  // m, path length
@@ -412,17 +425,20 @@ struct Limits {
   double v_max, a_max, j_max, a_lat, dt;
 };
 
-/** Curvature and curvature-rate bounds of a curved segment from kStations + 1 stations. */
-tdo_status summarise_curve(const tdo_path_segment& seg, double* kappa, double* dkappa) {
+/** Curvature and curvature-rate bounds of the part [a, a + len] of a curved segment from
+ *  `stations` + 1 stations (the segment's kStations shared by its parts: the same evaluations
+ *  as for the whole segment; what they miss, the verification finds and refinement corrects). */
+tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
+                           double* kappa, double* dkappa) {
   double km = 0.0, dkm = 0.0, prev = 0.0;
-  const double h = seg.length / kStations;
+  const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
   const bool bez = seg.kind == TDO_SEGMENT_BEZIER;
   BezierCursor cursor;
   cursor_reset(&cursor, seg, 0u);
-  for (uint32_t i = 0; i <= kStations; ++i) {
+  for (uint32_t i = 0; i <= stations; ++i) {
     tdo_segment_state st;
-    const double s = i == kStations ? seg.length : h * i;
+    const double s = i == stations ? a + len : a + h * i;
     if (bez) {
       cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
@@ -466,9 +482,60 @@ tdo_status validate(const tdo_traj* ctx, const tdo_traj_input* in) {
   return TDO_OK;
 }
 
-/** Plateaus, boundary caps and the curvature-jump flags. */
+/** Parts per curved segment: the most (kSubMax, halved as needed) whose plateaus and profile
+ *  pieces fit the capacities, so a smaller max_profile gets a coarser (slower) profile. */
+uint32_t curve_parts(const tdo_traj* ctx, const tdo_path& path) {
+  uint32_t lines = 0, curves = 0;
+  for (uint32_t i = 0; i < path.n; ++i) {
+    if (!(path.seg[i].length > 0.0)) continue;
+    if (path.seg[i].kind == TDO_SEGMENT_LINE)
+      ++lines;
+    else
+      ++curves;
+  }
+  uint32_t m = kSubMax;
+  for (; m > 1u; m /= 2u) {
+    const uint64_t plateaus = lines + static_cast<uint64_t>(m) * curves;
+    if (plateaus <= ctx->plateau_cap &&
+        kPiecesPerPlateau * plateaus + 1u <= static_cast<uint64_t>(ctx->cfg.max_profile))
+      break;
+  }
+  return m;
+}
+
+/** The boundary cap between the previous plateau's segment `prev` and segment `seg`, and whether
+ *  the curvature jumps there; TDO_ERR_INVALID_ARGUMENT for a gap. */
+tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, const Limits& lim,
+                     int stop, double* cap, int* jump_out) {
+  tdo_segment_state e, f;
+  tdo_segment_eval(&prev, prev.length, &e);
+  tdo_segment_eval(&seg, 0.0, &f);
+  if (norm(sub(mk(e.p), mk(f.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
+  double b = stop ? 0.0 : HUGE_VAL;
+  // Tangent kink: a velocity jump v*theta, FD acceleration v*theta/dt, FD jerk v*theta/dt^2.
+  const double theta = atan2(norm(cross(mk(e.t), mk(f.t))), dot(mk(e.t), mk(f.t)));
+  if (theta > kKinkStop) {
+    b = 0.0;
+  } else if (theta > 0.0) {
+    b = dmin(b, kKinkShare * dmin(lim.j_max * lim.dt * lim.dt, lim.a_max * lim.dt) / theta);
+  }
+  // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
+  // with a kernel whose peak is 0.75 / dt.
+  const double jump = norm(sub(mk(e.kn), mk(f.kn)));
+  *jump_out = 0;
+  if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
+    b = dmin(b, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
+    *jump_out = 1;
+  }
+  *cap = b;
+  return TDO_OK;
+}
+
+/** Plateaus (curved segments in `parts` equal parts), boundary caps and the curvature-jump flags.
+ */
 tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
   const tdo_path& path = in->path;
+  const uint32_t parts = curve_parts(ctx, path);
   uint32_t n = 0;
   double s0 = 0.0;
   int stop_pending = 0;  // a zero-length segment with stop_at_end before the next plateau
@@ -478,49 +545,42 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       stop_pending |= seg.stop_at_end;
       continue;
     }
-    Plateau& p = ctx->plateaus[n];
-    memset(&p, 0, sizeof(p));
-    p.seg = i;
-    p.s0 = s0;
-    p.len = seg.length;
-    p.cap = dmin(lim.v_max, seg.v_limit);
-    p.scale = 1.0;
-    if (seg.kind != TDO_SEGMENT_LINE) {
-      const tdo_status st = summarise_curve(seg, &p.kappa, &p.dkappa);
-      if (st != TDO_OK) return st;
-    }
-    Boundary& b = ctx->bounds[n];
-    b.cap = HUGE_VAL;
-    if (n == 0) {
-      b.cap = 0.0;  // start at rest
-    } else {
-      const Plateau& q = ctx->plateaus[n - 1];
-      const tdo_path_segment& prev = path.seg[q.seg];
-      tdo_segment_state e, f;
-      tdo_segment_eval(&prev, prev.length, &e);
-      tdo_segment_eval(&seg, 0.0, &f);
-      if (norm(sub(mk(e.p), mk(f.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
-      if (prev.stop_at_end || stop_pending) b.cap = 0.0;
-      // Tangent kink: a velocity jump v*theta, FD acceleration v*theta/dt, FD jerk v*theta/dt^2.
-      const double theta = atan2(norm(cross(mk(e.t), mk(f.t))), dot(mk(e.t), mk(f.t)));
-      if (theta > kKinkStop) {
-        b.cap = 0.0;
-      } else if (theta > 0.0) {
-        b.cap =
-            dmin(b.cap, kKinkShare * dmin(lim.j_max * lim.dt * lim.dt, lim.a_max * lim.dt) / theta);
+    const uint32_t m = seg.kind == TDO_SEGMENT_LINE ? 1u : parts;
+    const double part = seg.length / m;
+    for (uint32_t j = 0; j < m; ++j) {
+      if (n >= ctx->plateau_cap) return TDO_ERR_PATH_CAPACITY;  // curve_parts prevents it
+      Plateau& p = ctx->plateaus[n];
+      memset(&p, 0, sizeof(p));
+      p.seg = i;
+      p.off = part * j;
+      p.s0 = s0 + p.off;
+      p.len = j + 1u == m ? seg.length - p.off : part;
+      p.cap = dmin(lim.v_max, seg.v_limit);
+      p.scale = 1.0;
+      if (seg.kind != TDO_SEGMENT_LINE) {
+        const tdo_status st =
+            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dkappa);
+        if (st != TDO_OK) return st;
       }
-      // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
-      // with a kernel whose peak is 0.75 / dt.
-      const double jump = norm(sub(mk(e.kn), mk(f.kn)));
-      if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
-        b.cap = dmin(b.cap, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
-        ctx->plateaus[n - 1].near_jump = 1;
-        p.near_jump = 1;
+      Boundary& b = ctx->bounds[n];
+      b.cap = HUGE_VAL;  // inside a segment: no kink, no curvature jump
+      if (n == 0) {
+        b.cap = 0.0;  // start at rest
+      } else if (j == 0) {
+        const tdo_path_segment& prev = path.seg[ctx->plateaus[n - 1].seg];
+        int jump = 0;
+        const tdo_status st =
+            joint_cap(prev, seg, lim, prev.stop_at_end || stop_pending, &b.cap, &jump);
+        if (st != TDO_OK) return st;
+        if (jump) {
+          ctx->plateaus[n - 1].near_jump = 1;
+          p.near_jump = 1;
+        }
       }
+      ++n;
     }
     stop_pending = 0;
     s0 += seg.length;
-    ++n;
   }
   ctx->bounds[n].cap = 0.0;  // end at rest
   ctx->n_plateaus = n;
@@ -531,28 +591,38 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Profile (per refinement round).
 
-/** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale. */
+/** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale.
+ *
+ *  On a planar curve the jerk is (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N, so its
+ *  tangential and normal parts get their own budgets kJerkT and kJerkN of jb (squares summing to
+ *  1): the curvature terms take at most kJerkGeo of each at the ceiling, the tangential jerk and
+ *  the 3 kappa v a_t term the rest. The tangential acceleration shares a_max with the lateral one
+ *  (a_t^2 + (kappa v^2)^2 <= (kAccCircle a_max)^2). */
 void plateau_limits(Plateau* p, const Limits& lim) {
   const double jb =
       (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   double level = p->cap;
   if (!(p->kappa > 0.0)) {
     p->level = level * p->scale;
-    p->acc = kLineShare * lim.a_max * p->scale;
+    p->acc = kLineAcc * lim.a_max * p->scale;
     p->jerk = jb * p->scale;
     return;
   }
   const double k = p->kappa, dk = p->dkappa;
-  // Lateral acceleration kappa v^2 <= min(a_lat, 0.78 a_max).
+  // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
   level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
-  // Geometric jerk (kappa^2 + |dkappa/ds|) v^3 <= half the jerk budget.
-  level = dmin(level, cbrt(0.5 * jb / (k * k + dk)));
+  // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
+  level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
+  if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * kJerkN * jb / dk));
   level *= p->scale;
-  // The rest is shared by the tangential jerk and the 3 kappa v a_t term.
-  const double rest = jb - (k * k + dk) * level * level * level;
+  const double v3 = level * level * level;
+  const double lat = k * level * level;
+  const double circle = kAccCircle * lim.a_max;
   p->level = level;
-  p->jerk = 0.5 * rest * p->scale;
-  p->acc = dmin(kCurveAccT * lim.a_max, 0.5 * rest / (3.0 * k * level)) * p->scale;
+  p->jerk = (kJerkT * jb - k * k * v3) * p->scale;
+  p->acc = dmin(dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat))),
+                (kJerkN * jb - dk * v3) / (3.0 * k * level)) *
+           p->scale;
 }
 
 /** Appends a phase; false when the profile capacity is exhausted. */
@@ -753,7 +823,9 @@ void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
   const Plateau& p = ctx->plateaus[q];
   double local = s - p.s0;
   if (local < 0.0) local = 0.0;
-  if (local > p.len || i + 1u == n) local = p.len;
+  if (local > p.len) local = p.len;
+  local += p.off;
+  if (i + 1u == n) local = g->segs[p.seg].length;  // exactly at the goal
   tdo_segment_state st;
   if (g->segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
     if (g->cursor.seg != p.seg) cursor_reset(&g->cursor, g->segs[p.seg], p.seg);
@@ -980,10 +1052,17 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 
 using namespace tdo_internal;
 
+/** Plateaus a context holds: every segment, or more when the profile capacity allows curved
+ *  segments in parts (curve_parts). */
+static uint32_t plateau_capacity(const tdo_traj_config* cfg) {
+  const uint32_t by_profile = (cfg->max_profile - 1u) / kPiecesPerPlateau;
+  return by_profile > cfg->max_segments ? by_profile : cfg->max_segments;
+}
+
 extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
     return 0;
-  const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = cfg->max_segments;
+  const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = plateau_capacity(cfg);
   return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
          tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
@@ -1003,7 +1082,8 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   memset(ctx, 0, sizeof(*ctx));
   ctx->cfg = *cfg;
-  const size_t nseg = cfg->max_segments;
+  ctx->plateau_cap = plateau_capacity(cfg);
+  const size_t nseg = ctx->plateau_cap;
   if (!cfg->stream_samples) {
     const size_t ns = cfg->max_samples;
     ctx->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));

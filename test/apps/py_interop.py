@@ -40,7 +40,7 @@ r.max_expansions, r.correction, r.turn_threshold = 0, tdo.plan_request_t.CORRECT
 r.shorten = True
 r.smoothing, r.k = tdo.plan_request_t.SMOOTHING_G2, 1.0
 r.v_max, r.a_max, r.j_max, r.a_lat_max, r.v_cruise = 3.0, 3.0, 10.0, 3.0, 3.0
-r.stop_angle, r.dt = math.radians(150), 0.01
+r.stop_angle, r.dt, r.corner_time = math.radians(150), 0.01, 1.0
 log.write_event(2000, "TDO_PLAN_REQUEST", r.encode())
 bad = tdo.plan_request_t.decode(r.encode())  # and one with a NaN goal: answered, counted
 bad.request_id, bad.goal = 8, [float("nan"), 1.25, 1.25]

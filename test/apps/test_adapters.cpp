@@ -261,6 +261,7 @@ tdo_plan_request sample_request() {
   p.v_cruise = 2.8;
   p.stop_angle = 2.6;
   p.dt = 0.02;
+  p.corner_time = 0.5;
   return r;
 }
 
@@ -309,6 +310,7 @@ TEST(RequestAdapter, RoundTripKeepsEveryParameter) {
   EXPECT_EQ(b.v_cruise, a.v_cruise);
   EXPECT_EQ(b.stop_angle, a.stop_angle);
   EXPECT_EQ(b.dt, a.dt);
+  EXPECT_EQ(b.corner_time, a.corner_time);
 }
 
 TEST(RequestAdapter, AnotherVehicleIsNamedFirst) {
@@ -333,7 +335,8 @@ TEST(RequestAdapter, EveryNonFiniteNumberIsNamed) {
                                            &tdo::plan_request_t::a_lat_max,
                                            &tdo::plan_request_t::v_cruise,
                                            &tdo::plan_request_t::stop_angle,
-                                           &tdo::plan_request_t::dt};
+                                           &tdo::plan_request_t::dt,
+                                           &tdo::plan_request_t::corner_time};
   tdo_plan_request out{};
   for (double bad : {kNaN, kInf, -kInf}) {
     for (auto f : fields) {

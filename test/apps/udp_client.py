@@ -67,7 +67,7 @@ def request(rid, vehicle=0):
     r.correction, r.shorten, r.turn_threshold = tdo.plan_request_t.CORRECT_MULTISCALE, True, math.radians(10)
     r.smoothing, r.k = tdo.plan_request_t.SMOOTHING_G2, 1.0
     r.v_max, r.a_max, r.j_max, r.a_lat_max, r.v_cruise = 3.0, 3.0, 10.0, 3.0, 3.0
-    r.stop_angle, r.dt = math.radians(150), 0.01
+    r.stop_angle, r.dt, r.corner_time = math.radians(150), 0.01, 1.0
     return r
 
 

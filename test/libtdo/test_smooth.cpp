@@ -1108,4 +1108,77 @@ TEST(SmoothProperty, GivenSameInput_WhenRunTwice_ThenBitIdentical) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Corner shapes for flight time (corner_time, issue 23).
+
+TEST(SmoothTime,
+     GivenRoomLimitedCorners_WhenCornerTimeOne_ThenCurvatureChangesGentlerAndCapIsHigher) {
+  for (double deg_theta : {20.0, 30.0, 45.0}) {
+    SCOPED_TRACE(deg_theta);
+    // GIVEN a corner whose legs (1 m) are shorter than the corner wants
+    const std::vector<tdo_vec3> w = corner_polyline(deg(deg_theta), 1.0);
+    Smoother sm;
+    tdo_smooth_input in = default_input(w);
+    Seen ys, fast;
+    tdo_smooth_output out{};
+    // WHEN smoothed with Yang-Sukkarieh corners and with corner_time 1
+    ASSERT_EQ(sm.run(in, &out), TDO_OK);
+    ASSERT_TRUE(check_path(w, out, in, &ys));
+    in.corner_time = 1.0;
+    ASSERT_EQ(sm.run(in, &out), TDO_OK);
+    ASSERT_TRUE(check_path(w, out, in, &fast));
+    ASSERT_EQ(ys.corners.size(), 1u);
+    ASSERT_EQ(fast.corners.size(), 1u);
+    // THEN both fill the room; the time-oriented corner changes its curvature at most half as
+    // steeply (measured along the curve) and its speed cap, which the checker bounds by the
+    // sampled curvature and its rate, is higher
+    EXPECT_NEAR(fast.corners[0].tangent_len, ys.corners[0].tangent_len, 1e-9);
+    EXPECT_LT(fast.corners[0].max_rate, 0.5 * ys.corners[0].max_rate);
+    EXPECT_GT(fast.corners[0].v_limit, 1.1 * ys.corners[0].v_limit);
+  }
+}
+
+TEST(SmoothTime, GivenSeededRandomPolylines_WhenAnyCornerTime_ThenEveryInvariantHolds) {
+  Rng rng(0x7123u);
+  Smoother sm(16);
+  int corners = 0;
+  for (int n = 0; n < 200; ++n) {
+    SCOPED_TRACE(n);
+    // GIVEN a random polyline, random limits and a random corner_time
+    const std::vector<tdo_vec3> w = random_polyline(rng);
+    tdo_smooth_input in = default_input(w);
+    in.k = rng.uniform(0.3, 3.0);
+    in.v_max = rng.uniform(0.5, 8.0);
+    in.v_cruise = rng.uniform(0.5, 1.2) * in.v_max;
+    in.a_lat_max = rng.uniform(0.5, 8.0);
+    in.j_max = rng.uniform(1.0, 40.0);
+    in.corner_time = n % 4 == 0 ? 1.0 : rng.uniform(0.0, 1.0);
+    // WHEN smoothed
+    tdo_smooth_output out{};
+    ASSERT_EQ(sm.run(in, &out), TDO_OK);
+    // THEN the checker accepts it (G2, tangent, in plane, caps within a_lat and j at the sampled
+    // curvature and rate) and no corner's peak curvature exceeds eq. 8's unless shrunk
+    Seen seen;
+    ASSERT_TRUE(check_path(w, out, in, &seen));
+    for (const CornerSeen& c : seen.corners) {
+      if (out.n_shrunk == 0) {
+        EXPECT_LE(c.peak_kappa * eq8_radius(in, deflection(w, c.waypoint)), 1.0 + 1e-6);
+      }
+    }
+    corners += static_cast<int>(out.n_corners);
+  }
+  EXPECT_GT(corners, 200);
+}
+
+TEST(SmoothTime, GivenCornerTimeOutsideZeroToOne_WhenRun_ThenInvalidArgument) {
+  const std::vector<tdo_vec3> w = corner_polyline(deg(30.0), 3.0);
+  Smoother sm;
+  for (double bad : {-0.1, 1.5, std::nan("")}) {
+    tdo_smooth_input in = default_input(w);
+    in.corner_time = bad;
+    tdo_smooth_output out{};
+    EXPECT_EQ(sm.run(in, &out), TDO_ERR_INVALID_ARGUMENT) << bad;
+  }
+}
+
 }  // namespace

@@ -950,4 +950,96 @@ TEST_F(TrajectoryClearance, GivenStreamedSamplesThenReportEnergyAndSamplesAreThe
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Flight time (issue 23): pointwise curve ceilings and the budgets, against bounds derived here.
+
+/** Largest curvature and |dkappa/ds| of a segment, from 4000 evaluations. */
+void curve_extremes(const tdo_path_segment& s, double* kappa, double* dkappa) {
+  *kappa = 0.0;
+  *dkappa = 0.0;
+  for (int i = 0; i <= 4000; ++i) {
+    tdo_segment_state st;
+    ASSERT_TRUE(tdo_segment_eval(&s, s.length * i / 4000.0, &st));
+    *kappa = std::fmax(*kappa, st.kappa);
+    *dkappa = std::fmax(*dkappa, std::fabs(st.dkappa_ds));
+  }
+}
+
+TEST(TrajectoryTime, GivenLongLineThenDurationIsWithinDtOfTheJerkLimitedOptimum) {
+  // GIVEN a 20 m line: rest to rest under v, a and j no profile is faster than
+  // L / v + v / a + a / j (each speed change needs v / a at full acceleration plus a / j of ramps)
+  Traj t;
+  const std::vector<tdo_path_segment> segs{line({0, 0, 1}, {12, 16, 1})};
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(within_limits(out, in));
+  const double optimum = 20.0 / in.v_max + in.v_max / in.a_max + in.a_max / in.j_max;
+  // THEN it takes at most 2 % of the speed changes and a sample period more
+  EXPECT_GE(out.duration, optimum - in.dt);
+  EXPECT_LE(out.duration, optimum + 0.02 * (in.v_max / in.a_max + in.a_max / in.j_max) + in.dt);
+}
+
+TEST(TrajectoryTime, GivenG2CornerThenItIsFlownFasterThanItsWorstPointAllowsWithinLimits) {
+  // GIVEN an L with a Bezier corner whose curvature rises from 0 to its peak and falls again
+  Traj t;
+  const auto segs = l_path_bezier(3.0);
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  double kmax = 0.0, dkmax = 0.0;
+  curve_extremes(segs[1], &kmax, &dkmax);
+  // The former segment-wide ceiling: the worst curvature and curvature rate of the whole curve
+  // together, (kappa^2 + |kappa'|) v^3 <= 0.45 j and kappa v^2 <= 0.78 a.
+  const double worst = std::fmin(std::sqrt(0.78 * in.a_max / kmax),
+                                 std::cbrt(0.45 * in.j_max / (kmax * kmax + dkmax)));
+  // WHEN it is time-parameterised
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(within_limits(out, in));
+  EXPECT_EQ(out.refinements, 0u);
+  // THEN the time on the curve is below its length at that ceiling by a clear margin (the speed
+  // follows the curvature along the curve instead of its worst point)
+  double on_curve = 0.0, v_min = kInfty, v_max = 0.0;
+  for (uint32_t i = 1; i < out.n_samples; ++i) {
+    const tdo_vec3 p = out.samples[i].p;
+    if (!(p.x > 7.0 && p.y < 3.0)) continue;
+    on_curve += in.dt;
+    const double v = len3(out.samples[i].v);
+    v_min = std::fmin(v_min, v);
+    v_max = std::fmax(v_max, v);
+  }
+  EXPECT_LT(on_curve, 0.85 * segs[1].length / worst);
+  EXPECT_GT(v_max, 1.2 * worst);
+  // AND nowhere on it slower than that ceiling
+  EXPECT_GE(v_min, worst);
+}
+
+TEST(TrajectoryTime, GivenOnlyEightPiecesPerSegmentThenCurvesAreFlownWholeAndSlower) {
+  // GIVEN the L with a Bezier corner, once with the documented capacity and once with 8 pieces per
+  // segment (curves then cannot be split into parts)
+  const auto segs = l_path_bezier(3.0);
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  tdo_traj_config small = default_config();
+  small.max_segments = 3;
+  small.max_profile = 8u * 3u + 1u;
+  tdo_traj_config full = small;
+  full.max_profile = TDO_TRAJ_PIECES_PER_SEGMENT * 3u + 1u;
+  Traj ts(small), tf(full);
+  ASSERT_EQ(ts.status(), TDO_OK);
+  ASSERT_EQ(tf.status(), TDO_OK);
+  tdo_traj_output os{}, of{};
+  // WHEN both are time-parameterised
+  ASSERT_EQ(tdo_traj_run(ts.ctx(), &in, &os), TDO_OK);
+  EXPECT_TRUE(within_limits(os, in));
+  EXPECT_TRUE(rest_to_rest(os, path));
+  const double slow = os.duration;
+  ASSERT_EQ(tdo_traj_run(tf.ctx(), &in, &of), TDO_OK);
+  EXPECT_TRUE(within_limits(of, in));
+  EXPECT_TRUE(rest_to_rest(of, path));
+  // THEN both pass every check and the one with the parts is faster
+  EXPECT_LT(of.duration, slow - 0.05);
+}
+
 }  // namespace

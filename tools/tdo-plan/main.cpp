@@ -18,6 +18,7 @@
 #include "path_metrics.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
+#include "va_optimum.h"
 
 namespace {
 
@@ -38,20 +39,22 @@ struct Options {
   std::vector<double> goal;
   std::string planner = "tdo";
   bool json = false;
+  bool optimum = false;   /**< print the v/a time optimum along the plan's own path */
   double clearance = 0.0; /**< m; default depends on the map kind */
   long long max_expansions = 0;
   long long max_nodes = 4000000;
   long long max_open = 0; /**< open-list items per direction; 0 = max_nodes */
   std::string scen_path;
   long long limit = 0;
-  double lambda = 0.0;     /**< m of cost per (turn/pi)^2 */
-  double mu = 0.0;         /**< m of f per unit deviation */
-  double theta_max = 45.0; /**< deg, direction constraint of the tdo search */
-  double v_max = 3.0;      /**< m/s */
-  double a_max = 3.0;      /**< m/s^2 */
-  double j_max = 10.0;     /**< m/s^3 */
-  double k = 1.0;          /**< corner radius scale */
-  double dt = 0.01;        /**< s, trajectory sample period */
+  double lambda = 0.0;      /**< m of cost per (turn/pi)^2 */
+  double mu = 0.0;          /**< m of f per unit deviation */
+  double theta_max = 45.0;  /**< deg, direction constraint of the tdo search */
+  double v_max = 3.0;       /**< m/s */
+  double a_max = 3.0;       /**< m/s^2 */
+  double j_max = 10.0;      /**< m/s^3 */
+  double k = 1.0;           /**< corner radius scale */
+  double dt = 0.01;         /**< s, trajectory sample period */
+  double corner_time = 1.0; /**< G2 corner shapes for flight time (0 = Yang-Sukkarieh) */
   std::string smoothing = "g2";
   std::string correction = "multiscale";
   std::string shorten = "on";
@@ -118,6 +121,9 @@ void validate(const Options& o) {
   check_positive(o.j_max, "--j-max");
   check_positive(o.k, "--k");
   check_positive(o.dt, "--dt");
+  check_nonneg(o.corner_time, "--corner-time");
+  if (o.corner_time > 1.0)
+    throw BadInput{"--corner-time must be at most 1, got " + fmt(o.corner_time)};
   check_finite(o.h_weight, "--h-weight");
   if (o.h_weight < 1.0) throw BadInput{"--h-weight must be >= 1, got " + fmt(o.h_weight)};
   check_nonneg(o.d_th, "--d-th");
@@ -327,6 +333,7 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["j_max"] = o.j_max;
   p["k"] = o.k;
   p["dt"] = o.dt;
+  p["corner_time"] = o.corner_time;
   p["smoothing"] = o.smoothing;
   p["seed"] = o.seed;
   p["max_expansions"] = max_expansions;
@@ -366,6 +373,7 @@ tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   pp.v_cruise = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
   pp.stop_angle = o.stop_angle * kDeg;
   pp.dt = o.dt;
+  pp.corner_time = o.corner_time;
   pp.depth = (o.planner == "astar" || o.planner == "bidir") ? TDO_PLAN_SEARCH : TDO_PLAN_TRAJECTORY;
   return pp;
 }
@@ -473,6 +481,14 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
   return failed == 0 ? kExitOk : kExitNoPlan;
 }
 
+/** The v/a time optimum along the samples of a plan (va_optimum.h); time 0 without samples. */
+tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) {
+  std::vector<tdo_vec3> pts;
+  pts.reserve(res.n_samples);
+  for (uint32_t i = 0; i < res.n_samples; ++i) pts.push_back(res.samples[i].p);
+  return tdo_tools::va_optimum(pts, o.v_max, o.a_max);
+}
+
 /** One query: plan, print JSON or a summary. */
 int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_search_kind kind) {
   tdo_vec3 start{};
@@ -506,6 +522,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const bool planned = st == TDO_OK || st == TDO_ERR_INFEASIBLE;
   const tdo_metrics& m = res.metrics;
+  const bool optimum = o.optimum && planned && res.n_samples > 1;
+  const tdo_tools::VaOptimum opt = optimum ? plan_optimum(res, o) : tdo_tools::VaOptimum{};
+  const double ratio = opt.time_s > 0.0 ? m.flight_time_s / opt.time_s : 0.0;
 
   if (o.json) {
     nlohmann::json j;
@@ -540,6 +559,11 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       j["metrics"] = {{"plan_time_ms", plan_ms}, {"expansions", res.search.expansions}};
     }
     if (res.reached == TDO_PLAN_TRAJECTORY) j["feasibility"] = feasibility_json(res.feasibility);
+    if (optimum)
+      j["va_optimum"] = {{"time_s", opt.time_s},
+                         {"ratio", ratio},
+                         {"length_m", opt.length_m},
+                         {"refinements", res.refinements}};
     if (st == TDO_OK || planned) j["search_cost"] = res.search.cost;
     j["arena_bytes"] = p.bytes;
     std::cout << j.dump() << std::endl;
@@ -569,6 +593,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
         std::printf("flight_time_s    %.2f\n", m.flight_time_s);
         std::printf("feasible         %s (max speed %.3f, acc %.3f, jerk %.3f; %u violations)\n",
                     f.ok ? "yes" : "no", f.max_speed, f.max_acc, f.max_jerk, f.n_violations_total);
+        if (optimum)
+          std::printf("va_optimum_s     %.2f (v/a optimum along this path; flight/optimum %.3f)\n",
+                      opt.time_s, ratio);
       }
     }
     std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
@@ -682,6 +709,9 @@ int run(int argc, char** argv) {
       ->check(CLI::IsMember(planner_choices()))
       ->capture_default_str();
   app.add_flag("--json", o.json, "print one JSON object on stdout");
+  app.add_flag("--optimum", o.optimum,
+               "also print the v/a time optimum along the plan's own sampled path (|v| <= v-max, "
+               "total |a| <= a-max, rest to rest, no jerk limit) and flight_time / optimum");
   app.add_option(
       "--clearance", o.clearance,
       "m kept from obstacles (default 0.5 for .tdomap, 0 for .3dmap: MovingAI grid rules alone)");
@@ -741,6 +771,10 @@ int run(int argc, char** argv) {
   app.add_option("--stop-angle", o.stop_angle, "deg, sharper corners become stop points")
       ->capture_default_str();
   app.add_option("--dt", o.dt, "s, trajectory sample period")->capture_default_str();
+  app.add_option("--corner-time", o.corner_time,
+                 "in [0, 1]: how far G2 corner shapes trade the Yang-Sukkarieh shape for flight "
+                 "time (0 = Yang-Sukkarieh)")
+      ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (stochastic planners; unused by tdo)")
       ->capture_default_str();
   // Advanced, hidden from --help: capacities for tests of the overflow paths.

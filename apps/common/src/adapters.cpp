@@ -39,7 +39,7 @@ static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, 
 // changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
 // plan_request_to_msg and to the tests, then update the size here. (A field that fits in padding
 // does not change the size: shorten and grid_first did not. Check the field list by hand too.)
-static_assert(sizeof(tdo_plan_params) == 152, "tdo_plan_params changed: update plan_request_t");
+static_assert(sizeof(tdo_plan_params) == 160, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
 
@@ -354,7 +354,8 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
                  {"a_lat_max", m.a_lat_max},
                  {"v_cruise", m.v_cruise},
                  {"stop_angle", m.stop_angle},
-                 {"dt", m.dt}};
+                 {"dt", m.dt},
+                 {"corner_time", m.corner_time}};
   for (const auto& s : scalars) {
     c = need_finite(s.name, s.value);
     if (!c.ok()) return c;
@@ -408,6 +409,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   p.v_cruise = m.v_cruise;
   p.stop_angle = m.stop_angle;
   p.dt = m.dt;
+  p.corner_time = m.corner_time;
   *out = r;
   if (clearance != nullptr) *clearance = m.clearance;
   return {};
@@ -446,6 +448,7 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->v_cruise = p.v_cruise;
   out->stop_angle = p.stop_angle;
   out->dt = p.dt;
+  out->corner_time = p.corner_time;
 }
 
 // ---- answers ---------------------------------------------------------------------------------

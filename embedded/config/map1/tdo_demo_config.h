@@ -13,19 +13,20 @@
 #define TDO_DEMO_MAX_OPEN 1680u
 /* voxels in one grid path (Map1's path has 26; it also sizes the correction's arrays) */
 #define TDO_DEMO_MAX_PATH 32u
-/* trajectory samples at dt = 0.01 s (Map1's flight: 1871) */
+/* trajectory samples at dt = 0.01 s (Map1's flight: 1359) */
 #define TDO_DEMO_MAX_SAMPLES 2048u
 /* 1: samples are not stored (0 bytes instead of 84 each); verified and printed in streaming passes
  */
 #define TDO_DEMO_STREAM_SAMPLES 1u
-/* speed-profile pieces (8 per path segment + 1: 16 segments; Map1's plan has 10) */
-#define TDO_DEMO_MAX_PROFILE 129u
+/* speed-profile pieces: 8 per plateau + 1; Map1's plan has 10 segments, 4 lines and 6 corner
+ * curves, each curve flown in 4 parts (trajectory.h): 8 x (4 + 4 x 6) + 1 */
+#define TDO_DEMO_MAX_PROFILE 225u
 /* waypoints after the correction (Map1's plan has 5); sizes the smoothing and trajectory
  * segment arrays (3 segments per waypoint) */
 #define TDO_DEMO_MAX_WAYPOINTS 8u
 /* feasibility violations listed in the report (all are counted) */
 #define TDO_DEMO_MAX_VIOLATIONS 16u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (227u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (233u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

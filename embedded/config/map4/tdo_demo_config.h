@@ -17,13 +17,14 @@
 /* 1: samples are not stored (0 bytes instead of 84 each); verified and printed in streaming passes
  */
 #define TDO_DEMO_STREAM_SAMPLES 1u
-/* speed-profile pieces (8 per path segment + 1; Map4's path has 52 segments) */
-#define TDO_DEMO_MAX_PROFILE 1025u
+/* speed-profile pieces: 8 per plateau + 1; Map4's path has 52 segments, 18 lines and 34 corner
+ * curves, each curve flown in 4 parts (trajectory.h): 8 x (18 + 4 x 34) + 1 */
+#define TDO_DEMO_MAX_PROFILE 1233u
 /* waypoints after the correction (Map4's plan has 19) */
 #define TDO_DEMO_MAX_WAYPOINTS 40u
 /* feasibility violations listed in the report (all are counted) */
 #define TDO_DEMO_MAX_VIOLATIONS 16u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (20744u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (20759u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */

@@ -48,7 +48,8 @@ typedef struct tdo_capacity {
   uint32_t max_shrinks;     /**< radius reductions per corner when smoothing (budget) */
   uint32_t max_samples;     /**< trajectory samples: flight time / dt + 1 (84 bytes each when
                                  stored, 0 with stream_samples) */
-  uint32_t max_profile;     /**< speed-profile pieces: 8 per path segment + 1 (see trajectory.h) */
+  uint32_t max_profile;     /**< speed-profile pieces: TDO_TRAJ_PIECES_PER_SEGMENT per path segment
+                                 + 1 (see trajectory.h; 8 per segment + 1 is a slower minimum) */
   uint32_t max_violations;  /**< violations listed in a feasibility report (40 bytes each) */
   uint32_t max_refinements; /**< feasibility refinement rounds before TDO_ERR_INFEASIBLE */
   uint32_t stream_samples;  /**< 0: trajectory samples are stored (tdo_plan_result.samples);

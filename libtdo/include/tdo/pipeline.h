@@ -53,11 +53,13 @@ typedef struct tdo_plan_params {
   double a_max;            /**< m/s^2 (default 3) */
   double j_max;            /**< m/s^3 (default 10) */
   double a_lat_max;        /**< m/s^2, lateral limit for corner radii (default = a_max) */
-  double v_cruise;   /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max (default = v_max) */
-  double stop_angle; /**< rad, corners sharper than this stop (default 150 deg) */
-  double dt;         /**< s, trajectory sample period (default 0.01) */
-  int states;        /**< a tdo_state_space: the turn-penalised search's states (default
-                          TDO_STATES_HEADING; tdo_search_input.states) */
+  double v_cruise;    /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max (default = v_max) */
+  double stop_angle;  /**< rad, corners sharper than this stop (default 150 deg) */
+  double dt;          /**< s, trajectory sample period (default 0.01) */
+  int states;         /**< a tdo_state_space: the turn-penalised search's states (default
+                           TDO_STATES_HEADING; tdo_search_input.states) */
+  double corner_time; /**< in [0, 1]: how far G2 corner shapes trade length for flight time
+                           (tdo_smooth_input.corner_time; default 1; 0 = Yang-Sukkarieh corners) */
 } tdo_plan_params;
 
 /** Fill `p` with the defaults documented in tdo_plan_params. */

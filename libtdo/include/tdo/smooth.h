@@ -76,6 +76,15 @@ typedef struct tdo_smooth_input {
   double stop_angle;         /**< rad, > 0; corners deflecting more than this become stop points */
   double min_radius;         /**< m, >= 0; corners that fit only with a smaller radius become stop
                                   points; 0 = default 0.05 * R_min */
+  double corner_time;        /**< in [0, 1], G2 only: how far corner shapes may trade the
+                                  Yang-Sukkarieh shape for flight time. 0 (zero-initialised
+                                  input): Yang-Sukkarieh corners, jerk radius for j_max. > 0: per
+                                  corner, of the shapes blended up to this fraction of the way
+                                  towards one whose curvature changes gently (inner control points
+                                  at 0.32 and 0.64 of the tangent length), the one allowing the
+                                  highest speed, with the jerk radius for 0.4 j_max (wanting larger
+                                  corners where there is room); peak curvature stays 1/r. The tdo
+                                  pipeline's default is 1 */
 } tdo_smooth_input;
 
 /** Output path; storage in the context, valid until the next run. */

@@ -66,8 +66,13 @@ typedef struct tdo_feasibility {
 
 typedef struct tdo_traj tdo_traj;
 
-/** Constant-jerk pieces of the speed profile per path segment, at most (sizes max_profile). */
-#define TDO_TRAJ_PIECES_PER_SEGMENT 8u
+/**
+ * Constant-jerk pieces of the speed profile per path segment, at most (sizes max_profile): a
+ * curved segment is flown as up to 4 equal parts ("plateaus", each with its own speed ceiling from
+ * its own curvature) of at most 8 pieces each, a line as one. With less capacity (at least 8 per
+ * segment + 1) curved segments get fewer parts: the same checks, a slower profile.
+ */
+#define TDO_TRAJ_PIECES_PER_SEGMENT 32u
 
 /** Capacities. Every one sizes an arena array; see tdo_traj_footprint. */
 typedef struct tdo_traj_config {
@@ -93,8 +98,8 @@ typedef struct tdo_traj_input {
   double v_max;         /**< m/s, > 0 */
   double a_max;         /**< m/s^2, > 0 */
   double j_max;         /**< m/s^3, > 0 */
-  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.78 a_max
-                             is used, so that tangential plus lateral stays within a_max) */
+  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.9 a_max
+                             is used; the tangential acceleration gets the rest of 0.98 a_max) */
   double dt;            /**< s, sample period, > 0 (default 0.01) */
 } tdo_traj_input;
 
