@@ -326,7 +326,7 @@ TEST_F(Octomap, GivenTooManyVoxelsOrBadResolutionThenError) {
   neg.resolution = -0.1;
   EXPECT_FALSE(tdo_io::load_map(file, neg, &m, &err));
   EXPECT_THAT(err, EndsWith("resolution must be finite and >= 0 (0 = the tree's)"));
-  neg.resolution = NAN;
+  neg.resolution = std::nan("");
   EXPECT_FALSE(tdo_io::load_map(file, neg, &m, &err));
 }
 
