@@ -37,6 +37,8 @@ PACKAGES=(
   libpagmo-dev     # tools/baselines: pagmo2 PSO / grey wolf optimizer (tdo-bench)
   libnlopt-dev     # tools/tdo-tune: NLopt (C library)
   libnlopt-cxx-dev # tools/tdo-tune: nlopt.hpp
+  clang-14           # the clang build and the libFuzzer targets (TDO_FUZZ, docs/fuzzing.md)
+  libclang-rt-14-dev # clang's libFuzzer, ASan and UBSan runtimes
 )
 
 log() { printf '[setup] %s\n' "$*"; }

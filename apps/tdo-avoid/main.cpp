@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   cfg.max_nz = max_size[2];
 
   tdo_lcm::install_stop_handlers();
-  tdo_lcm::Bus bus(opt.url);
+  tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-avoid", bus, opt.url)) return 2;
   tdo_lcm::AvoidNode node(&bus, cfg);
   std::string error;

@@ -33,7 +33,7 @@ struct Pending {
 };
 
 double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
+  if (v.empty()) return std::nan("");
   std::sort(v.begin(), v.end());
   const std::size_t i = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) - 1;
   return v[std::min(i, v.size() - 1)];

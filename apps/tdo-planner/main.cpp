@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   tdo_lcm::apply_max_size(max_size, &cfg);
 
   tdo_lcm::install_stop_handlers();
-  tdo_lcm::Bus bus(opt.url);
+  tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-planner", bus, opt.url)) return 2;
   tdo_lcm::PlannerNode node(&bus, cfg);
   std::string error;
@@ -48,10 +48,11 @@ int main(int argc, char** argv) {
   if (!opt.quiet)
     std::fprintf(stderr,
                  "tdo-planner: stopped: %lld received, %lld answered (%lld ok, %lld failed), "
-                 "%lld rejected, %lld ignored\n",
+                 "%lld rejected, %lld ignored, %lld dropped by the queues\n",
                  static_cast<long long>(c.received), static_cast<long long>(c.answered),
                  static_cast<long long>(c.succeeded), static_cast<long long>(c.failed),
-                 static_cast<long long>(c.rejected), static_cast<long long>(c.ignored));
+                 static_cast<long long>(c.rejected), static_cast<long long>(c.ignored),
+                 static_cast<long long>(bus.dropped()));
   if (!opt.quiet)
     for (const auto& kv : c.reasons)
       std::fprintf(stderr, "tdo-planner:   %s %lld\n", kv.first.c_str(),

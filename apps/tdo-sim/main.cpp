@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   }
 
   tdo_lcm::install_stop_handlers();
-  tdo_lcm::Bus bus(opt.url);
+  tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-sim", bus, opt.url)) return 2;
   tdo_lcm::SimNode node(&bus, cfg);
   std::string error;

@@ -75,9 +75,19 @@ void inflate_box(tdo_grid* g, const tdo_box& box, double c) {
 }
 
 // Offsets (di,dj,dk) whose centre is strictly closer than c to the cube of voxel (0,0,0).
+// Refused in constant time when the stencil cannot fit: every offset with |di|, |dj|, |dk| <= m
+// lies inside when sqrt(3) (m - 1/2) r < c, so (2m + 1)^3 cells are a lower bound of the count.
+// Past that check c / r is below sqrt(3) (cap^(1/3) / 2 + 2), so the loops run at most about
+// 5.2 * cap + O(cap^(2/3)) times and every conversion to int32 is in range.
 tdo_status build_stencil(tdo_grid* g, double c, uint32_t* count) {
   const double r = g->desc.res;
-  const int32_t reach = static_cast<int32_t>(ceil(c / r + 0.5));
+  const double ratio = c / r;
+  if (!(ratio >= 0.0) || !(ratio < 1e9)) return TDO_ERR_CLEARANCE_CAPACITY;
+  const double m = floor(ratio / sqrt(3.0) + 0.5) - 1.0;  // one voxel of margin for rounding
+  const double side = 2.0 * m + 1.0;
+  if (m >= 1.0 && side * side * side > static_cast<double>(g->cap.max_clear_cells))
+    return TDO_ERR_CLEARANCE_CAPACITY;
+  const int32_t reach = static_cast<int32_t>(ceil(ratio + 0.5));
   const double c2 = c * c;
   uint32_t n = 0;
   for (int32_t dk = -reach; dk <= reach; ++dk) {

@@ -1175,6 +1175,8 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
 #if defined(TDO_DJ_AVX2)
   const bool avx2 = __builtin_cpu_supports("avx2");
+#else
+  const bool avx2 = false;  // no AVX2 path in this build (clang, other targets): the SSE2 loop
 #endif
   int64_t rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];

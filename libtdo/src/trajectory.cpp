@@ -243,7 +243,7 @@ inline V3 bez_d2(const BezierCursor& b, double u) {
 }
 inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
 /** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
-inline double bez_speed(const BezierCursor& b, double u) {
+[[maybe_unused]] inline double bez_speed(const BezierCursor& b, double u) {
   return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
 }
 

@@ -270,6 +270,28 @@ TEST_F(PlannerNodeTest, RequestedClearance) {
   EXPECT_EQ(inbox_.feas.back().clearance, 0.25);
 }
 
+// A clearance whose stencil would span (2 * 5e5 / 0.5)^3 cells: refused before any loop (the check
+// used to scan the stencil's bounding box first and blocked the node for hours), answered, counted;
+// the same for a map's clearance hint; the next valid request is served.
+TEST_F(PlannerNodeTest, GivenHugeClearanceWhenRequestedOrHintedThenRefusedAndServingGoesOn) {
+  send(cfg_.map_channel, wall_map(5));
+  tdo::plan_request_t huge = request(7);
+  huge.clearance = 5e5;
+  send(cfg_.request_channel, huge);
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  EXPECT_EQ(inbox_.traj[0].status, "map_capacity") << inbox_.traj[0].detail;
+  EXPECT_EQ(inbox_.traj[0].status_code, tdo::trajectory_t::STATUS_REJECTED);
+  tdo::map_t hinted = wall_map(6);
+  hinted.clearance = 1e300;
+  send(cfg_.map_channel, hinted);
+  EXPECT_EQ(node_->map_id(), 5);
+  EXPECT_EQ(heartbeat_reason("request.map_capacity"), 1);
+  EXPECT_EQ(heartbeat_reason("map.map_capacity"), 1);
+  send(cfg_.request_channel, request(8));
+  ASSERT_EQ(inbox_.traj.size(), 2u);
+  expect_planned(8);
+}
+
 TEST_F(PlannerNodeTest, HeartbeatsCarryTheCounters) {
   const auto t0 = std::chrono::steady_clock::now();
   node_->poll(t0);
@@ -506,6 +528,50 @@ TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
   EXPECT_EQ(traj[0].status, "ok") << traj[0].detail;
   EXPECT_EQ(traj[0].map_id, 79);
   EXPECT_NEAR(traj[0].search_cost, 15.2, 1e-3);
+}
+
+// One message used to kill the node: an OcTree header and 300,000 bytes of 0xff (every node an
+// inner node) made OctoMap's reader recurse ~87,000 deep. The stream is checked first: refused as
+// bad_encoding (corrupt OcTree, too_deep), counted in the heartbeat, and a good map still loads.
+TEST(PlannerNodeOctoMap, GivenOcTreeOfAllInnerNodesWhenSentThenRefusedCountedAndNodeServes) {
+  tdo_lcm::Bus bus("memq://");
+  tdo_lcm::PlannerConfig cfg;
+  cfg.max_nx = 24;
+  cfg.max_ny = 24;
+  cfg.max_nz = 12;
+  cfg.max_nodes = 100000;
+  tdo_lcm::PlannerNode node(&bus, cfg);
+  std::string error;
+  ASSERT_TRUE(node.start(&error)) << error;
+  const std::string header = "# Octomap OcTree binary file\nid OcTree\nsize 1000\nres 0.1\ndata\n";
+  tdo::map_t m = wall_map(9);
+  m.vehicle_id = -1;
+  m.runs.clear();
+  m.n_runs = 0;
+  m.encoding = tdo::map_t::ENCODING_OCTOMAP_BT;
+  m.data.assign(header.begin(), header.end());
+  m.data.resize(header.size() + 300000u, uint8_t{0xff});
+  m.n_bytes = static_cast<int32_t>(m.data.size());
+  tdo::map_t color = m;  // a well-formed tree of another type
+  const std::string color_header =
+      "# Octomap OcTree binary file\nid ColorOcTree\nsize 9\nres 0.1\ndata\n";
+  color.data.assign(color_header.begin(), color_header.end());
+  for (uint8_t b : {uint8_t{0xaa}, uint8_t{0xaa}}) color.data.push_back(b);
+  color.n_bytes = static_cast<int32_t>(color.data.size());
+  ASSERT_TRUE(bus.publish(cfg.map_channel, m));
+  ASSERT_TRUE(bus.publish(cfg.map_channel, color));
+  ASSERT_TRUE(bus.publish(cfg.map_channel, wall_map(10)));
+  for (int i = 0; i < 10 && bus.handle_timeout(0) > 0; ++i) {
+  }
+  EXPECT_EQ(node.counters().received, 3);
+  EXPECT_EQ(node.counters().reasons.at("map.bad_encoding"), 2);
+  EXPECT_EQ(node.map_id(), 10);
+  tdo::map_t rle{};
+  const tdo_lcm::Check c = tdo_lcm::octomap_to_rle(m, 1u << 20, &rle);
+  EXPECT_EQ(c.reason, tdo_lcm::Reason::bad_encoding);
+  EXPECT_NE(c.detail.find("corrupt OcTree (too_deep)"), std::string::npos) << c.detail;
+  const tdo_lcm::Check t = tdo_lcm::octomap_to_rle(color, 1u << 20, &rle);
+  EXPECT_NE(t.detail.find("corrupt OcTree (wrong_tree_type)"), std::string::npos) << t.detail;
 }
 
 }  // namespace

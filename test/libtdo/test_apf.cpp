@@ -144,8 +144,8 @@ TEST(Apf, BadParametersAndCapacities) {
   };
   EXPECT_EQ(with([](tdo_apf_params* q) { q->dt = 0.0; }), TDO_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(with([](tdo_apf_params* q) { q->k_a = -1.0; }), TDO_ERR_INVALID_ARGUMENT);
-  EXPECT_EQ(with([](tdo_apf_params* q) { q->d_0 = NAN; }), TDO_ERR_INVALID_ARGUMENT);
-  EXPECT_EQ(with([](tdo_apf_params* q) { q->v_max = INFINITY; }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->d_0 = std::nan(""); }), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(with([](tdo_apf_params* q) { q->v_max = HUGE_VAL; }), TDO_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(with([](tdo_apf_params* q) { q->k_r = -0.1; }), TDO_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(with([](tdo_apf_params* q) {
               const int bad = 7;  // not a tdo_follower_kind
@@ -176,7 +176,7 @@ TEST(Apf, BadParametersAndCapacities) {
   // APF needs no trajectory but a finite goal.
   tdo_apf_params pa;
   tdo_apf_params_default(&pa, TDO_FOLLOWER_APF);
-  tdo_apf_task ta{nullptr, 0u, tdo_vec3{1.0, 2.0, NAN}, nullptr, 0.0};
+  tdo_apf_task ta{nullptr, 0u, tdo_vec3{1.0, 2.0, std::nan("")}, nullptr, 0.0};
   EXPECT_EQ(tdo_apf_reset(f.apf, &pa, &ta), TDO_ERR_INVALID_ARGUMENT);
   ta.goal.z = 3.0;
   EXPECT_EQ(tdo_apf_reset(f.apf, &pa, &ta), TDO_OK);
@@ -195,10 +195,10 @@ TEST(Apf, BadParametersAndCapacities) {
   m[0].radius = 0.0;
   EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 2u, &sp), TDO_ERR_INVALID_ARGUMENT);
   m[0].radius = 0.5;
-  m[1].v.x = NAN;
+  m[1].v.x = std::nan("");
   EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 2u, &sp), TDO_ERR_INVALID_ARGUMENT);
   EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 1u, &sp), TDO_ERR_INVALID_ARGUMENT);
-  s.v.y = NAN;
+  s.v.y = std::nan("");
   EXPECT_EQ(tdo_apf_step(f.apf, &s, nullptr, 0u, &sp), TDO_ERR_INVALID_ARGUMENT);
   s.v.y = 0.0;
   EXPECT_EQ(tdo_apf_step(f.apf, &s, m, 1u, &sp), TDO_OK);

@@ -396,8 +396,10 @@ TEST(Correct, GivenTheSameInput_WhenRunTwice_ThenOutputsAreBitIdentical) {
   mp.m = VoxelMap(24, 24, 10, 0.5, v3(0, 0, 0));
   for (int b = 0; b < 30; ++b) {
     const double x = rng.uniform(1, 11), y = rng.uniform(1, 11);
-    mp.boxes.push_back(
-        tdo_box{v3(x, y, -1), v3(x + rng.uniform(0.3, 1.5), y + rng.uniform(0.3, 1.5), 6)});
+    // Drawn in sequence (the order of a call's arguments is unspecified: gcc and clang differ);
+    // y's width first, as gcc drew them when the map was chosen.
+    const double wy = rng.uniform(0.3, 1.5), wx = rng.uniform(0.3, 1.5);
+    mp.boxes.push_back(tdo_box{v3(x, y, -1), v3(x + wx, y + wy, 6)});
   }
   ASSERT_EQ(load_boxes(pl.grid(), mp, 0.5), TDO_OK);
   std::vector<tdo_vec3> pts;

@@ -689,6 +689,51 @@ TEST_F(GridTest, GivenNegativeOrNonFiniteClearance_WhenFinished_ThenInvalidArgum
   EXPECT_DOUBLE_EQ(tdo_grid_clearance(grid_), -1.0) << "a rejected finish leaves it unfinished";
 }
 
+namespace {
+/** Cells of the stencil at clearance c and resolution r, counted the way grid.cpp defines it. */
+uint64_t stencil_count(double c, double r) {
+  const int reach = static_cast<int>(std::ceil(c / r + 0.5));
+  uint64_t n = 0;
+  for (int k = -reach; k <= reach; ++k)
+    for (int j = -reach; j <= reach; ++j)
+      for (int i = -reach; i <= reach; ++i) {
+        const double gx = std::fmax(0.0, std::fabs(i) * r - 0.5 * r);
+        const double gy = std::fmax(0.0, std::fabs(j) * r - 0.5 * r);
+        const double gz = std::fmax(0.0, std::fabs(k) * r - 0.5 * r);
+        if (gx * gx + gy * gy + gz * gz < c * c) ++n;
+      }
+  return n;
+}
+}  // namespace
+
+// Issue 24: the stencil is refused in constant time when the clearance reaches far past the
+// capacity (the bounding box of (2 c / r)^2 cells was scanned first: hours at c / r = 1e5, and past
+// c / r = 2.1e9 an out-of-range conversion to int left an empty stencil and TDO_OK). The constant
+// time check only refuses what the count refuses: finish succeeds exactly when the cells fit.
+TEST(GridCapacity, GivenClearancesUpToBillionsOfVoxels_WhenFinished_ThenOkExactlyWhenTheCellsFit) {
+  TestPlanner pl(tdo_test::make_cap(512, 512, 512, 4, 2000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const tdo_grid_desc d{8, 8, 8, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(pl.grid(), &d), TDO_OK);
+  ASSERT_EQ(tdo_grid_add_voxel(pl.grid(), 4, 4, 4), TDO_OK);
+  int fitted = 0;
+  for (double c = 0.0; c < 12.0; c += 0.05) {
+    const bool fits = stencil_count(c, 1.0) <= 2000u;
+    fitted += fits ? 1 : 0;
+    EXPECT_EQ(tdo_grid_finish(pl.grid(), c), fits ? TDO_OK : TDO_ERR_CLEARANCE_CAPACITY) << c;
+  }
+  EXPECT_GT(fitted, 100);  // both sides of the capacity were tried
+  EXPECT_LT(fitted, 240);
+  for (double c : {1e4, 1e5, 5e5, 2.2e9, 1e12, 1e300}) {
+    EXPECT_EQ(tdo_grid_finish(pl.grid(), c), TDO_ERR_CLEARANCE_CAPACITY) << c;
+    EXPECT_DOUBLE_EQ(tdo_grid_clearance(pl.grid()), -1.0);
+  }
+  const tdo_grid_desc fine{8, 8, 8, 1e-9, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(pl.grid(), &fine), TDO_OK);
+  ASSERT_EQ(tdo_grid_add_voxel(pl.grid(), 4, 4, 4), TDO_OK);
+  EXPECT_EQ(tdo_grid_finish(pl.grid(), 3.0), TDO_ERR_CLEARANCE_CAPACITY) << "3e9 voxels of reach";
+}
+
 TEST(GridCapacity, GivenAClearanceBeyondTheStencil_WhenFinished_ThenClearanceCapacityAndNotReady) {
   TestPlanner pl(tdo_test::make_cap(512, 512, 512, 4, 27));  // room for K = 1 only
   ASSERT_EQ(pl.status(), TDO_OK);

@@ -246,7 +246,7 @@ TEST(PathDegenerate, GivenNullOrNonFiniteWhenEvaluatedThenSafeValues) {
   EXPECT_DOUBLE_EQ(tdo_segment_curvature(nullptr, 0.0), 0.0);
   tdo_segment_state st{};
   EXPECT_EQ(0, tdo_segment_eval(nullptr, 0.0, &st));
-  tdo_path_segment s = make_line(v3(0, 0, 0), v3(NAN, 0, 0));
+  tdo_path_segment s = make_line(v3(0, 0, 0), v3(std::nan(""), 0, 0));
   EXPECT_DOUBLE_EQ(s.length, 0.0);
   tdo_path_segment z = make_line(v3(1, 1, 1), v3(1, 1, 1));
   EXPECT_EQ(0, tdo_segment_eval(&z, 0.0, &st));

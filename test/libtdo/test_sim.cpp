@@ -71,7 +71,7 @@ TEST(Sim, MotionLimitKeepsTheLimits) {
   // A NaN desire is treated as zero.
   tdo_vehicle_state s{};
   tdo_setpoint o{};
-  tdo_motion_limit(&s, tdo_vec3{NAN, 1.0, INFINITY}, vmax, amax, jmax, dt, &o);
+  tdo_motion_limit(&s, tdo_vec3{std::nan(""), 1.0, HUGE_VAL}, vmax, amax, jmax, dt, &o);
   EXPECT_TRUE(std::isfinite(o.a.x) && std::isfinite(o.a.z));
   EXPECT_DOUBLE_EQ(o.a.x, 0.0);
   EXPECT_NEAR(o.a.y, jmax * dt, 1e-15);
@@ -221,7 +221,7 @@ TEST(Sim, StatusesAndBadParameters) {
   q = p;
   q.accel_noise = -0.1;
   EXPECT_EQ(tdo_sim_reset(s.sim, &q, &v0, m, 2u), TDO_ERR_INVALID_ARGUMENT);
-  v0.v.x = NAN;
+  v0.v.x = std::nan("");
   EXPECT_EQ(tdo_sim_reset(s.sim, &p, &v0, m, 2u), TDO_ERR_INVALID_ARGUMENT);
   v0.v.x = 0.0;
   tdo_test::TestPlanner tp(tdo_test::make_cap(1000u, 1000u, 100u));

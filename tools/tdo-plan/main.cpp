@@ -18,6 +18,7 @@
 #include "path_metrics.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
+#include "tdo_io/text.h"
 #include "va_optimum.h"
 
 namespace {
@@ -831,13 +832,13 @@ int main(int argc, char** argv) {
     return run(argc, argv);
   } catch (const BadInput& e) {
     std::fflush(stdout);
-    std::fprintf(stderr, "tdo-plan: error: %s\n", e.message.c_str());
+    std::fprintf(stderr, "tdo-plan: error: %s\n", tdo_io::one_line(e.message).c_str());
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "tdo-plan: error: out of memory\n");
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tdo-plan: error: %s\n", e.what());
+    std::fprintf(stderr, "tdo-plan: error: %s\n", tdo_io::one_line(e.what()).c_str());
     return kExitBadInput;
   }
 }

@@ -87,10 +87,18 @@ Check need_rows(const char* name, int32_t n, const std::vector<std::vector<doubl
   return {};
 }
 
-/** Cells of the library's clearance stencil (grid.cpp build_stencil), counting stops past `cap`. */
+/**
+ * Cells of the library's clearance stencil (grid.cpp build_stencil), counting stops past `cap`.
+ * Like the library it answers in constant time when the cube of offsets that is surely inside
+ * ((2m + 1)^3 cells, sqrt(3) (m - 1/2) res < clearance) already exceeds `cap`.
+ */
 uint64_t stencil_cells(double clearance, double res, uint64_t cap) {
-  const double ratio = clearance / res + 0.5;
-  if (!(ratio < 1.0e6)) return cap + 1u;
+  const double q = clearance / res;
+  if (!(q < 1.0e9)) return cap + 1u;
+  const double m = std::floor(q / std::sqrt(3.0) + 0.5) - 1.0;
+  if (m >= 1.0 && (2.0 * m + 1.0) * (2.0 * m + 1.0) * (2.0 * m + 1.0) > static_cast<double>(cap))
+    return cap + 1u;
+  const double ratio = q + 0.5;
   const int32_t reach = static_cast<int32_t>(std::ceil(ratio));
   const double c2 = clearance * clearance;
   uint64_t n = 0;

@@ -1,15 +1,12 @@
 // One LCM instance on the C API (bus.h).
 #include "tdo_lcm/bus.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <utility>
 
 namespace tdo_lcm {
 namespace {
-
-void dispatch(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
-  const auto* fn = static_cast<const Bus::Handler*>(user);
-  (*fn)(rbuf->data, rbuf->data_size, std::string(channel != nullptr ? channel : ""));
-}
 
 /** LCM subscribes by regular expression; escape everything but letters, digits and '_'. */
 std::string exact(const std::string& channel) {
@@ -25,23 +22,57 @@ std::string exact(const std::string& channel) {
 
 }  // namespace
 
-Bus::Bus(const std::string& url) : lcm_(lcm_create(url.c_str())) {}
+Bus::Bus(const std::string& url, int queue_capacity)
+    : capacity_(std::clamp(queue_capacity, 1, INT32_MAX / kDropCountFactor)),
+      lcm_(lcm_create(url.c_str())) {}
 
 Bus::~Bus() {
   if (lcm_ == nullptr) return;
-  for (auto& s : subs_)
+  for (auto& s : subs_) {
     if (s->sub != nullptr) lcm_unsubscribe(lcm_, s->sub);
+    if (s->counter != nullptr) lcm_unsubscribe(lcm_, s->counter);
+  }
   lcm_destroy(lcm_);
+}
+
+void Bus::on_arrival(const lcm_recv_buf_t* /*rbuf*/, const char* /*channel*/, void* user) {
+  ++static_cast<Sub*>(user)->arrived;
+}
+
+void Bus::on_message(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
+  Sub* s = static_cast<Sub*>(user);
+  ++s->handled;
+  s->fn(rbuf->data, rbuf->data_size, std::string(channel != nullptr ? channel : ""));
 }
 
 bool Bus::subscribe(const std::string& channel, Handler fn) {
   if (lcm_ == nullptr || !fn) return false;
   auto s = std::make_unique<Sub>();
   s->fn = std::move(fn);
-  s->sub = lcm_subscribe(lcm_, exact(channel).c_str(), dispatch, &s->fn);
-  if (s->sub == nullptr) return false;
+  // The counter first: LCM calls a channel's handlers in the order they subscribed.
+  s->counter = lcm_subscribe(lcm_, exact(channel).c_str(), &Bus::on_arrival, s.get());
+  s->sub = lcm_subscribe(lcm_, exact(channel).c_str(), &Bus::on_message, s.get());
+  if (s->counter == nullptr || s->sub == nullptr ||
+      lcm_subscription_set_queue_capacity(s->counter, capacity_ * kDropCountFactor) != 0 ||
+      lcm_subscription_set_queue_capacity(s->sub, capacity_) != 0) {
+    if (s->counter != nullptr) lcm_unsubscribe(lcm_, s->counter);
+    if (s->sub != nullptr) lcm_unsubscribe(lcm_, s->sub);
+    return false;
+  }
   subs_.push_back(std::move(s));
   return true;
+}
+
+int Bus::queued() const {
+  int n = 0;
+  for (const auto& s : subs_) n = std::max(n, lcm_subscription_get_queue_size(s->counter));
+  return n;
+}
+
+int64_t Bus::dropped() const {
+  int64_t n = 0;
+  for (const auto& s : subs_) n += std::max<int64_t>(0, s->arrived - s->handled);
+  return n;
 }
 
 bool Bus::publish_raw(const std::string& channel, const void* data, std::size_t size) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tdo_io/map_io.h"
+#include "tdo_io/octree_check.h"
 #include "tdo_lcm/adapters.h"
 
 namespace tdo_lcm {
@@ -103,6 +104,17 @@ Check octomap_to_rle(const tdo::map_t& m, uint64_t max_voxels, tdo::map_t* out) 
         std::to_string(total) + " voxels, more than the capacity of " + std::to_string(max_voxels));
   if (static_cast<std::size_t>(m.n_bytes) != m.data.size())
     return fail(Reason::count_mismatch, "n_bytes");
+
+  // Checked without recursion before OctoMap reads it (its reader recurses once per level).
+  tdo_io::OctreeInfo info;
+  std::string why;
+  const tdo_io::OctreeStatus st =
+      tdo_io::check_octree(m.data.data(), m.data.size(), tdo_io::OctreeLimits{}, &info, &why);
+  if (st != tdo_io::OctreeStatus::ok)
+    return fail(Reason::bad_encoding,
+                std::string("corrupt OcTree (") + tdo_io::octree_status_str(st) + "): " + why);
+  if (!info.binary)
+    return fail(Reason::bad_encoding, "an .ot stream; ENCODING_OCTOMAP_BT carries a binary .bt");
 
   std::unique_ptr<octomap::OcTree> tree;
   try {

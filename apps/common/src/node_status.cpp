@@ -39,7 +39,10 @@ void fill_status(tdo::status_t* s, const char* program, int64_t seq, int32_t veh
 
 void send_status(Bus* bus, const std::string& channel, const tdo::status_t& s, int64_t* seq) {
   if (!check_counts(s).ok()) return;
-  bus->publish(channel, s);
+  tdo::status_t out = s;
+  out.queue_capacity = bus->queue_capacity();
+  out.dropped = bus->dropped();
+  bus->publish(channel, out);
   ++*seq;
 }
 

@@ -6,29 +6,54 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <new>
 #include <sstream>
 #include <string_view>
+#include <system_error>
 
 #include "octomap_io.h"
+#include "tdo_io/text.h"
 
 namespace tdo_io {
 namespace {
 
 // ---------------------------------------------------------------- small helpers
 
-/** Whole file into `text`; false when it cannot be opened or read. */
-bool read_file(const std::string& path, std::string* text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return false;
-  *text = ss.str();
+/** Whole file into `text`; false with a message when it cannot be opened, read or is too big. */
+bool read_file(const std::string& path, uint64_t max_bytes, std::string* text, std::string* why) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (size < 0) {
+    *why = path + ": cannot open";
+    return false;
+  }
+  if (static_cast<uint64_t>(size) > max_bytes) {
+    *why = path + ": file of " + std::to_string(size) + " bytes exceeds the limit of " +
+           std::to_string(max_bytes);
+    return false;
+  }
+  text->resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(&(*text)[0], size)) {
+    *why = path + ": cannot read";
+    return false;
+  }
   return true;
 }
+
+/** A directory given as a file: its own message rather than "empty file" or "cannot read". */
+bool is_directory(const std::string& path, std::string* why) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec)) return false;
+  *why = path + ": is a directory, not a map file";
+  return true;
+}
+
+/** `tok` quoted in a message: escaped and capped (text.h). */
+std::string q(std::string_view tok) { return "'" + printable(tok) + "'"; }
 
 void set_error(std::string* error, const std::string& msg) {
   if (error != nullptr) *error = msg;
@@ -92,12 +117,12 @@ class LineReader {
   void expect_count(std::size_t count, const char* what) const {
     const std::size_t have = tokens_.size() - 1;
     if (have < count) {
-      fail("'" + std::string(tokens_[0]) + "' needs " + std::to_string(count) + " numbers (" +
-           what + "), got " + std::to_string(have));
+      fail(q(tokens_[0]) + " needs " + std::to_string(count) + " numbers (" + what + "), got " +
+           std::to_string(have));
     }
     if (have > count) {
-      fail("unexpected '" + std::string(tokens_[count + 1]) + "' after " + std::to_string(count) +
-           " numbers of '" + std::string(tokens_[0]) + "'");
+      fail("unexpected " + q(tokens_[count + 1]) + " after " + std::to_string(count) +
+           " numbers of " + q(tokens_[0]));
     }
   }
 
@@ -107,8 +132,8 @@ class LineReader {
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(tok.c_str(), &end);
-    if (end == tok.c_str() || *end != '\0') fail("expected a number, got '" + tok + "'");
-    if (!std::isfinite(v)) fail("non-finite number '" + tok + "'");
+    if (end == tok.c_str() || *end != '\0') fail("expected a number, got " + q(tok));
+    if (!std::isfinite(v)) fail("non-finite number " + q(tok));
     return v;
   }
 
@@ -119,9 +144,9 @@ class LineReader {
     errno = 0;
     const long long v = std::strtoll(tok.c_str(), &end, 10);
     if (end == tok.c_str() || *end != '\0')
-      fail(std::string("expected an integer ") + what + ", got '" + tok + "'");
+      fail(std::string("expected an integer ") + what + ", got " + q(tok));
     if (errno == ERANGE || v < lo || v > hi) {
-      fail(std::string(what) + " " + tok + " is outside [" + std::to_string(lo) + ", " +
+      fail(std::string(what) + " " + printable(tok) + " is outside [" + std::to_string(lo) + ", " +
            std::to_string(hi) + "]");
     }
     return v;
@@ -150,7 +175,7 @@ void parse_tdomap(const std::string& path, const std::string& text, Map* map) {
   LineReader r(path, text, true);
   if (!r.next()) r.fail("missing header 'tdomap 1' (empty file)");
   if (r.tokens()[0] != "tdomap") {
-    r.fail("missing header 'tdomap 1' (found '" + std::string(r.tokens()[0]) + "')");
+    r.fail("missing header 'tdomap 1' (found " + q(r.tokens()[0]) + ")");
   }
   if (r.tokens().size() != 2 || r.tokens()[1] != "1") {
     r.fail("unsupported header: expected 'tdomap 1'");
@@ -177,7 +202,7 @@ void parse_tdomap(const std::string& path, const std::string& text, Map* map) {
       if (have_res) r.fail("duplicate 'resolution'");
       r.expect_count(1, "R");
       res = r.number(1);
-      if (!(res > 0.0)) r.fail("resolution must be > 0, got " + std::string(r.tokens()[1]));
+      if (!(res > 0.0)) r.fail("resolution must be > 0, got " + printable(r.tokens()[1]));
       have_res = true;
     } else if (kw == "box") {
       r.expect_count(6, "X0 Y0 Z0 X1 Y1 Z1");
@@ -205,12 +230,12 @@ void parse_tdomap(const std::string& path, const std::string& text, Map* map) {
       m.pos = r.vec3(2);
       m.vel = r.vec3(5);
       m.radius = r.number(8);
-      if (!(m.radius > 0.0)) r.fail("mover radius must be > 0, got " + std::string(r.tokens()[8]));
+      if (!(m.radius > 0.0)) r.fail("mover radius must be > 0, got " + printable(r.tokens()[8]));
       map->movers.push_back(m);
     } else if (kw == "tdomap") {
       r.fail("duplicate header 'tdomap'");
     } else {
-      r.fail("unknown keyword '" + std::string(kw) + "'");
+      r.fail("unknown keyword " + q(kw));
     }
   }
   if (!have_bounds) r.fail("missing 'bounds'");
@@ -301,6 +326,11 @@ bool load_map(const std::string& path, const LoadOptions& options, Map* out, std
   }
   *out = Map{};
   out->path = path;
+  std::string why;
+  if (is_directory(path, &why)) {
+    set_error(error, why);
+    return false;
+  }
   const std::string ext = lower_extension(path);
   if (ext == "bt" || ext == "ot") {
     std::string msg;
@@ -321,8 +351,8 @@ bool load_map(const std::string& path, const LoadOptions& options, Map* out, std
     return false;
   }
   std::string text;
-  if (!read_file(path, &text)) {
-    set_error(error, path + ": cannot open");
+  if (!read_file(path, options.max_file_bytes, &text, &why)) {
+    set_error(error, why);
     return false;
   }
   try {
@@ -350,8 +380,9 @@ bool load_scen(const std::string& path, std::vector<ScenQuery>* out, std::string
   }
   out->clear();
   std::string text;
-  if (!read_file(path, &text)) {
-    set_error(error, path + ": cannot open");
+  std::string why;
+  if (is_directory(path, &why) || !read_file(path, LoadOptions{}.max_file_bytes, &text, &why)) {
+    set_error(error, why);
     return false;
   }
   try {

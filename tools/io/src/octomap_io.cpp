@@ -15,12 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "tdo_io/octree_check.h"
+
 namespace tdo_io {
 namespace detail {
 namespace {
-
-const char kBinaryHeader[] = "# Octomap OcTree binary file";  // .bt, OcTree::readBinary
-const char kFullHeader[] = "# Octomap OcTree file";           // .ot, AbstractOcTree::read
 
 /**
  * Redirects file descriptor 2 into a temporary file while alive, so the OctoMap library's messages
@@ -96,6 +95,23 @@ bool fail(std::string* error, const std::string& path, const std::string& msg) {
   return false;
 }
 
+/** The file's bytes; false with "FILE: message" when it is not a readable regular file. */
+bool read_bytes(const std::string& path, uint64_t max_bytes, std::string* bytes,
+                std::string* error) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return fail(error, path, "cannot open");
+  const std::streamoff size = in.tellg();
+  if (size < 0) return fail(error, path, "cannot read");
+  if (static_cast<uint64_t>(size) > max_bytes)
+    return fail(error, path,
+                "file of " + std::to_string(size) + " bytes exceeds the limit of " +
+                    std::to_string(max_bytes));
+  bytes->resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(&(*bytes)[0], size)) return fail(error, path, "cannot read");
+  return true;
+}
+
 std::string number(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -110,20 +126,18 @@ bool load_octomap(const std::string& path, const LoadOptions& options, Map* out,
   if (!(options.resolution >= 0.0) || !std::isfinite(options.resolution))
     return fail(error, path, "resolution must be finite and >= 0 (0 = the tree's)");
 
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fail(error, path, "cannot open");
-  std::string first;
-  std::getline(in, first);
-  if (!first.empty() && first.back() == '\r') first.pop_back();
-  const bool binary = first.rfind(kBinaryHeader, 0) == 0;
-  const bool full = !binary && first.rfind(kFullHeader, 0) == 0;
-  if (!binary && !full) {
-    return fail(error, path,
-                std::string("not an OctoMap file: the first line should start with '") +
-                    kBinaryHeader + "' (.bt) or '" + kFullHeader + "' (.ot)");
-  }
-  in.clear();
-  in.seekg(0);
+  // The whole stream is checked (bounded, no recursion) before OctoMap reads it.
+  std::string bytes;
+  if (!read_bytes(path, options.max_file_bytes, &bytes, error)) return false;
+  OctreeInfo info;
+  std::string why;
+  const OctreeStatus st = check_octree(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(),
+                                       options.octree, &info, &why);
+  if (st == OctreeStatus::not_octomap) return fail(error, path, "not an OctoMap file: " + why);
+  if (st != OctreeStatus::ok)
+    return fail(error, path, std::string("corrupt OcTree (") + octree_status_str(st) + "): " + why);
+  const bool binary = info.binary;
+  std::istringstream in(std::move(bytes), std::ios::binary);
 
   std::unique_ptr<octomap::OcTree> tree;
   std::string captured;
@@ -153,7 +167,10 @@ bool load_octomap(const std::string& path, const LoadOptions& options, Map* out,
                 with_library(std::string("cannot read the OcTree: ") + e.what(), captured));
   }
 
-  if (tree->size() == 0) return fail(error, path, "empty tree (no nodes)");
+  if (tree->size() != info.nodes)
+    return fail(error, path,
+                "the OctoMap library read " + std::to_string(tree->size()) + " nodes, the check " +
+                    std::to_string(info.nodes));
   const double res = options.resolution > 0.0 ? options.resolution : tree->getResolution();
   double lo[3];
   double hi[3];

@@ -11,9 +11,14 @@
 
 namespace tdo_lcm {
 
-/** @brief Add --lcm-url (into opt->url). */
+/** @brief Add --lcm-url (into opt->url) and --queue-capacity (opt->queue_capacity). */
 inline void add_url_option(CLI::App& app, RunOptions* opt) {
   app.add_option("--lcm-url", opt->url, "LCM URL (memq://, udpm://..., file://LOG?speed=0)")
+      ->capture_default_str();
+  app.add_option("--queue-capacity", opt->queue_capacity,
+                 "messages each subscription queue holds; more unhandled ones are dropped and "
+                 "counted in TDO_STATUS.dropped (docs/lcm.md)")
+      ->check(CLI::Range(1, 100000000))
       ->capture_default_str();
 }
 

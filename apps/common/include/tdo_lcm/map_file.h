@@ -60,8 +60,10 @@ bool octomap_msg_from_file(const std::string& path, double resolution, double cl
  *        every occupied leaf marks every voxel its cube intersects (as tools/io does for files).
  * @param max_voxels the receiver's capacity, checked before anything is allocated
  * @param[out] out the same map as ENCODING_RLE (ids, grid, clearance and boxes kept, no bytes)
+ * The bytes are checked by tdo_io::check_octree (bounded, no recursion: depth, node count, tree
+ * type, resolution) before the OctoMap library reads them.
  * @return ok; map_capacity; out_of_range (bad grid); bad_encoding (the bytes are not a binary
- *         OcTree, detail: why).
+ *         OcTree, detail: why; a corrupt tree's detail starts "corrupt OcTree (<status>)").
  */
 Check octomap_to_rle(const tdo::map_t& m, uint64_t max_voxels, tdo::map_t* out);
 

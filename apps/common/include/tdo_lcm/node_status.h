@@ -40,7 +40,8 @@ void fill_status(tdo::status_t* s, const char* program, int64_t seq, int32_t veh
 
 /**
  * @brief Send heartbeat `s` on `channel` when its counts are consistent (check_counts), then
- * advance `*seq`. Nothing is sent and `*seq` stays when the counts are not.
+ * advance `*seq`; the bus fills queue_capacity and dropped (Bus::dropped). Nothing is sent and
+ * `*seq` stays when the counts are not.
  */
 void send_status(Bus* bus, const std::string& channel, const tdo::status_t& s, int64_t* seq);
 

@@ -15,11 +15,12 @@
 
 namespace tdo_lcm {
 
-/** Options every LCM app has (--lcm-url, --duration, --quiet). */
+/** Options every LCM app has (--lcm-url, --queue-capacity, --duration, --quiet). */
 struct RunOptions {
   std::string url;        ///< LCM URL
   double duration = 0.0;  ///< s to run, then stop as on SIGTERM (0 = until a signal)
   bool quiet = false;     ///< no start and stop lines on stderr
+  int queue_capacity = Bus::kDefaultQueueCapacity;  ///< messages each subscription queue holds
 };
 
 /**

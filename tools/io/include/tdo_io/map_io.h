@@ -18,6 +18,7 @@
 #include "tdo/grid.h"
 #include "tdo/status.h"
 #include "tdo/types.h"
+#include "tdo_io/octree_check.h"
 
 namespace tdo_io {
 
@@ -48,9 +49,11 @@ struct Map {
 
 /** Options of load_map; the defaults are what load_map(path, out, error) uses. */
 struct LoadOptions {
-  double resolution = 0.0;         /**< m, voxel edge for OcTrees; 0 = the tree's resolution */
-  uint64_t max_voxels = 100000000; /**< cap on nx*ny*nz of an OcTree grid (0 = no cap): larger is
-                                        an error, not an allocation of gigabytes */
+  double resolution = 0.0;            /**< m, voxel edge for OcTrees; 0 = the tree's resolution */
+  uint64_t max_voxels = 100000000;    /**< cap on nx*ny*nz of an OcTree grid (0 = no cap): larger is
+                                           an error, not an allocation of gigabytes */
+  uint64_t max_file_bytes = 1u << 30; /**< files larger than this are refused before reading */
+  OctreeLimits octree;                /**< OcTree streams: nodes, resolution (octree_check.h) */
 };
 
 /**
@@ -59,8 +62,11 @@ struct LoadOptions {
  * OcTrees (`.bt` binary or `.ot` full format, told apart by the file's first line): the grid has
  * `options.resolution` (default: the tree's), its bounds are the tree's metric bounding box of
  * known space padded by one voxel on every side, and every occupied leaf, at any depth, marks each
- * grid voxel its cube intersects (as `voxels`). Unknown space is free. The OctoMap library's own
- * messages on stderr are captured and folded into `error`.
+ * grid voxel its cube intersects (as `voxels`). Unknown space is free. The stream is checked with
+ * check_octree (octree_check.h) before the OctoMap library reads it; a refused stream's message
+ * reads "corrupt OcTree (<status>): why". The OctoMap library's own messages on stderr are captured
+ * and folded into `error`. Text quoted from a file is escaped and capped (text.h); a directory or
+ * a file over `max_file_bytes` is refused before it is read.
  * @param[out] out the map (replaced)
  * @param[out] error "FILE:LINE: message" on failure (may be null)
  * @return true on success.
