@@ -30,6 +30,8 @@ ap.add_argument("--types", default=os.path.join(ROOT, "build", "lcmtypes", "pyth
                 help="directory of the generated Python types (package tdo)")
 ap.add_argument("--map-channel", default="TDO_MAP")
 ap.add_argument("--trajectory-channel", default="TDO_TRAJECTORY")
+ap.add_argument("--step", type=float, default=0.05,
+                help="s between the points drawn from a compact-only answer (default 0.05)")
 ap.add_argument("-o", "--output", required=True, help="PNG to write")
 a = ap.parse_args()
 
@@ -42,6 +44,8 @@ try:
     import tdo
 except ImportError:
     die(f"no generated types in {a.types} (build the target tdo_lcmtypes_python, or --types)")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tdo_compact  # noqa: E402
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
@@ -79,7 +83,7 @@ if a.request_id is not None:
     if not pick:
         die(f"{a.log}: no answer to request {a.request_id} on {a.trajectory_channel}")
 else:
-    pick = [r for r in runs if r[0].status == "ok" and r[0].n_samples > 0]
+    pick = [r for r in runs if r[0].status == "ok" and (r[0].n_samples > 0 or r[0].n_pieces > 0)]
     if not pick:
         die(f"{a.log}: no successful trajectory on {a.trajectory_channel}")
 traj, m = pick[-1]
@@ -120,18 +124,20 @@ if traj.n_grid_path:
 if traj.n_waypoints:
     ax.plot([p[0] for p in traj.waypoints], [p[1] for p in traj.waypoints], "o", ms=3,
             color="tab:orange", label="waypoints")
-speed = [math.sqrt(s[4] ** 2 + s[5] ** 2 + s[6] ** 2) for s in traj.samples]
-if traj.n_samples > 1:
-    pts = [(s[1], s[2]) for s in traj.samples]
+# The samples when the answer carries them, else the compact form sampled (tdo_compact.py).
+rows = traj.samples if traj.n_samples > 0 else tdo_compact.samples(traj, a.step)
+speed = [math.sqrt(s[4] ** 2 + s[5] ** 2 + s[6] ** 2) for s in rows]
+if len(rows) > 1:
+    pts = [(s[1], s[2]) for s in rows]
     lc = LineCollection([[pts[i], pts[i + 1]] for i in range(len(pts) - 1)], cmap="viridis", lw=2)
     lc.set_array(speed[:-1])
     ax.add_collection(lc)
     fig.colorbar(lc, ax=ax, label="speed (m/s)")
     ax.plot(*pts[0], "g^", ms=9, label="start")
     ax.plot(*pts[-1], "r*", ms=12, label="goal")
-    t = [s[0] for s in traj.samples]
+    t = [s[0] for s in rows]
     ax2.plot(t, speed, label="speed (m/s)")
-    ax2.plot(t, [s[3] for s in traj.samples], label="z (m)")
+    ax2.plot(t, [s[3] for s in rows], label="z (m)")
     ax2.set_xlabel("t (s)")
     ax2.legend()
     ax2.grid(alpha=0.3)
@@ -152,4 +158,4 @@ except (IOError, OSError, ValueError) as e:
 if not os.path.getsize(a.output):
     die(f"{a.output}: empty")
 print(f"{PROG}: request {traj.request_id} on map {traj.map_id} ({traj.status}): "
-      f"{traj.n_samples} samples, {traj.length_m:.2f} m, {len(patches)} obstacles -> {a.output}")
+      f"{len(rows)} samples{'' if traj.n_samples else ' (compact form)'}, {traj.length_m:.2f} m, {len(patches)} obstacles -> {a.output}")
