@@ -3,6 +3,8 @@
 
 #include <utility>
 
+#include "tdo_lcm/url.h"
+
 namespace tdo_lcm {
 namespace {
 
@@ -25,7 +27,8 @@ std::string exact(const std::string& channel) {
 
 }  // namespace
 
-Bus::Bus(const std::string& url) : lcm_(lcm_create(url.c_str())) {}
+// udpm:// URLs get a receive buffer that fits the largest messages (url.h).
+Bus::Bus(const std::string& url) : lcm_(lcm_create(with_recv_buf(url).c_str())) {}
 
 Bus::~Bus() {
   if (lcm_ == nullptr) return;

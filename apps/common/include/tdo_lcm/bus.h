@@ -27,7 +27,8 @@ class Bus {
   using Handler =
       std::function<void(const void* data, std::size_t size, const std::string& channel)>;
 
-  /** Connect to `url` (memq://, udpm://..., file://LOG?speed=0); check good(). */
+  /** Connect to `url` (memq://, udpm://..., file://LOG?speed=0); check good(). A udpm:// URL
+   *  without recv_buf_size gets url.h's kRecvBufBytes. */
   explicit Bus(const std::string& url);
   ~Bus();
   Bus(const Bus&) = delete;
