@@ -4,7 +4,8 @@
 # vehicle, movers), tdo-planner, tdo-avoid, lcm-logger, and tdo-request --wait. Then 200 more
 # requests, each of which must be answered (tdo-request exit 0), with no trajectory.missing in
 # tdo-avoid's counters and the vehicle moving; then the log lcm-logger recorded must hold every
-# answer. Exit 77 (CTest SKIP_RETURN_CODE) when namespaces are not available.
+# answer and tools/plot/tdo_plot_log.py must draw the executed path, the movers and the replans.
+# Exit 77 (CTest SKIP_RETURN_CODE) when namespaces are not available.
 #
 #   netns_closed_loop.sh REPO BUILD_DIR VENV_PYTHON PYDIR SCRATCH [N_REQUESTS]
 set -euo pipefail
@@ -103,4 +104,10 @@ moved = max(xs) - min(xs) if xs else 0.0
 print(f"log: {len(ids)} compact trajectories of {want} requests, vehicle moved {moved:.2f} m in x")
 sys.exit(0 if len(ids) >= want and moved > 0.2 else 1)
 PY
+# The log plot draws the plan, the executed path and the movers' tracks (docs/lcm.md).
+plot=$("$python" tools/plot/tdo_plot_log.py "$scratch/run.lcmlog" --types "$pydir" \
+  -o "$scratch/run.png") || { echo "FAILED: tdo_plot_log.py"; rc=1; }
+echo "$plot"
+grep -Eq "[1-9][0-9]* states, 12 movers, [1-9][0-9]* other plans" <<<"$plot" ||
+  { echo "FAILED: the plot lacks the executed path, the movers or the replans"; rc=1; }
 exit "$rc"
