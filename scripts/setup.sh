@@ -73,7 +73,7 @@ else
 fi
 
 # ---- Python virtual environment (.venv) with LCM -----------------------------------------------
-# LCM 1.5 comes from the official wheel on PyPI (docs: shared/design/lcm.md): the C library, its
+# LCM 1.5 comes from the official wheel on PyPI (docs/design.md s.11): the C library, its
 # headers, lcmConfig.cmake, lcm-gen, lcm-logger/-logplayer/-spy and the Python bindings. It goes into
 # a project-local venv; scripts/build.sh hands its lcm/cmake directory to CMake. The venv sees the
 # system site packages (Debian's numpy and matplotlib) for the plotting scripts. pip is skipped when

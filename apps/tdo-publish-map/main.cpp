@@ -1,7 +1,7 @@
 // tdo-publish-map FILE: publish a map file (.tdomap, .3dmap, .bt/.ot) on TDO_MAP as a run-length
 // map_t (map_file.h). Once, or every --period seconds until --count messages or SIGINT/SIGTERM.
-// This is the map-publishing part of tdo-sim (lcm.md); tdo-sim can call map_msg_from_file too.
-// Exit status 0 published, 2 bad input (options, map file, LCM).
+// This is the map-publishing part of tdo-sim (docs/design.md s.11); tdo-sim can call
+// map_msg_from_file too. Exit status 0 published, 2 bad input (options, map file, LCM).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <csignal>

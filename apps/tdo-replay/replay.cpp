@@ -49,6 +49,7 @@ const std::vector<Field>& fields() {
       real("first_meet",
            [](tdo::plan_request_t* m, double v) { m->first_meet = std::fabs(v) > 0.0; }),
       int8("grid_first", &tdo::plan_request_t::grid_first),
+      int8("states", &tdo::plan_request_t::states),
       real("shorten", [](tdo::plan_request_t* m, double v) { m->shorten = std::fabs(v) > 0.0; }),
       {"max_expansions",
        [](tdo::plan_request_t* m, double v) { m->max_expansions = static_cast<int32_t>(v); }, true,

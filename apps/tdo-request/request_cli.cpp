@@ -63,6 +63,7 @@ const std::vector<Param>& params() {
       real("stop_angle", R::USE_DEFAULT_STOP_ANGLE, &R::stop_angle),
       real("dt", R::USE_DEFAULT_DT, &R::dt),
       real("clearance", R::USE_DEFAULT_CLEARANCE, &R::clearance),
+      int8("states", R::USE_DEFAULT_STATES, &R::states, R::STATES_HEADING, R::STATES_VOXEL),
   };
   return p;
 }

@@ -1,5 +1,6 @@
-// Online follower: trajectory-guided enhanced APF and the classical APF baseline (pipeline.md s.4,
-// paper eq. 10-14). See apf.h for the exact field, command and local-minimum rules.
+// Online follower: trajectory-guided enhanced APF and the classical APF baseline
+// (docs/design.md s.4, paper eq. 10-14). See apf.h for the exact field, command and local-minimum
+// rules.
 #include "tdo/apf.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-// Stage 2: multi-scale inflection correction of the grid path (pipeline.md s.2, correct.h).
+// Stage 2: multi-scale inflection correction of the grid path (docs/design.md s.2, correct.h).
 //
 // 1. Every input segment is verified with tdo_collision_segment_clear at the clearance; one that
 //    fails makes the run TDO_ERR_NO_PATH.

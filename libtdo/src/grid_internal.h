@@ -59,7 +59,7 @@ struct tdo_grid {
   int64_t stride_y;    // nx
   int64_t stride_z;    // nx*ny
   uint8_t* flags;      // kFlag* per voxel, index i + j*nx + k*nx*ny
-  uint32_t* moves;     // bit d set when step d from this voxel is legal (pipeline.md s.0)
+  uint32_t* moves;     // bit d set when step d from this voxel is legal (docs/design.md s.0)
   tdo_box* boxes;      // obstacle boxes, exact geometry
   uint32_t n_boxes;
   int32_t* stencil;    // clearance stencil: 3 offsets per cell

@@ -1,4 +1,4 @@
-// Stage 6: trajectory quality metrics (pipeline.md s.6), identical for every planner.
+// Stage 6: trajectory quality metrics (docs/design.md s.6), identical for every planner.
 //
 // Curvature integrals use composite 8-point Gauss-Legendre per curved segment (lines contribute
 // nothing; Beziers over their parameter, arcs over arclength). Without a geometric path the

@@ -77,7 +77,7 @@ void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_o
   pl->n_grid_path = m;
 }
 
-// pipeline.md s.0: every point of the output keeps the clearance, the exact start and goal
+// docs/design.md s.0: every point of the output keeps the clearance, the exact start and goal
 // included. The search checks their voxels (the centre rule); this checks the points themselves,
 // at every depth, so the raw searches and the full pipeline agree on what is plannable.
 tdo_status check_end_points(const tdo_grid* grid, const tdo_plan_request& req, double clearance) {
@@ -198,6 +198,7 @@ extern "C" void tdo_plan_params_default(tdo_plan_params* p) {
   p->d_th = 0.0;
   p->h_weight = 1.0;
   p->first_meet = 1;
+  p->states = TDO_STATES_HEADING;
   p->max_expansions = 0;
   p->correction = TDO_CORRECT_MULTISCALE;
   p->shorten = 1;
@@ -241,6 +242,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.h_weight = p.h_weight;
   si.first_meet = p.first_meet;
   si.grid_first = p.grid_first;
+  si.states = p.states;
   si.max_expansions = p.max_expansions;
   out->status = tdo_search_run(pl->search, &si, &out->search);
   if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);

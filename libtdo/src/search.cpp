@@ -1,4 +1,4 @@
-// Stage 1: A* and bidirectional A* over (voxel, heading) states (pipeline.md s.1).
+// Stage 1: A* and bidirectional A* over (voxel, heading) states (docs/design.md s.1).
 //
 // Without penalties a voxel is one state (the heading field only remembers the last step), so the
 // search is plain A* over voxels. With lambda or mu > 0 a state is (voxel, heading); the states of
@@ -185,6 +185,8 @@ struct Query {
   int constrained;      // theta_max active
   int dev_terms;        // 1: f has the deviation term and the turn lower bound (0 in the retry)
   int exact_turns;      // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
+  int voxel_turns;      // 1: voxel-state search with turn costs (tdo_search_input.states)
+  double inv_res;       // 1/voxel edge: metres to the voxel edges of voxel-state searches
   uint32_t budget;
   // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
   uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
@@ -650,9 +652,16 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
     *h_out = static_cast<float>(h);
     return f;
   }
-  const double h = octile_voxel(s, n.x, n.y, n.z);
+  double h = octile_voxel(s, n.x, n.y, n.z);
+  if (q.voxel_turns && s.hx != nullptr) {
+    const double e = s.hx[n.voxel] * q.inv_res;
+    h = e > h ? e : h;
+  }
   *h_out = static_cast<float>(h);
-  return n.g + h;
+  if (!q.voxel_turns) return n.g + h;
+  if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
+  const double dev = deviation(ctx, s, back ? dir_opposite(n.heading) : n.heading, n.x, n.y, n.z);
+  return n.g + q.h_weight * (h + turn_bound(ctx, q, dev) * q.inv_res) + q.mu * q.inv_res * dev;
 }
 
 // The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
@@ -728,6 +737,14 @@ inline bool sharp_join(const tdo_search* ctx, const Query& q, int hf, int hb) {
   return q.constrained && hf < kNumDirs && hb < kNumDirs && ((ctx->cand[hf] >> hb) & 1u) == 0;
 }
 
+// Voxel-state searches with turn costs (tdo_search_input.states): the turn from heading a to b in
+// voxel edges, plus the pivot surcharge when it is beyond theta_max (a sharp step is taken
+// directly at the price of a pivot).
+inline double voxel_turn(const tdo_search* ctx, const Query& q, int a, int b) {
+  const double t = ctx->turn[a][b] + (sharp_join(ctx, q, a, b) ? q.pivot_cost : 0.0);
+  return t * q.inv_res;
+}
+
 // Offer the state just reached on side `a` as a meeting point with every state of the other side
 // in the same voxel; the join adds the turn between the two headings.
 template <bool kHeaded>
@@ -746,6 +763,8 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
       if ((pn || pm) && (pn == pm || hf != hb)) continue;
       c += ctx->turn[hf][hb];
       if (sharp_join(ctx, q, hf, hb)) c += q.pivot_cost;  // the join itself is a sharp turn
+    } else if (q.voxel_turns) {
+      c += voxel_turn(ctx, q, a == 0 ? n.heading : m.heading, a == 0 ? m.heading : n.heading);
     }
     if (c < q.best) {
       q.best = c;
@@ -896,7 +915,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const tdo_grid* g = q.grid;
   const Node u = s.nodes[ui];
   uint32_t mask = g->moves[u.voxel];  // search-sense steps
-  if (u.parent != kNil) {
+  if (u.parent != kNil && !q.voxel_turns) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
     mask &= ~pruned_steps(s_in, p_moves);
@@ -915,8 +934,10 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   for (; mask != 0; mask &= mask - 1u) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
-    const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, back ? dir_opposite(e) : e,
-                                      u.g + ctx->step_q[e], state[e]);
+    const int d = back ? dir_opposite(e) : e;
+    const double ng =
+        u.g + ctx->step_q[e] + (q.voxel_turns ? voxel_turn(ctx, q, u.heading, d) : 0.0);
+    const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, d, ng, state[e]);
     if (st != TDO_OK) return st;
   }
   return TDO_OK;
@@ -1683,6 +1704,56 @@ bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
 }  // namespace
 }  // namespace tdo_internal
 
+namespace tdo_internal {
+namespace {
+
+// The penalised cost (m) of the path in ctx->path: its length plus the turn penalty of every pair
+// of consecutive steps (and the pivot surcharge of the sharp ones); the sharp turns are counted.
+double path_penalty(const tdo_search* ctx, const Query& q, uint32_t n, uint32_t* sharp) {
+  double pen = 0.0;
+  int prev = -1;
+  *sharp = 0;
+  for (uint32_t i = 1; i < n; ++i) {
+    const tdo_voxel& a = ctx->path[i - 1];
+    const tdo_voxel& b = ctx->path[i];
+    const int d = dir_of_cell(cell_of(b.i - a.i, b.j - a.j, b.k - a.k));
+    if (prev >= 0) {
+      pen += ctx->turn[prev][d];
+      if (sharp_join(ctx, q, prev, d)) {
+        pen += q.pivot_cost;
+        ++*sharp;
+      }
+    }
+    prev = d;
+  }
+  return pen;
+}
+
+tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search_output* out) {
+  q.voxel_turns = 1;
+  q.inv_res = 1.0 / q.grid->desc.res;
+  // grid_first: the grid-distance tables in h (metres, so scaled to voxel edges in priority); PLAIN
+  // as the heading search's first retry (weight 2, no deviation terms), TERMS with the f unchanged.
+  if (grid_first != TDO_GRID_FIRST_OFF && !build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
+  if (grid_first == TDO_GRID_FIRST_PLAIN) {
+    q.h_weight = q.h_weight > kRetryWeight[0] ? q.h_weight : kRetryWeight[0];
+    q.dev_terms = 0;
+  }
+  const tdo_status st = run_search<false>(ctx, q);
+  report_counts(q, out);
+  if (st != TDO_OK) return st;
+  if (grid_first == TDO_GRID_FIRST_PLAIN) out->fallback = 1;  // as the heading search reports it
+  const tdo_status wp = write_path(ctx, q, out);
+  if (wp != TDO_OK) return wp;
+  uint32_t sharp = 0;
+  out->penalized_cost = out->cost + path_penalty(ctx, q, out->n_path, &sharp);
+  out->pivots = sharp;
+  return TDO_OK;
+}
+
+}  // namespace
+}  // namespace tdo_internal
+
 extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in,
                                      tdo_search_output* out) {
   if (ctx == nullptr || in == nullptr || out == nullptr || in->grid == nullptr)
@@ -1698,7 +1769,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
       in->h_weight < 0.0 || (in->kind != TDO_SEARCH_ASTAR && in->kind != TDO_SEARCH_BIDIR) ||
       !finite3(in->start) || !finite3(in->goal) || in->grid_first < TDO_GRID_FIRST_OFF ||
       in->grid_first > TDO_GRID_FIRST_TERMS ||
-      (in->grid_first != TDO_GRID_FIRST_OFF && ctx->cfg.exact_heuristic == 0))  // needs the tables
+      (in->grid_first != TDO_GRID_FIRST_OFF && ctx->cfg.exact_heuristic == 0) ||  // tables
+      in->states < TDO_STATES_HEADING || in->states > TDO_STATES_VOXEL)
     return TDO_ERR_INVALID_ARGUMENT;
   Query q;
   memset(&q, 0, sizeof(q));
@@ -1734,6 +1806,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
   const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
+  if (headed && in->states == TDO_STATES_VOXEL) return run_voxel_turns(ctx, q, in->grid_first, out);
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
     const tdo_status st = run_search<false>(ctx, q);
     report_counts(q, out);

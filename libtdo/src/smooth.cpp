@@ -1,4 +1,5 @@
-// Stage 3: curvature-constrained adaptive-radius corner smoothing (pipeline.md s.3, paper eq. 8-9).
+// Stage 3: curvature-constrained adaptive-radius corner smoothing (docs/design.md s.3, paper eq.
+// 8-9).
 //
 // Per interior waypoint: deflection theta, radius r = k theta / (2 sin(theta/2)) R_min (eq. 8),
 // corner curve tangent to both segments in their plane: the G2 cubic Bezier spiral pair of Yang and

@@ -1,5 +1,5 @@
 // Stage 5: time parameterisation, dynamic feasibility verification and refinement
-// (pipeline.md s.5, paper eq. 15-19).
+// (docs/design.md s.5, paper eq. 15-19).
 //
 // Speed profile. Every segment of positive length is a "plateau" with a constant speed ceiling
 // (the minimum over the segment of v_max, its v_limit, sqrt(a_lat / kappa) and the lateral-jerk
@@ -45,6 +45,11 @@ constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
 constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
 constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skipped-sample bound
 constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre-pass's points
+// m, the clearance pass evaluates a sample's distance capped at this much above what can still
+// change its result (the minimum so far, the violation floor): a larger cap visits more obstacles
+// per query, a smaller one leaves the probe's bound too low to skip the next samples (geb079
+// G2 at 0.08 m: 0 -> 52 M instructions per plan, 0.05 -> 43 M, 0.15 -> 56 M, uncapped 90 M)
+constexpr double kClearanceEvalMargin = 0.05;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
 constexpr double kLineShare = 0.95;     // tangential acceleration and jerk on straight plateaus
@@ -846,7 +851,7 @@ struct LipschitzProbe {
   LipschitzProbe() { hint.valid = 0; }
   /** m, lower bound of the distance at p. */
   double bound(const tdo_vec3& p) const { return ref - norm(sub(mk(p), at)) - kLipschitzSlack; }
-  /** m, the distance at p (capped at cap), evaluated. */
+  /** m, the distance at p (capped at cap: min(distance, cap), still a lower bound), evaluated. */
   double eval(const tdo_grid* g, const tdo_vec3& p, double cap) {
     ref = point_distance_hinted(g, p, cap, &hint);
     at = mk(p);
@@ -892,7 +897,7 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
     if (clear && (i % kClearanceStride) == 0u && !(pre.bound(s0.p) >= pre_min))
-      pre_min = dmin(pre_min, pre.eval(in->grid, s0.p, cap));
+      pre_min = dmin(pre_min, pre.eval(in->grid, s0.p, dmin(cap, pre_min)));
     if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
     const double aa1 = dot(mk(s1.a), mk(s1.a));
     energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
@@ -959,7 +964,11 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
       const tdo_sample& si = src.at(i);
       const double lb = probe.bound(si.p);
       if (lb >= rep->min_clearance && lb >= floor_ok) continue;
-      const double d = probe.eval(in->grid, si.p, cap);
+      // Capped just above what can still matter (kClearanceEvalMargin): a distance at or above
+      // both the minimum so far and the violation floor changes neither, and the capped value is
+      // still a lower bound for the probe.
+      const double d = probe.eval(
+          in->grid, si.p, dmin(cap, dmax(rep->min_clearance, floor_ok) + kClearanceEvalMargin));
       rep->min_clearance = dmin(rep->min_clearance, d);
       if (d < floor_ok) add_violation(&r, si.t, TDO_QUANTITY_CLEARANCE, d, in->clearance);
     }

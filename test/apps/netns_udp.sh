@@ -21,7 +21,7 @@ planner="$1" publish_map="$2" replay="$3" python="$4" logger="$5" pydir="$6" map
 ip link set lo up
 ip route add 224.0.0.0/4 dev lo
 # Answers carry thousands of samples (~270 kB): a receive buffer of 4 MB (the kernel's rmem_max
-# here) or UDP drops fragments under load (lcm.md).
+# here) or UDP drops fragments under load (docs/design.md s.11).
 url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 mkdir -p "$scratch"
 log="$scratch/udp_run.lcmlog"

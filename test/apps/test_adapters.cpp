@@ -247,6 +247,7 @@ tdo_plan_request sample_request() {
   p.h_weight = 1.5;
   p.first_meet = 1;
   p.grid_first = TDO_GRID_FIRST_TERMS;
+  p.states = TDO_STATES_VOXEL;  // not the default: the round trip must carry it
   p.max_expansions = 12345;
   p.correction = TDO_CORRECT_GREEDY_LOS;
   p.shorten = 0;  // not the library's default: the round trip must carry it
@@ -294,6 +295,7 @@ TEST(RequestAdapter, RoundTripKeepsEveryParameter) {
   EXPECT_EQ(b.h_weight, a.h_weight);
   EXPECT_EQ(b.first_meet, a.first_meet);
   EXPECT_EQ(b.grid_first, a.grid_first);
+  EXPECT_EQ(b.states, a.states);
   EXPECT_EQ(b.max_expansions, a.max_expansions);
   EXPECT_EQ(b.correction, a.correction);
   EXPECT_EQ(b.shorten, a.shorten);
@@ -380,6 +382,9 @@ TEST(RequestAdapter, EnumsAndRanges) {
                 Reason::bad_enum);
   EXPECT_REASON(tdo_lcm::plan_request_from_msg(
                     with([](tdo::plan_request_t* m) { m->grid_first = -1; }), 3, &out, nullptr),
+                Reason::bad_enum);
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(with([](tdo::plan_request_t* m) { m->states = 2; }),
+                                               3, &out, nullptr),
                 Reason::bad_enum);
   EXPECT_REASON(tdo_lcm::plan_request_from_msg(
                     with([](tdo::plan_request_t* m) { m->max_expansions = -1; }), 3, &out, nullptr),

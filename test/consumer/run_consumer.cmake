@@ -4,11 +4,13 @@
 #   -DWORK_DIR=          scratch directory (emptied first): prefix/ and build/ go here
 #   -DGENERATOR= -DC_COMPILER= -DCXX_COMPILER= -DBUILD_TYPE= as the parent build
 #   -DEXTRA_FLAGS=       compile and link flags for the consumer (sanitizer runtimes)
+#   -DREADME=            README.md: its ```c block must be project/readme_example.c and its first
+#                        ```text block after it that program's output
 #   -DEXPECT_LCMTYPES=ON the build has the LCM apps: the message types must be installed and the
 #                        consumer's LCM node (tdo::lcmtypes alone) must build and run
 cmake_minimum_required(VERSION 3.20)
 
-foreach(var TDO_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR)
+foreach(var TDO_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR README)
   if(NOT DEFINED ${var} OR "${${var}}" STREQUAL "")
     message(FATAL_ERROR "run_consumer.cmake: -D${var}= is required")
   endif()
@@ -59,4 +61,38 @@ if(EXPECT_LCMTYPES)
       message(FATAL_ERROR "[consumer] not installed: ${f}")
     endif()
   endforeach()
+endif()
+
+# The README's example: the source it shows, and the output it shows, byte for byte.
+function(readme_block fence from out_text out_end)
+  file(READ "${README}" text)
+  string(SUBSTRING "${text}" ${from} -1 text)
+  string(FIND "${text}" "\n```${fence}\n" begin)
+  if(begin EQUAL -1)
+    message(FATAL_ERROR "[consumer] README.md has no ```${fence} block")
+  endif()
+  string(LENGTH "\n```${fence}\n" fence_len)
+  math(EXPR begin "${begin} + ${fence_len}")
+  string(SUBSTRING "${text}" ${begin} -1 text)
+  string(FIND "${text}" "```\n" end)
+  string(SUBSTRING "${text}" 0 ${end} block)
+  math(EXPR end "${from} + ${begin} + ${end}")
+  set(${out_text} "${block}" PARENT_SCOPE)
+  set(${out_end} ${end} PARENT_SCOPE)
+endfunction()
+
+readme_block("c" 0 shown_source source_end)
+file(READ "${CONSUMER_SOURCE_DIR}/readme_example.c" source)
+if(NOT shown_source STREQUAL source)
+  message(FATAL_ERROR "[consumer] README.md's ```c block differs from project/readme_example.c")
+endif()
+readme_block("text" ${source_end} shown_output output_end)
+message(STATUS "[consumer] run: ${build}/tdo_readme_example")
+execute_process(COMMAND "${build}/tdo_readme_example" RESULT_VARIABLE rc OUTPUT_VARIABLE output)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "[consumer] the README example failed (${rc}):\n${output}")
+endif()
+if(NOT output STREQUAL shown_output)
+  message(FATAL_ERROR "[consumer] the README example printed\n${output}\nREADME.md shows\n"
+                      "${shown_output}")
 endif()

@@ -1,4 +1,4 @@
-// The voxel grid (grid.h, pipeline.md s.0): world/voxel conversion, box and cube occupancy, the
+// The voxel grid (grid.h, docs/design.md s.0): world/voxel conversion, box and cube occupancy, the
 // clearance rule, and bad input.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Stage 6 (metrics.h, pipeline.md s.6): metrics on shapes with known answers, computed here
+// Stage 6 (metrics.h, docs/design.md s.6): metrics on shapes with known answers, computed here
 // independently (closed forms, or dense quadrature with the test's own Bezier formulas).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Proof that libtdo never touches the heap after tdo_planner_init (architecture.md, issue 2).
+// Proof that libtdo never touches the heap after tdo_planner_init (docs/design.md s.7, issue 2).
 //
 // This executable replaces every allocation entry point (malloc family and all forms of operator
 // new/delete). While `armed` is set, any call is counted and aborts with a message on stderr. The

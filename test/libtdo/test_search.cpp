@@ -1,4 +1,4 @@
-// Stage 1 search (search.h, pipeline.md s.0-1): optimal costs against an independent reference
+// Stage 1 search (search.h, docs/design.md s.0-1): optimal costs against an independent reference
 // Dijkstra, path validity, named statuses, budgets and capacities, determinism, and completeness
 // with turn penalties.
 #include <gtest/gtest.h>
@@ -337,7 +337,7 @@ TEST(SearchDeterminism,
 // ---------------------------------------------------------------------------------------------
 // (f) turn penalties keep completeness; cost is never below the optimum.
 
-// Direction constraints of pipeline.md s.1: unconstrained, theta_max = 45 degrees (the default),
+// Direction constraints of docs/design.md s.1: unconstrained, theta_max = 45 degrees (the default),
 // and 45 degrees plus the deviation threshold D_th = 0.5.
 struct Constraint {
   double theta_max;  // rad
@@ -348,7 +348,8 @@ const std::vector<Constraint> kConstrained = {{0.25 * 3.14159265358979323846, 0.
                                               {0.25 * 3.14159265358979323846, 0.5}};
 
 void check_penalised(tdo_search* search, const tdo_grid* grid, const Case& c, double want,
-                     const char* what, const std::vector<Constraint>& constraints) {
+                     const char* what, const std::vector<Constraint>& constraints,
+                     int states = TDO_STATES_HEADING) {
   for (double lambda : {0.5, 50.0})
     for (double mu : {0.0, 20.0})
       for (const Constraint& con : constraints)
@@ -356,11 +357,13 @@ void check_penalised(tdo_search* search, const tdo_grid* grid, const Case& c, do
           tdo_search_input in = make_input(grid, c.ps, c.pg, kind, lambda, mu);
           in.theta_max = con.theta_max;
           in.d_th = con.d_th;
+          in.states = states;
           const Result r = run(search, in);
           SCOPED_TRACE(::testing::Message()
                        << what << " " << tdo_test::kind_name(kind) << " lambda " << lambda << " mu "
-                       << mu << " theta_max " << con.theta_max << " d_th " << con.d_th << " start "
-                       << tdo_test::str(c.s) << " goal " << tdo_test::str(c.g));
+                       << mu << " theta_max " << con.theta_max << " d_th " << con.d_th << " states "
+                       << states << " start " << tdo_test::str(c.s) << " goal "
+                       << tdo_test::str(c.g));
           if (!(want < kInf)) {
             EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
             continue;
@@ -379,20 +382,24 @@ void check_penalised(tdo_search* search, const tdo_grid* grid, const Case& c, do
         }
 }
 
-void random_penalised(const std::vector<Constraint>& constraints) {
-  TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
+// Voxel states (tdo_search_input.states) need one state per voxel and direction: their pool is
+// sized as plain A*'s, so a heading state would overflow it.
+uint32_t pool_for(int states) { return states == TDO_STATES_VOXEL ? 512u : 27u * 512u; }
+
+void random_penalised(const std::vector<Constraint>& constraints, int states = TDO_STATES_HEADING) {
+  TestPlanner pl(make_cap(512, pool_for(states), 513, 4, 1000, 1u << 30));
   ASSERT_EQ(pl.status(), TDO_OK);
   Rng rng(31337);
   for (int round = 0; round < 400; ++round) {
     const Case c = random_case(rng, 8, 4);
     ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
     const double want = tdo_test::reference_cost(c.map, c.s, c.g);
-    check_penalised(pl.search(), pl.grid(), c, want, "random", constraints);
+    check_penalised(pl.search(), pl.grid(), c, want, "random", constraints, states);
   }
 }
 
-void narrow_penalised(const std::vector<Constraint>& constraints) {
-  TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
+void narrow_penalised(const std::vector<Constraint>& constraints, int states = TDO_STATES_HEADING) {
+  TestPlanner pl(make_cap(512, pool_for(states), 513, 4, 1000, 1u << 30));
   ASSERT_EQ(pl.status(), TDO_OK);
   {
     // A 2D serpentine: walls at y = 1, 3, 5, 7 with one-voxel gaps alternating at x = 8 and x = 0,
@@ -409,7 +416,7 @@ void narrow_penalised(const std::vector<Constraint>& constraints) {
     ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
     const double want = tdo_test::reference_cost(c.map, c.s, c.g);
     ASSERT_LT(want, kInf);
-    check_penalised(pl.search(), pl.grid(), c, want, "serpentine", constraints);
+    check_penalised(pl.search(), pl.grid(), c, want, "serpentine", constraints, states);
   }
   {
     // 3D: floors at z = 2 and z = 5 with single holes in opposite corners, start behind the goal.
@@ -427,7 +434,7 @@ void narrow_penalised(const std::vector<Constraint>& constraints) {
     ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
     const double want = tdo_test::reference_cost(c.map, c.s, c.g);
     ASSERT_LT(want, kInf);
-    check_penalised(pl.search(), pl.grid(), c, want, "shafts", constraints);
+    check_penalised(pl.search(), pl.grid(), c, want, "shafts", constraints, states);
   }
   {
     // A straight row meeting a two-voxel-wide diagonal corridor at 135 degrees: an acute turn.
@@ -446,7 +453,7 @@ void narrow_penalised(const std::vector<Constraint>& constraints) {
     ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
     const double want = tdo_test::reference_cost(c.map, c.s, c.g);
     ASSERT_LT(want, kInf);
-    check_penalised(pl.search(), pl.grid(), c, want, "acute", constraints);
+    check_penalised(pl.search(), pl.grid(), c, want, "acute", constraints, states);
   }
 }
 
@@ -493,7 +500,7 @@ int optimal_penalised_rounds(TestPlanner& pl, uint64_t seed, int rounds,
 }
 
 // The optimal stop (first_meet = 0) with mu = 0 and no direction constraint must return the
-// optimal turn-penalised cost, so the turn part of h must stay a lower bound (pipeline.md s.1).
+// optimal turn-penalised cost, so the turn part of h must stay a lower bound (docs/design.md s.1).
 TEST(SearchPenalty, GivenRandomGrids_WhenSearchingWithTheOptimalStop_ThenPenalisedCostsAreOptimal) {
   TestPlanner pl(make_cap(512, 27u * 512u, 513, 4, 1000, 1u << 30));
   ASSERT_EQ(pl.status(), TDO_OK);
@@ -505,7 +512,7 @@ TEST(SearchPenalty, GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithPenalt
   narrow_penalised(kUnconstrained);
 }
 
-// pipeline.md s.1: the direction constraint (theta_max) and the deviation threshold (D_th) must
+// docs/design.md s.1: the direction constraint (theta_max) and the deviation threshold (D_th) must
 // never cost completeness, and a pivot must not make a turn cheaper than lambda * (theta/pi)^2.
 TEST(SearchConstrained,
      GivenRandomGrids_WhenSearchingWithDirectionConstraints_ThenAPathIsFoundWheneverOneExists) {
@@ -515,6 +522,40 @@ TEST(SearchConstrained,
 TEST(SearchConstrained,
      GivenNarrowPassagesNeedingSharpTurns_WhenSearchingWithDirectionConstraints_ThenPathFound) {
   narrow_penalised(kConstrained);
+}
+
+// Voxel states: the same completeness on the same maps, with plain A*'s pool (one state per
+// voxel), with and without the direction constraint (a sharp step costs the pivot surcharge).
+TEST(SearchVoxelStates,
+     GivenRandomGridsAndAnAStarPool_WhenSearchingWithVoxelStates_ThenAPathWheneverOneExists) {
+  random_penalised(kUnconstrained, TDO_STATES_VOXEL);
+  random_penalised(kConstrained, TDO_STATES_VOXEL);
+}
+
+TEST(SearchVoxelStates,
+     GivenNarrowPassagesAndAnAStarPool_WhenSearchingWithVoxelStates_ThenAPathIsFound) {
+  narrow_penalised(kUnconstrained, TDO_STATES_VOXEL);
+  narrow_penalised(kConstrained, TDO_STATES_VOXEL);
+}
+
+TEST(SearchVoxelStates, GivenAStateSpaceOutOfRange_WhenSearching_ThenInvalidArgument) {
+  TestPlanner pl(make_cap(512, 512u, 513, 4, 1000, 1u << 30));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Case c;
+  c.map = VoxelMap(8, 8, 1, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  c.ps = c.map.center({0, 0, 0});
+  c.pg = c.map.center({7, 7, 0});
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+  for (int states : {-1, 2}) {
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+    in.states = states;
+    EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_INVALID_ARGUMENT) << "states " << states;
+  }
+  tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+  in.states = TDO_STATES_VOXEL;
+  const Result r = run(pl.search(), in);
+  EXPECT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+  EXPECT_LE(r.out.peak_nodes, 64u) << "one state per voxel at most";
 }
 
 // Capacities of the flood tests for n voxels, with the obstacle-aware retry: 27 states per voxel,
@@ -551,6 +592,59 @@ Case walls_with_holes(bool sealed) {
   c.ps = c.map.center(c.s);
   c.pg = c.map.center(c.g);
   return c;
+}
+
+// Voxel states with grid_first: the grid-distance tables in h. On random grids a path whenever
+// one exists, with the penalised cost recomputed from the path; behind the walls the octile guide
+// cannot see, PLAIN (tables, weight 2, no deviation terms) expands fewer states than the octile
+// guide, and the sealed walls are no_path either way.
+TEST(SearchVoxelStates, GivenGridFirst_WhenSearchingWithVoxelStates_ThenCompleteAndGuidedByTables) {
+  const uint32_t n = static_cast<uint32_t>(kWallsNx * kWallsNy * kWallsNz);
+  tdo_capacity cap = make_cap(n, n, n + 1u);
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(4242);
+  for (int round = 0; round < 200; ++round) {
+    const Case c = random_case(rng, 8, 4);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double want = tdo_test::reference_cost(c.map, c.s, c.g);
+    for (int first : {TDO_GRID_FIRST_PLAIN, TDO_GRID_FIRST_TERMS}) {
+      tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+      in.theta_max = 0.25 * 3.14159265358979323846;
+      in.states = TDO_STATES_VOXEL;
+      in.grid_first = first;
+      const Result r = run(pl.search(), in);
+      SCOPED_TRACE(::testing::Message() << "round " << round << " grid_first " << first);
+      if (!(want < kInf)) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+        continue;
+      }
+      ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+      EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+      const double turns = tdo_test::turn_penalty(r.out, 50.0);
+      const double surcharge = r.out.pivots * tdo_search_pivot_cost(50.0, in.theta_max);
+      EXPECT_TRUE(near_rel(r.out.penalized_cost, r.out.cost + turns + surcharge));
+    }
+  }
+  for (bool sealed : {false, true}) {
+    const Case c = walls_with_holes(sealed);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+    in.states = TDO_STATES_VOXEL;
+    const Result octile = run(pl.search(), in);
+    in.grid_first = TDO_GRID_FIRST_PLAIN;
+    const Result tables = run(pl.search(), in);
+    if (sealed) {
+      EXPECT_EQ(octile.status, TDO_ERR_NO_PATH);
+      EXPECT_EQ(tables.status, TDO_ERR_NO_PATH);
+      continue;
+    }
+    ASSERT_EQ(octile.status, TDO_OK);
+    ASSERT_EQ(tables.status, TDO_OK);
+    EXPECT_TRUE(tdo_test::valid_path(c.map, tables.out, c.s, c.g));
+    EXPECT_LT(tables.out.expansions, octile.out.expansions) << "the tables guide through the holes";
+  }
 }
 
 // Walls that the octile heuristic cannot see: the turn-penalised search floods behind them, and

@@ -1,4 +1,4 @@
-// Stage 3 smoothing (smooth.h, pipeline.md s.3, paper eq. 8-9): G1 everywhere, G2 in g2 mode,
+// Stage 3 smoothing (smooth.h, docs/design.md s.3, paper eq. 8-9): G1 everywhere, G2 in g2 mode,
 // peak curvature 1/r, exact start and goal, corners in the plane of their segments and tangent to
 // them, fitting and shrinking with lowered speed, stop points, arc mode's curvature jump, clearance
 // with obstacles, named statuses, and a seeded random-polyline property test.

@@ -42,7 +42,8 @@ TEST(Status, GivenEveryStatusBelowCount_WhenNamed_ThenNamesAreDistinctAndNotUnkn
 
 TEST(Status, GivenTheEnumIdentifiers_WhenNamed_ThenNameIsTheIdentifierWithoutPrefix) {
   // The names are the stable strings scripts see (tdo-plan --json "status"): the enum identifier,
-  // lower-cased, without TDO_ / TDO_ERR_ (status.h: e.g. "start_blocked"; interfaces.md: "ok").
+  // lower-cased, without TDO_ / TDO_ERR_ (status.h: e.g. "start_blocked"; docs/design.md s.10:
+  // "ok").
   struct Expect {
     tdo_status status;
     const char* name;

@@ -1,4 +1,4 @@
-// Stage 5 (trajectory.h, pipeline.md s.5): time parameterisation, feasibility verification by
+// Stage 5 (trajectory.h, docs/design.md s.5): time parameterisation, feasibility verification by
 // finite differences (paper eq. 15-19) and refinement. Every check of the samples is recomputed
 // here from the sampled positions, independently of the library's own report.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // Shared helpers of the libtdo suites: a planner on a heap arena, and an independent reference
 // model of the grid (brute-force occupancy and clearance, MovingAI movement rule, Dijkstra) written
-// from pipeline.md s.0 without looking at libtdo's internals.
+// from docs/design.md s.0 without looking at libtdo's internals.
 #ifndef TDO_TEST_LIBTDO_TEST_UTIL_H
 #define TDO_TEST_LIBTDO_TEST_UTIL_H
 
@@ -117,7 +117,7 @@ struct VoxelMap {
     d.origin = origin;
     return d;
   }
-  /** pipeline.md s.0: the centre of voxel (i,j,k) is origin + (i + 0.5)*res. */
+  /** docs/design.md s.0: the centre of voxel (i,j,k) is origin + (i + 0.5)*res. */
   tdo_vec3 center(const tdo_voxel& v) const {
     return tdo_vec3{origin.x + (v.i + 0.5) * res, origin.y + (v.j + 0.5) * res,
                     origin.z + (v.k + 0.5) * res};
@@ -153,7 +153,7 @@ inline VoxelMap random_voxel_map(Rng& rng, int32_t nx, int32_t ny, int32_t nz, d
 }
 
 // ---------------------------------------------------------------------------------------------
-// Obstacle geometry and the brute-force blocked rule of pipeline.md s.0.
+// Obstacle geometry and the brute-force blocked rule of docs/design.md s.0.
 
 struct Obstacles {
   std::vector<tdo_box> boxes;
@@ -270,7 +270,7 @@ inline double step_length(double res, const tdo_voxel& a, const tdo_voxel& b) {
 /**
  * Optimal turn-penalised cost from s to g: Dijkstra over (voxel, last step) states, every legal
  * step allowed (no direction constraint), cost = length + lambda * (angle between consecutive
- * steps / pi)^2 summed over the path's turns (pipeline.md s.1); +inf when unreachable.
+ * steps / pi)^2 summed over the path's turns (docs/design.md s.1); +inf when unreachable.
  */
 inline double reference_penalised_cost(const VoxelMap& m, const tdo_voxel& s, const tdo_voxel& g,
                                        double lambda) {

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Run tdo-plan --json and check that stdout is one JSON object with the keys interfaces.md names.
+"""Run tdo-plan --json and check that stdout is one JSON object with the keys of docs/design.md
+s.10.
 
 usage: check_plan_json.py TDO_PLAN ARGS...   (the script adds --json)
 """
@@ -18,7 +19,7 @@ def fail(msg, proc=None):
 
 
 def check_pipeline(doc, path, grid_length, proc):
-    """The full pipeline: waypoints, trajectory and feasibility as interfaces.md names them."""
+    """The full pipeline: waypoints, trajectory and feasibility (docs/design.md s.10)."""
     for key in ("waypoints", "trajectory", "feasibility"):
         if key not in doc:
             fail(f"missing key '{key}'", proc)

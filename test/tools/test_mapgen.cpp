@@ -59,7 +59,7 @@ double box_distance(const tdo_box& b, const tdo_vec3& p) {
 }
 
 /**
- * Independent solvability check, written from the definitions of pipeline.md s.0 without libtdo:
+ * Independent solvability check, written from the definitions of docs/design.md s.0 without libtdo:
  * a voxel is blocked when it intersects a box interior or its centre is closer than `clearance` to
  * a box. 26-connected moves without corner cutting connect exactly the voxels that 6-connected
  * moves connect (every legal diagonal step has its whole 2x2(x2) block free), so a breadth-first

@@ -2,7 +2,7 @@
 // maps from tdo-mapgen's generator, the paper's Map1-Map5, the OctoMap building floor geb079 and
 // the three OctoMap forests with their published start/goal pairs.
 //
-// Every plan is judged by an independent checker written here from pipeline.md and path.h; it
+// Every plan is judged by an independent checker written here from docs/design.md and path.h; it
 // calls no libtdo geometry (no tdo_segment_*, tdo_collision_*, tdo_grid distance queries):
 //   1. ends: the path and the trajectory begin exactly at the start and end exactly at the goal
 //      (bit-identical doubles);
@@ -22,7 +22,7 @@
 //      - and every trajectory sample (exact point-to-box distance);
 //      tolerance 1e-9 m, the same as the library's own report (trajectory.h);
 //   3. dynamics: v, a, j by finite differences of the sampled positions at dt = 0.01 s, each
-//      within 1.01 x its limit (pipeline.md s.5, 1 % for discretisation);
+//      within 1.01 x its limit (docs/design.md s.5, 1 % for discretisation);
 //   4. g2 mode: the path's pieces meet end to start (1e-9 m), with continuous unit tangents
 //      (except at stop points, where the vehicle is at rest) and continuous curvature vectors
 //      (closed-form line/arc/Bezier end curvatures; 1e-6 1/m + 1e-6 relative) at every junction;
@@ -60,7 +60,7 @@ constexpr int kRandomMaps = 240;
 #endif
 
 constexpr double kClearTol = 1e-9;    // m, as the library's feasibility report
-constexpr double kLimitTol = 1.01;    // pipeline.md s.5: 1 % for discretisation
+constexpr double kLimitTol = 1.01;    // docs/design.md s.5: 1 % for discretisation
 constexpr double kJoinTol = 1e-9;     // m, junction gap
 constexpr double kTangentTol = 1e-6;  // rad-ish, |T1 - T2|
 constexpr double kCurvTol = 1e-6;     // 1/m, plus the same relative

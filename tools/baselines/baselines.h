@@ -76,7 +76,8 @@ struct PlanResult {
   bool ok = false;             /**< a path from start to goal that keeps the clearance */
   std::string status = "";     /**< "ok", or why not (libtdo status name, "collides", ...) */
   std::vector<tdo_vec3> path;  /**< m, the polyline whose turns are counted: a raw path, a grid
-                                    path or P2 (interfaces.md "waypoints"); exact start and goal */
+                                    path or P2 ("waypoints", docs/design.md s.10); exact start
+                                    and goal */
   std::vector<tdo_vec3> curve; /**< m, the final path sampled for pictures (the polyline itself
                                     for raw-path planners) */
   tdo_metrics metrics{};       /**< libtdo metrics of the final path (valid when ok) */

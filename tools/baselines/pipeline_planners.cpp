@@ -7,7 +7,8 @@
 //   model-c  + multi-scale inflection correction (P2 polyline)
 //   model-d  + curvature-constrained adaptive-radius smoothing: the paper's circular arcs of eq. 8
 //            (smoothing = arc), time-parameterised once by stage 5 without any refinement
-//   model-e  + trajectory-guided E-APF: the E-APF is the online tracker (pipeline.md s.4), it does
+//   model-e  + trajectory-guided E-APF: the E-APF is the online tracker (docs/design.md s.4), it
+//   does
 //            not change a static plan, so model-e plans exactly like model-d
 //   full     + dynamic feasibility verification and refinement = `tdo` (G2 corners, stage 5 with
 //            refinement rounds)

@@ -6,7 +6,7 @@ usage:
 
 --map   .tdomap (boxes, start/goal, movers), MovingAI .3dmap, OctoMap .bt/.ot (occupied voxels;
         read here in pure Python, no OctoMap bindings needed)
---plan  the JSON object of `tdo-plan --json` (interfaces.md): grid_path, waypoints,
+--plan  the JSON object of `tdo-plan --json` (docs/design.md s.10): grid_path, waypoints,
         trajectory.samples [[t, x,y,z, vx,vy,vz, ax,ay,az], ...], metrics, planner, status;
         every key is optional.
 

@@ -810,7 +810,7 @@ int run(int argc, char** argv) {
   // ---- claims
   {
     std::string md =
-        "### The paper's claims (maps.md), on Map1-Map6 in this run\n\n"
+        "### The paper's claims (docs/design.md s.9), on Map1-Map6 in this run\n\n"
         "Reductions are 1 - mean(tdo) / mean(other), means over the maps where both "
         "succeeded of the per-map medians. Verdict: *reproduces* when ours is at least "
         "the paper's figure minus 5 points, *same direction, smaller* when positive "

@@ -1,5 +1,6 @@
-// tdo-mapgen: generate the benchmark maps of maps.md and seeded random maps (byte-reproducible),
-// and print statistics of any map. Exit 0 done, 1 no solvable map / unsolvable query, 2 bad input.
+// tdo-mapgen: generate the benchmark maps of docs/design.md s.9 and seeded random maps
+// (byte-reproducible), and print statistics of any map. Exit 0 done, 1 no solvable map / unsolvable
+// query, 2 bad input.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -81,7 +82,8 @@ int run(int argc, char** argv) {
   long long max_streams = 64;
 
   CLI::App app{
-      "Generate the benchmark maps of maps.md (Map1-Map6) or seeded random column maps as "
+      "Generate the benchmark maps of docs/design.md s.9 (Map1-Map6) or seeded random column maps "
+      "as "
       ".tdomap,\n"
       "byte-reproducible from the seed and checked solvable with libtdo (bidirectional search at\n"
       "--clearance); or print statistics of an existing map (--stats).\n"

@@ -403,15 +403,19 @@ void make_movers(const Params& p, const std::vector<tdo_vec3>& route, std::vecto
 
 std::string describe(const Params& p) {
   if (p.name == "map1")
-    return "Map1 of maps.md: 20 x 20 x 20 m, hand-laid walls and columns, sparse";
-  if (p.name == "map2") return "Map2 of maps.md: 20 x 20 x 20 m, 100 random columns, moderate";
+    return "Map1 of docs/design.md s.9: 20 x 20 x 20 m, hand-laid walls and columns, sparse";
+  if (p.name == "map2")
+    return "Map2 of docs/design.md s.9: 20 x 20 x 20 m, 100 random columns, moderate";
   if (p.name == "map3") {
-    return "Map3 of maps.md: 20 x 20 x 20 m, 100 random columns with larger footprints, dense";
+    return "Map3 of docs/design.md s.9: 20 x 20 x 20 m, 100 random columns with larger footprints, "
+           "dense";
   }
-  if (p.name == "map4") return "Map4 of maps.md: 50 x 50 x 20 m, 500 obstacles as corridors";
-  if (p.name == "map5") return "Map5 of maps.md: 50 x 50 x 20 m, 500 random columns, cluttered";
+  if (p.name == "map4")
+    return "Map4 of docs/design.md s.9: 50 x 50 x 20 m, 500 obstacles as corridors";
+  if (p.name == "map5")
+    return "Map5 of docs/design.md s.9: 50 x 50 x 20 m, 500 random columns, cluttered";
   if (p.name == "map6") {
-    return "Map6 of maps.md: Map5's columns plus " + std::to_string(p.movers) +
+    return "Map6 of docs/design.md s.9: Map5's columns plus " + std::to_string(p.movers) +
            " moving spheres crossing the route, dynamic";
   }
   return "random map: " + std::to_string(p.size[0]) + " x " + std::to_string(p.size[1]) + " x " +

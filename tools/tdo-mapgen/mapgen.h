@@ -1,7 +1,7 @@
 /**
  * @file mapgen.h
- * @brief Benchmark map generator behind tdo-mapgen: the six maps of maps.md and seeded random
- *        column maps, byte-reproducible from the seed on every platform, checked solvable with
+ * @brief Benchmark map generator behind tdo-mapgen: the six maps of docs/design.md s.9 and seeded
+ * random column maps, byte-reproducible from the seed on every platform, checked solvable with
  *        libtdo. Host tool code (exceptions and allocation allowed); not part of libtdo.
  *
  * Reproducibility: all randomness comes from Rng (xoshiro256** seeded by splitmix64), drawn as

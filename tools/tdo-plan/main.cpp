@@ -1,4 +1,5 @@
-// tdo-plan: plan on a map file with libtdo (interfaces.md). Exit 0 planned, 1 no plan, 2 bad input.
+// tdo-plan: plan on a map file with libtdo (docs/design.md s.10). Exit 0 planned, 1 no plan, 2 bad
+// input.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -57,6 +58,7 @@ struct Options {
   double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
   std::string retry = "on";        /**< obstacle-aware retry of a flooding tdo search */
+  std::string states = "heading";  /**< states of the tdo search: heading | voxel */
   double d_th = 0.0;               /**< deviation threshold, 0 = off */
   double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
   double v_cruise = 0.0;           /**< m/s, 0 = v_max */
@@ -180,7 +182,9 @@ double voxel_count(const tdo_grid_desc& d) {
 
 /** Size, allocate and initialise the planner, then load the map. Throws BadInput. */
 void build_planner(const Options& o, const tdo_io::Map& map, double clearance, Planner* p) {
-  const uint32_t headings = (o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo") ? 27u : 1u;
+  // Voxel states need one state per voxel, as plain A* does (tdo_state_space).
+  const bool penalised = o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo";
+  const uint32_t headings = penalised && o.states != "voxel" ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
@@ -313,6 +317,7 @@ nlohmann::json params_json(const Options& o, double clearance, long long max_exp
   p["correction"] = o.correction;
   p["shorten"] = o.shorten;
   p["retry"] = o.retry;
+  p["states"] = o.states;
   p["a_lat_max"] = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
   p["v_cruise"] = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
   p["stop_angle_deg"] = o.stop_angle;
@@ -343,6 +348,7 @@ tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   pp.grid_first = o.retry == "first"         ? TDO_GRID_FIRST_PLAIN
                   : o.retry == "first-terms" ? TDO_GRID_FIRST_TERMS
                                              : TDO_GRID_FIRST_OFF;
+  pp.states = o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING;
   pp.d_th = o.d_th;
   pp.max_expansions = static_cast<uint32_t>(o.max_expansions);
   pp.correction = o.correction == "greedy" ? TDO_CORRECT_GREEDY_LOS
@@ -418,14 +424,23 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
   uint64_t expansions = 0;
   std::size_t passed = 0;
   std::size_t failed = 0;
+  // The search as the pipeline runs it for this planner (plan_params): for tdo its direction
+  // constraint, stopping rule, retry and states too.
+  const tdo_plan_params pp = plan_params(o, kind);
   for (const tdo_io::ScenQuery& q : queries) {
     tdo_search_input in{};
     in.grid = p.grid;
     in.start = q.start;
     in.goal = q.goal;
     in.kind = kind;
-    in.lambda = o.lambda;
-    in.mu = o.mu;
+    in.lambda = pp.lambda;
+    in.mu = pp.mu;
+    in.theta_max = pp.theta_max;
+    in.d_th = pp.d_th;
+    in.h_weight = pp.h_weight;
+    in.first_meet = pp.first_meet;
+    in.grid_first = pp.grid_first;
+    in.states = pp.states;
     in.max_expansions = static_cast<uint32_t>(o.max_expansions);
     tdo_search_output out{};
     const auto t0 = std::chrono::steady_clock::now();
@@ -697,6 +712,11 @@ int run(int argc, char** argv) {
                  "(maps whose walls make the octile try flood) | first-terms: its first try "
                  "keeps the deviation term and the turn bound with grid distances in h | off")
       ->check(CLI::IsMember({"on", "off", "first", "first-terms"}));
+  app.add_option("--states", o.states,
+                 "heading: (voxel, heading) states of the tdo search | voxel: one state per voxel, "
+                 "its heading the step it was reached by (plain A*'s memory)")
+      ->check(CLI::IsMember({"heading", "voxel"}))
+      ->capture_default_str();
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))
       ->capture_default_str();

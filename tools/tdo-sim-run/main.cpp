@@ -130,7 +130,7 @@ struct Agg {
     evade_steps += m.evade_steps;
     safety_episodes += m.safety_steps > 0;
     evade_episodes += m.evade_steps > 0;
-    // 1 % for the finite differences, as the feasibility check (pipeline.md s.5).
+    // 1 % for the finite differences, as the feasibility check (docs/design.md s.5).
     over_limits += m.max_speed > 1.01 * m.v_limit || m.max_acc > 1.01 * m.a_limit ||
                    m.max_jerk > 1.01 * m.j_limit;
   }

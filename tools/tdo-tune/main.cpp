@@ -12,8 +12,8 @@
 //   J(p) = (1/M) sum_m [ T_m(p) / T_m(p0) + 0.05 * turns_m(p) + 1 * infeasible_m(p) ],
 // with a term of 10 for a map where no path is found. T = flight time of the time-parameterised
 // trajectory (it grows with length, with slow corners and with stop points), turns = interior
-// waypoints of P2 deflecting more than 1 degree (pipeline.md s.6). One turn weighs like 5 % of the
-// flight time. J(p0) = 1 + 0.05 * mean turns by construction.
+// waypoints of P2 deflecting more than 1 degree (docs/design.md s.6). One turn weighs like 5 % of
+// the flight time. J(p0) = 1 + 0.05 * mean turns by construction.
 //
 // Parameters are optimised in normalised coordinates [0,1]^4 over the bounds lambda [0, 100] m,
 // mu [0, 50] m, k [0.3, 3], theta_max [20, 180] deg; initial step 0.25; at most --maxeval

@@ -27,6 +27,8 @@ static_assert(tdo::plan_request_t::SMOOTHING_NONE == TDO_SMOOTHING_NONE, "smooth
 static_assert(tdo::plan_request_t::GRID_FIRST_OFF == TDO_GRID_FIRST_OFF, "grid_first");
 static_assert(tdo::plan_request_t::GRID_FIRST_PLAIN == TDO_GRID_FIRST_PLAIN, "grid_first");
 static_assert(tdo::plan_request_t::GRID_FIRST_TERMS == TDO_GRID_FIRST_TERMS, "grid_first");
+static_assert(tdo::plan_request_t::STATES_HEADING == TDO_STATES_HEADING, "states");
+static_assert(tdo::plan_request_t::STATES_VOXEL == TDO_STATES_VOXEL, "states");
 static_assert(tdo::feasibility_t::QUANTITY_SPEED == TDO_QUANTITY_SPEED, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_ACCELERATION == TDO_QUANTITY_ACCELERATION, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_JERK == TDO_QUANTITY_JERK, "quantity");
@@ -37,7 +39,7 @@ static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, 
 // changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
 // plan_request_to_msg and to the tests, then update the size here. (A field that fits in padding
 // does not change the size: shorten and grid_first did not. Check the field list by hand too.)
-static_assert(sizeof(tdo_plan_params) == 144, "tdo_plan_params changed: update plan_request_t");
+static_assert(sizeof(tdo_plan_params) == 152, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
 
@@ -360,6 +362,7 @@ tdo::plan_request_t with_defaults(const tdo::plan_request_t& in) {
   if (on(R::USE_DEFAULT_STOP_ANGLE)) m.stop_angle = d.stop_angle;
   if (on(R::USE_DEFAULT_DT)) m.dt = d.dt;
   if (on(R::USE_DEFAULT_CLEARANCE)) m.clearance = -1.0;  // the map's hint
+  if (on(R::USE_DEFAULT_STATES)) m.states = static_cast<int8_t>(d.states);
   return m;
 }
 
@@ -454,6 +457,9 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
   if (m.grid_first < tdo::plan_request_t::GRID_FIRST_OFF ||
       m.grid_first > tdo::plan_request_t::GRID_FIRST_TERMS)
     return fail_field(Reason::bad_enum, "grid_first", "grid_first " + std::to_string(m.grid_first));
+  if (m.states < tdo::plan_request_t::STATES_HEADING ||
+      m.states > tdo::plan_request_t::STATES_VOXEL)
+    return fail_field(Reason::bad_enum, "states", "states " + std::to_string(m.states));
   if (m.max_expansions < 0)
     return fail_field(Reason::out_of_range, "max_expansions",
                       "max_expansions " + std::to_string(m.max_expansions) + " < 0");
@@ -475,6 +481,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
   p.h_weight = m.h_weight;
   p.first_meet = m.first_meet ? 1 : 0;
   p.grid_first = m.grid_first;
+  p.states = m.states;
   p.max_expansions = static_cast<uint32_t>(m.max_expansions);
   p.correction = static_cast<tdo_correct_mode>(m.correction);
   p.shorten = m.shorten ? 1 : 0;
@@ -511,6 +518,7 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->h_weight = p.h_weight;
   out->first_meet = p.first_meet != 0;
   out->grid_first = static_cast<int8_t>(p.grid_first);
+  out->states = static_cast<int8_t>(p.states);
   out->max_expansions = p.max_expansions > kMaxCount ? std::numeric_limits<int32_t>::max()
                                                      : static_cast<int32_t>(p.max_expansions);
   out->correction = static_cast<int8_t>(p.correction);

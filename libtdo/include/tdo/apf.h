@@ -1,6 +1,6 @@
 /**
  * @file apf.h
- * @brief Online follower (pipeline.md s.4, paper eq. 10-14): the trajectory-guided enhanced APF
+ * @brief Online follower (docs/design.md s.4, paper eq. 10-14): the trajectory-guided enhanced APF
  *        (E-APF) and the classical APF baseline in one module, run at a fixed rate.
  *
  * Every force is an acceleration (unit mass), m/s^2, world frame (z up). Per step, at vehicle

@@ -1,6 +1,6 @@
 /**
  * @file correct.h
- * @brief Stage 2: multi-scale inflection correction of the grid path (pipeline.md s.2).
+ * @brief Stage 2: multi-scale inflection correction of the grid path (docs/design.md s.2).
  *
  * Every segment check is tdo_collision_segment_clear at the input clearance (exact, continuous).
  * 1. Every input segment is checked; one that fails makes the run TDO_ERR_NO_PATH.

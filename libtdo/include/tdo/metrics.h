@@ -1,6 +1,6 @@
 /**
  * @file metrics.h
- * @brief Stage 6: trajectory quality metrics, identical for every planner (pipeline.md s.6).
+ * @brief Stage 6: trajectory quality metrics, identical for every planner (docs/design.md s.6).
  */
 #ifndef TDO_METRICS_H
 #define TDO_METRICS_H
@@ -30,7 +30,7 @@ typedef struct tdo_metrics_input {
   double clearance_cap; /**< m, > 0 with a grid; distances above it are reported as the cap */
 } tdo_metrics_input;
 
-/** The metric columns of pipeline.md s.6 (plan_time_ms is measured by the caller). */
+/** The metric columns of docs/design.md s.6 (plan_time_ms is measured by the caller). */
 typedef struct tdo_metrics {
   double length_m;          /**< m, arclength of the final path */
   uint32_t turns;           /**< interior waypoints with deflection > 1 degree */

@@ -30,7 +30,7 @@ typedef enum tdo_plan_depth {
   TDO_PLAN_TRAJECTORY = 3 /**< plus time parameterisation and feasibility (default) */
 } tdo_plan_depth;
 
-/** Every parameter of the pipeline (names as in pipeline.md). */
+/** Every parameter of the pipeline (names as in docs/design.md). */
 typedef struct tdo_plan_params {
   tdo_plan_depth depth;        /**< stages to run */
   tdo_search_kind search;      /**< bidirectional (default) or A* */
@@ -56,6 +56,8 @@ typedef struct tdo_plan_params {
   double v_cruise;   /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max (default = v_max) */
   double stop_angle; /**< rad, corners sharper than this stop (default 150 deg) */
   double dt;         /**< s, trajectory sample period (default 0.01) */
+  int states;        /**< a tdo_state_space: the turn-penalised search's states (default
+                          TDO_STATES_HEADING; tdo_search_input.states) */
 } tdo_plan_params;
 
 /** Fill `p` with the defaults documented in tdo_plan_params. */
@@ -99,7 +101,7 @@ typedef struct tdo_plan_result {
  *         v_max, a_max, j_max, a_lat_max, v_cruise or stop_angle (smoothing) or dt (trajectory);
  *         the search statuses; TDO_ERR_START_BLOCKED / TDO_ERR_GOAL_BLOCKED also when the start
  *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
- *         obstacle, at every depth (pipeline.md s.0: every point of the output keeps it);
+ *         obstacle, at every depth (docs/design.md s.0: every point of the output keeps it);
  * TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the limits; capacity and budget
  * statuses.
  */

@@ -3,7 +3,8 @@
  * @brief Stage 1: A* and bidirectional A* over (voxel, heading) states.
  *
  * Without penalties the heading carries no cost and every voxel is one state, so the search costs
- * no more than A* over voxels. With lambda or mu > 0 states are (voxel, heading) (pipeline.md s.1).
+ * no more than A* over voxels. With lambda or mu > 0 states are (voxel, heading); design:
+ * docs/design.md s.1.
  */
 #ifndef TDO_SEARCH_H
 #define TDO_SEARCH_H
@@ -26,14 +27,23 @@ typedef enum tdo_search_kind {
 /** What a turn-penalised search starts with (tdo_search_input.grid_first). The grid distances
  *  need the tables (tdo_search_config.exact_heuristic). docs/performance.md compares the three. */
 typedef enum tdo_grid_first {
-  TDO_GRID_FIRST_OFF = 0,   /**< pipeline.md s.1's search with the octile distance; grid distances
-                                 only in its retry, when it floods (default) */
+  TDO_GRID_FIRST_OFF = 0, /**< docs/design.md s.1's search with the octile distance; grid distances
+                               only in its retry, when it floods (default) */
   TDO_GRID_FIRST_PLAIN = 1, /**< start as that retry: grid distances weighted by 2, no deviation
                                  term or turn bound */
-  TDO_GRID_FIRST_TERMS = 2  /**< pipeline.md s.1's f with h = max(octile, grid distance), weighted
-                                 by h_weight, deviation term and turn bound kept; the retry as
-                                 with OFF when it floods */
+  TDO_GRID_FIRST_TERMS = 2 /**< docs/design.md s.1's f with h = max(octile, grid distance), weighted
+                                by h_weight, deviation term and turn bound kept; the retry as
+                                with OFF when it floods */
 } tdo_grid_first;
+
+/** The states of a turn-penalised search (tdo_search_input.states). */
+typedef enum tdo_state_space {
+  TDO_STATES_HEADING = 0, /**< (voxel, heading): the turn cost is exact per heading (default) */
+  TDO_STATES_VOXEL = 1    /**< one state per voxel, whose heading is the step it was reached by:
+                               plain A*'s states and memory; the turn and deviation terms are
+                               those of its parent chain, so the cost is not optimal;
+                               grid_first puts the grid distances in h as for heading states */
+} tdo_state_space;
 
 /** Opaque search context; carved from an arena by tdo_search_init. */
 typedef struct tdo_search tdo_search;
@@ -86,6 +96,8 @@ typedef struct tdo_search_input {
                                 tables (tdo_search_config.exact_heuristic); without them, or
                                 outside 0..2: TDO_ERR_INVALID_ARGUMENT. Plain A* and bidir ignore
                                 it */
+  int states;              /**< turn-penalised searches: a tdo_state_space (0 = heading states);
+                                outside 0..1: TDO_ERR_INVALID_ARGUMENT */
 } tdo_search_input;
 
 /**

@@ -1,6 +1,6 @@
 /**
  * @file smooth.h
- * @brief Stage 3: curvature-constrained adaptive-radius corner smoothing (pipeline.md s.3).
+ * @brief Stage 3: curvature-constrained adaptive-radius corner smoothing (docs/design.md s.3).
  *
  * Each interior waypoint with deflection theta gets a corner curve tangent to both segments, in
  * their plane, with radius r = k * theta / (2 sin(theta/2)) * R_min, R_min = v_cruise^2 /
@@ -11,10 +11,10 @@
  * flat, dkappa/ds = 0) at their junction on the bisector, peak curvature exactly 1/r there. The
  * radius is the larger of the eq. 8 radius and the jerk radius sqrt(v_c^3 * F(theta) / j_max), with
  * v_c = min(v_cruise, v_max) and F = max|dkappa/ds| * r^2 of the corner shape, so that the lateral
- * jerk v_c^3 * dkappa/ds stays within j_max at the design speed (pipeline.md s.3: "curvature rate
- * chosen so that lateral jerk v^3 dkappa/ds <= j_max"). ARC mode uses the paper's circular arcs of
- * the eq. 8 radius (curvature jumps where they meet the lines). NONE mode returns the polyline
- * with a stop point at every corner.
+ * jerk v_c^3 * dkappa/ds stays within j_max at the design speed (docs/design.md s.3: "curvature
+ * rate chosen so that lateral jerk v^3 dkappa/ds <= j_max"). ARC mode uses the paper's circular
+ * arcs of the eq. 8 radius (curvature jumps where they meet the lines). NONE mode returns the
+ * polyline with a stop point at every corner.
  *
  * Fit: a corner's tangent length may use at most max(L/2, L - T_nb) of each adjacent segment of
  * length L, T_nb being the neighbour corner's desired tangent length (0 at start, goal, stop points

@@ -1,7 +1,7 @@
 /**
  * @file trajectory.h
  * @brief Stage 5: time parameterisation, dynamic feasibility verification and refinement
- *        (pipeline.md s.5).
+ *        (docs/design.md s.5).
  */
 #ifndef TDO_TRAJECTORY_H
 #define TDO_TRAJECTORY_H

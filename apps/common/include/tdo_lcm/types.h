@@ -30,7 +30,7 @@
 
 namespace tdo_lcm {
 
-/** Default channel names (lcm.md). Every app can rename them on its command line. */
+/** Default channel names (docs/design.md s.11). Every app can rename them on its command line. */
 inline constexpr const char* kChannelMap = "TDO_MAP";
 inline constexpr const char* kChannelObstacles = "TDO_OBSTACLES";
 inline constexpr const char* kChannelPlanRequest = "TDO_PLAN_REQUEST";

@@ -2,7 +2,7 @@
  * @file map_io.h
  * @brief Host-side map and scenario readers for the tools (tdo-plan, bench). Not part of libtdo.
  *
- * Formats: `.tdomap` (docs: interfaces.md), MovingAI `.3dmap` / `.3dscen`, OctoMap OcTrees `.bt`
+ * Formats: `.tdomap` (docs/design.md s.10), MovingAI `.3dmap` / `.3dscen`, OctoMap OcTrees `.bt`
  * (binary) and `.ot` (full), read with the OctoMap library and voxelized (see load_map). Every
  * function reports failure as `false` plus a message of the form "FILE:LINE: message" (or
  * "FILE: message" when no line applies); none throws.
