@@ -6,12 +6,22 @@
 #include <utility>
 
 #include "tdo_lcm/adapters.h"
+#include "tdo_lcm/compact.h"
 #include "tdo_lcm/node_status.h"
 #include "tdo_lcm/vehicle.h"
 #include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
-AvoidNode::AvoidNode(Bus* bus, AvoidConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
+namespace {
+
+bool valid_timeout(double s) { return s > 0.0 && s <= 1e6; }  // false for NaN
+
+}  // namespace
+
+AvoidNode::AvoidNode(Bus* bus, AvoidConfig cfg)
+    : bus_(bus),
+      cfg_(std::move(cfg)),
+      watch_(steady_seconds(valid_timeout(cfg_.answer_timeout_s) ? cfg_.answer_timeout_s : 1.0)) {
   started_ = std::chrono::steady_clock::now();
   next_status_ = started_;
   next_tick_ = started_;
@@ -27,6 +37,8 @@ bool AvoidNode::start(std::string* error) {
   if (!(cfg_.rate_hz > 0.0) || !std::isfinite(cfg_.rate_hz))
     return fail_with("the rate must be finite and > 0");
   if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_with("the mover shift must be >= 0");
+  if (!valid_timeout(cfg_.answer_timeout_s))
+    return fail_with("the answer timeout must be in (0, 1e6] s");
   if (!grid_.start(cfg_.max_nx, cfg_.max_ny, cfg_.max_nz, cfg_.max_boxes, cfg_.max_clearance_ratio,
                    error))
     return false;
@@ -77,7 +89,9 @@ bool AvoidNode::start(std::string* error) {
   const bool ok = sub(cfg_.trajectory_channel, &AvoidNode::on_trajectory) &&
                   sub(cfg_.obstacles_channel, &AvoidNode::on_obstacles) &&
                   sub(cfg_.state_channel, &AvoidNode::on_state) &&
-                  sub(cfg_.map_channel, &AvoidNode::on_map);
+                  sub(cfg_.map_channel, &AvoidNode::on_map) &&
+                  sub(cfg_.request_channel, &AvoidNode::on_request) &&
+                  sub(cfg_.feasibility_channel, &AvoidNode::on_feasibility);
   return ok ? true : fail_with("cannot subscribe");
 }
 
@@ -114,16 +128,22 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
   Check c = decode(data, size, &m);
   if (c.ok() && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "trajectory for vehicle " + std::to_string(m.vehicle_id));
+  if (c.ok()) watch_.arrived(m.request_id);  // delivered, whatever it holds
   if (c.ok()) c = check_counts(m);
-  if (c.ok() && (m.status_code != 0 || m.n_samples < 2))
+  // Samples when the answer has them, else the compact form sampled at dt (compact.h).
+  const bool sampled = m.n_samples >= 2;
+  if (c.ok() && (m.status_code != 0 || (!sampled && m.n_pieces == 0)))
     c = fail(Reason::no_plan, "request " + std::to_string(m.request_id) + ": status " + m.status +
-                                  ", " + std::to_string(m.n_samples) + " samples");
-  if (c.ok() && static_cast<uint64_t>(m.n_samples) > cfg_.max_samples)
+                                  ", " + std::to_string(m.n_samples) + " samples, " +
+                                  std::to_string(m.n_pieces) + " profile pieces");
+  if (c.ok() && sampled && static_cast<uint64_t>(m.n_samples) > cfg_.max_samples)
     c = fail(Reason::over_capacity, std::to_string(m.n_samples) +
                                         " samples, more than the capacity of " +
                                         std::to_string(cfg_.max_samples));
   std::vector<tdo_sample> samples;
-  if (c.ok()) c = samples_from_msg(m, &samples);
+  if (c.ok())
+    c = sampled ? samples_from_msg(m, &samples)
+                : samples_from_compact(m, cfg_.max_samples, &samples);
   if (!c.ok()) {
     refuse("trajectory", c);
     return;
@@ -136,6 +156,18 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
   task_t0_ = state_.t;
   if (task_t0_set_) reset_task();
   if (have_task_) ++counters_.trajectories;
+}
+
+void AvoidNode::on_request(const void* data, std::size_t size) {
+  tdo::plan_request_t m{};
+  if (!decode(data, size, &m).ok() || m.vehicle_id != cfg_.vehicle_id) return;
+  watch_.promise(m.request_id, std::chrono::steady_clock::now());
+}
+
+void AvoidNode::on_feasibility(const void* data, std::size_t size) {
+  tdo::feasibility_t m{};
+  if (!decode(data, size, &m).ok() || m.vehicle_id != cfg_.vehicle_id) return;
+  watch_.promise(m.request_id, std::chrono::steady_clock::now());
 }
 
 void AvoidNode::on_obstacles(const void* data, std::size_t size) {
@@ -281,6 +313,11 @@ void AvoidNode::publish_status() {
 }
 
 void AvoidNode::poll(std::chrono::steady_clock::time_point now) {
+  if (const int64_t lost = watch_.expire(now); lost > 0) {
+    counters_.missing += lost;
+    counters_.rejected += lost;
+    counters_.reasons["trajectory.missing"] += lost;
+  }
   if (!cfg_.lockstep && now >= next_tick_) {
     tick();
     advance_deadline(&next_tick_, now, steady_seconds(1.0 / cfg_.rate_hz));
@@ -294,6 +331,8 @@ std::chrono::steady_clock::time_point AvoidNode::next_due() const {
   auto t = std::chrono::steady_clock::time_point::max();
   if (cfg_.heartbeat_period_s > 0.0) t = next_status_;
   if (!cfg_.lockstep && next_tick_ < t) t = next_tick_;
+  const auto deadline = watch_.next_deadline();
+  if (deadline < t) t = deadline;
   return t;
 }
 

@@ -26,6 +26,12 @@
  *  - a map that fails its checks (map_check against the grid's capacity): rejected, the previous
  *    map stays; a map the library refuses after the grid was reset: rejected, no static
  *    repulsion until the next good map.
+ * Delivery: a request for this vehicle on the request channel, or a feasibility report for it,
+ * promises a trajectory of the same request_id; one that has not arrived answer_timeout_s later
+ * is counted as a rejected trajectory with reason "trajectory.missing" (heartbeat), once per
+ * request (answer_watch.h). Those two channels are only watched: not counted in `received`,
+ * undecodable messages on them are left to the planner. A trajectory may carry samples or only
+ * the compact form (compact.h), which is sampled at its dt for the follower.
  * A new map (new map_id) is loaded into the grid and the current task is restarted on it with its
  * original time origin; the same map_id again is only counted as received.
  * Time: the follower's clock is seconds since the first accepted state's utime; movers are moved
@@ -43,6 +49,7 @@
 #include <string>
 #include <vector>
 
+#include "answer_watch.h"
 #include "tdo/tdo.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/check.h"
@@ -60,7 +67,10 @@ struct AvoidConfig {
   std::string map_channel = kChannelMap;               /**< static maps in */
   std::string setpoint_channel = kChannelSetpoint;     /**< setpoints out */
   std::string status_channel = kChannelStatus;         /**< heartbeats out */
-  tdo_follower_kind kind = TDO_FOLLOWER_EAPF;          /**< E-APF or classical APF */
+  std::string request_channel = kChannelPlanRequest;   /**< requests seen (promise a trajectory) */
+  std::string feasibility_channel = kChannelFeasibility; /**< reports seen (promise one too) */
+  double answer_timeout_s = 2.0; /**< s: a promised trajectory missing this long is reported */
+  tdo_follower_kind kind = TDO_FOLLOWER_EAPF; /**< E-APF or classical APF */
   double rate_hz = 50.0;            /**< Hz, steps per second; the follower's dt = 1 / rate */
   bool lockstep = false;            /**< one step per received state instead of the timer */
   double v_max = 3.0;               /**< m/s, speed limit of the setpoints */
@@ -83,6 +93,7 @@ struct AvoidConfig {
 /** Message counters, also sent in each heartbeat (status_t). */
 struct AvoidCounters {
   int64_t received = 0;      /**< messages on the four input channels */
+  int64_t missing = 0;       /**< promised trajectories that did not arrive in time (rejected) */
   int64_t maps_loaded = 0;   /**< maps loaded into the grid */
   int64_t trajectories = 0;  /**< trajectories accepted (follower reset) */
   int64_t setpoints = 0;     /**< setpoints published (heartbeat: answered) */
@@ -138,6 +149,8 @@ class AvoidNode {
   void on_obstacles(const void* data, std::size_t size);
   void on_state(const void* data, std::size_t size);
   void on_map(const void* data, std::size_t size);
+  void on_request(const void* data, std::size_t size);
+  void on_feasibility(const void* data, std::size_t size);
 
  private:
   void refuse(const std::string& what, const Check& c);
@@ -172,6 +185,8 @@ class AvoidNode {
   int64_t movers_utime_ = 0; /**< us, time of movers_ */
   std::vector<tdo_mover> movers_now_;
   double yaw_ = 0.0;
+
+  AnswerWatch watch_;
 
   tdo_apf_output last_out_{};
   AvoidCounters counters_;

@@ -42,6 +42,15 @@ int main(int argc, char** argv) {
   app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints out")
       ->capture_default_str();
   app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();
+  app.add_option("--request-channel", cfg.request_channel,
+                 "plan requests watched: one for this vehicle promises a trajectory")
+      ->capture_default_str();
+  app.add_option("--feasibility-channel", cfg.feasibility_channel,
+                 "feasibility reports watched: one for this vehicle promises a trajectory")
+      ->capture_default_str();
+  app.add_option("--answer-timeout", cfg.answer_timeout_s,
+                 "s: a promised trajectory missing this long is reported (trajectory.missing)")
+      ->capture_default_str();
   app.add_option("--heartbeat", cfg.heartbeat_period_s, "s between heartbeats (0 = none)")
       ->capture_default_str();
   app.add_option("--v-max", cfg.v_max, "m/s, speed limit")->capture_default_str();

@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
   app.add_option("--vehicle-id", vehicle_id, "vehicle of the requests")->capture_default_str();
   app.add_option("--dt", dt, "s, trajectory sample period of the requests (0 = the default)")
       ->capture_default_str();
+  bool samples = false;
+  app.add_flag("--samples", samples,
+               "ask for the sampled form too (SAMPLES_ON, ~280 kB answers on Map5) instead of the "
+               "compact form alone (~6 kB)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -147,8 +151,10 @@ int main(int argc, char** argv) {
     tdo_lcm::plan_request_to_msg(r, -1.0, &m);
     m.utime = now_us();
     m.request_id = id;
+    m.seq = id;
     m.vehicle_id = vehicle_id;
     m.map_id = map.map_id;
+    m.samples = samples ? tdo::plan_request_t::SAMPLES_ON : tdo::plan_request_t::SAMPLES_OFF;
     pending[id] = Pending{Clock::now()};
     bus.publish(tdo_lcm::kChannelPlanRequest, m);
   };
@@ -205,10 +211,11 @@ int main(int argc, char** argv) {
   const std::string mode = rate > 0.0 ? rate_buf : "closed loop (as fast as answered)";
   std::printf(
       "tdo-bench-lcm: %s, %s, %.1f s on %s: sent %lld, answered %lld (%lld not ok), lost %lld, "
-      "%.1f answers/s, dt %g s\n",
+      "%.1f answers/s, dt %g s, %s\n",
       map_path.c_str(), mode.c_str(), sending_s, url.c_str(), static_cast<long long>(sent),
       static_cast<long long>(answered), static_cast<long long>(failed),
-      static_cast<long long>(lost), static_cast<double>(answered) / sending_s, base.params.dt);
+      static_cast<long long>(lost), static_cast<double>(answered) / sending_s, base.params.dt,
+      samples ? "compact form + samples" : "compact form");
   std::printf(
       "  latency ms (request sent -> trajectory + report received): p50 %.2f  p90 %.2f  "
       "p99 %.2f  max %.2f\n",

@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "tdo/pipeline.h"
+#include "tdo/traj_profile.h"
+#include "tdo_lcm/compact.h"
 #include "tdo_lcm/node_status.h"
 #include "tdo_lcm/wire.h"
 #if TDO_LCM_HAVE_OCTOMAP
@@ -55,6 +57,8 @@ void PlannerNode::refuse(const std::string& what, const Check& c) {
   else
     ++counters_.rejected;
   ++counters_.reasons[what + "." + reason_str(c.reason)];
+  // Refused requests also by the field at fault ("field.v_max"; outside the rejected sum).
+  if (what == "request" && !c.field.empty()) ++counters_.reasons["field." + c.field];
 }
 
 void PlannerNode::answer(const tdo::trajectory_t& traj, const tdo::feasibility_t& feas) {
@@ -71,6 +75,8 @@ void PlannerNode::answer_error(const AnswerIds& ids, const std::string& what, co
   tdo::feasibility_t feas{};
   error_answer(ids, tdo::trajectory_t::STATUS_REJECTED, reason_str(c.reason), c.detail, &traj,
                &feas);
+  feas.refused_field = c.field;
+  feas.refused_reason = c.detail;
   answer(traj, feas);
 }
 
@@ -136,6 +142,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
   AnswerIds ids;
   ids.utime = wall_utime();
   ids.request_id = m.request_id;
+  ids.request_seq = m.seq;
   ids.vehicle_id = m.vehicle_id;
   ids.map_id = map_id();
 
@@ -170,7 +177,12 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
   tdo::trajectory_t traj{};
   tdo::feasibility_t feas{};
   ids.utime = wall_utime();
-  c = trajectory_to_msg(result, req, ids, plan_ms, &traj);
+  const bool with_samples = m.samples == tdo::plan_request_t::SAMPLES_ON;
+  c = trajectory_to_msg(result, req, ids, plan_ms, &traj, with_samples);
+  // A usable trajectory also travels in its compact form (compact.h).
+  const tdo_traj* traj_ctx = tdo_planner_trajectory(planner_);
+  if (c.ok() && st == TDO_OK && traj_ctx != nullptr)
+    c = compact_to_msg(result.path, traj_ctx, &traj);
   if (c.ok()) c = feasibility_to_msg(result, req, clearance, ids, &feas);
   if (!c.ok()) {
     answer_error(ids, "result", c);

@@ -12,7 +12,12 @@
  *    the planner has no map until the next good one;
  *  - a request for another vehicle (or a map for another vehicle): counted as ignored, no answer;
  *  - any other bad request, a request before any map or for another map id: counted as rejected
- *    and answered with status_code STATUS_REJECTED and the reason as status;
+ *    and answered with status_code STATUS_REJECTED and the reason as status; the feasibility
+ *    answer names the field at fault and why (refused_field, refused_reason), and the heartbeat
+ *    counts it by field too ("field.<name>", not part of the rejected + ignored sum);
+ *  - parameters whose use_defaults bit is set get libtdo's defaults (adapters.h); the answers
+ *    carry the request's seq (request_seq); samples only for SAMPLES_ON, the compact form always
+ *    for a usable trajectory (compact.h);
  *  - a valid request: answered with the library's status (ok, no_path, infeasible, ...).
  * Single-threaded: the handlers run inside Bus::handle_timeout, like poll(). The node subscribes
  * on its bus in start(); the bus must not dispatch after the node is gone (declare the bus first).

@@ -6,7 +6,9 @@
 // no_map), Map1, its default query, a request for another vehicle (ignored), a request with a NaN
 // goal (answered non_finite), a truncated request (counted, not answered), Map6's static part
 // (its 500 columns; the moving spheres are the follower's business), its default query with the
-// default parameters and with A* to the smoothing stage, and a last heartbeat.
+// default parameters, with A* to the smoothing stage, with only start and goal (use_defaults) and
+// with v_max 0 (refused, naming the field), and a last heartbeat. Map1's answer carries the
+// sampled form as well (SAMPLES_ON), the others only the compact form.
 // Rerun: tdo-make-replay-log --maps maps -o test/data/map6_run.lcmlog
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -34,6 +36,7 @@ tdo::plan_request_t make_request(int64_t id, int32_t vehicle, const tdo_vec3& st
   tdo_lcm::plan_request_to_msg(r, -1.0, &m);  // clearance: the map's hint
   m.utime = tdo_lcm::wall_utime();
   m.request_id = id;
+  m.seq = id;  // one request per id, in order
   m.vehicle_id = vehicle;
   m.map_id = -1;
   return m;
@@ -110,7 +113,10 @@ int main(int argc, char** argv) {
   send(cfg.request_channel, make_request(1, cfg.vehicle_id, info1.start, info1.goal));  // no_map
   map1.utime = tdo_lcm::wall_utime();
   send(cfg.map_channel, map1);
-  send(cfg.request_channel, make_request(2, cfg.vehicle_id, info1.start, info1.goal));
+  tdo::plan_request_t sampled = make_request(2, cfg.vehicle_id, info1.start, info1.goal);
+  sampled.samples =
+      tdo::plan_request_t::SAMPLES_ON;  // the sampled form too, compared sample by sample
+  send(cfg.request_channel, sampled);
   send(cfg.request_channel, make_request(3, cfg.vehicle_id + 1, info1.start, info1.goal));
   tdo::plan_request_t bad = make_request(4, cfg.vehicle_id, info1.start, info1.goal);
   bad.goal[2] = std::numeric_limits<double>::quiet_NaN();
@@ -129,6 +135,22 @@ int main(int argc, char** argv) {
   astar.search = tdo::plan_request_t::SEARCH_ASTAR;
   astar.depth = tdo::plan_request_t::DEPTH_SMOOTH;
   send(cfg.request_channel, astar);
+  // Only start and goal, every parameter left to the library's defaults (zeros elsewhere).
+  tdo::plan_request_t bare{};
+  bare.utime = tdo_lcm::wall_utime();
+  bare.request_id = 8;
+  bare.seq = 8;
+  bare.vehicle_id = cfg.vehicle_id;
+  bare.map_id = -1;
+  for (int a = 0; a < 3; ++a) {
+    bare.start[a] = (&info6.start.x)[a];
+    bare.goal[a] = (&info6.goal.x)[a];
+  }
+  bare.use_defaults = tdo::plan_request_t::USE_DEFAULT_ALL;
+  send(cfg.request_channel, bare);
+  tdo::plan_request_t slow = make_request(9, cfg.vehicle_id, info6.start, info6.goal);
+  slow.v_max = 0.0;  // refused, naming v_max
+  send(cfg.request_channel, slow);
   node.publish_status();
   pump();
 
@@ -140,5 +162,5 @@ int main(int argc, char** argv) {
                static_cast<long long>(c.answered), static_cast<long long>(c.succeeded),
                static_cast<long long>(c.failed), static_cast<long long>(c.rejected),
                static_cast<long long>(c.ignored));
-  return c.succeeded == 3 ? 0 : 1;
+  return c.succeeded == 4 ? 0 : 1;
 }

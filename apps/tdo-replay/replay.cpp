@@ -166,6 +166,22 @@ void compare(const tdo::trajectory_t& e, const tdo::trajectory_t& g, Differ* d) 
   d->num("flight_time_s", e.flight_time_s, g.flight_time_s);
   d->integer("expansions", e.expansions, g.expansions);
   d->num("search_cost", e.search_cost, g.search_cost);
+  d->integer("request_seq", e.request_seq, g.request_seq);
+  d->integer("n_segments", e.n_segments, g.n_segments);
+  d->values("segment_kind", e.segment_kind, g.segment_kind);
+  d->values("segment_s0", e.segment_s0, g.segment_s0);
+  d->values("segment_length", e.segment_length, g.segment_length);
+  d->values("segment_points", e.segment_points, g.segment_points);
+  d->integer("n_pieces", e.n_pieces, g.n_pieces);
+  d->values("piece_t0", e.piece_t0, g.piece_t0);
+  d->values("piece_dur", e.piece_dur, g.piece_dur);
+  d->values("piece_s0", e.piece_s0, g.piece_s0);
+  d->values("piece_v0", e.piece_v0, g.piece_v0);
+  d->values("piece_a0", e.piece_a0, g.piece_a0);
+  d->values("piece_j", e.piece_j, g.piece_j);
+  d->num("duration_s", e.duration_s, g.duration_s);
+  d->num("path_length_m", e.path_length_m, g.path_length_m);
+  d->integer("sample_count", e.sample_count, g.sample_count);
 }
 
 void compare(const tdo::feasibility_t& e, const tdo::feasibility_t& g, Differ* d) {
@@ -189,6 +205,9 @@ void compare(const tdo::feasibility_t& e, const tdo::feasibility_t& g, Differ* d
   d->values("violation_what", e.violation_what, g.violation_what);
   d->values("violation_value", e.violation_value, g.violation_value);
   d->values("violation_limit", e.violation_limit, g.violation_limit);
+  d->integer("request_seq", e.request_seq, g.request_seq);
+  d->str("refused_field", e.refused_field, g.refused_field);
+  d->str("refused_reason", e.refused_reason, g.refused_reason);
 }
 
 using Key = std::pair<int32_t, int64_t>;  // vehicle_id, request_id

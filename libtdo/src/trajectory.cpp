@@ -28,6 +28,8 @@
 
 #include <math.h>
 #include <string.h>
+
+#include "tdo/traj_profile.h"
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -1171,5 +1173,26 @@ extern "C" tdo_status tdo_traj_each_sample(const tdo_traj* ctx, tdo_sample_fn fn
     sampler_next(&g, &smp, &owner);
     fn(user, i, &smp);
   }
+  return TDO_OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Read-only access to the last run's profile (traj_profile.h).
+
+extern "C" tdo_status tdo_traj_profile(const tdo_traj* ctx, tdo_traj_profile_info* out) {
+  if (ctx == nullptr || out == nullptr || ctx->n_last == 0u) return TDO_ERR_INVALID_ARGUMENT;
+  out->n_pieces = ctx->n_phases;
+  out->n_samples = ctx->n_last;
+  out->dt = ctx->last_dt;
+  out->duration = ctx->last_dt * (ctx->n_last - 1u);  // as the sampler computes the last t
+  out->length = ctx->total;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_traj_piece_at(const tdo_traj* ctx, uint32_t index, tdo_traj_piece* out) {
+  if (ctx == nullptr || out == nullptr || ctx->n_last == 0u || index >= ctx->n_phases)
+    return TDO_ERR_INVALID_ARGUMENT;
+  const Phase& f = ctx->phases[index];
+  *out = tdo_traj_piece{f.t0, f.dur, f.s0, f.v0, f.a0, f.j};
   return TDO_OK;
 }

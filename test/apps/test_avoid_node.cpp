@@ -177,6 +177,103 @@ TEST_F(AvoidNodeTest, FollowsATrajectoryToItsEnd) {
   EXPECT_EQ(node_->counters().rejected, 0);
 }
 
+/** The compact form only (no samples): one line from `from` along x, 3 m in 5 s, rest to rest. */
+tdo::trajectory_t compact_line(int64_t request_id, tdo_vec3 from) {
+  tdo::trajectory_t m{};
+  m.request_id = request_id;
+  m.vehicle_id = kVehicle;
+  m.map_id = -1;
+  m.status = "ok";
+  m.reached = tdo::plan_request_t::DEPTH_TRAJECTORY;
+  m.dt = 0.01;
+  m.n_segments = 1;
+  m.segment_kind = {tdo::trajectory_t::SEGMENT_LINE};
+  m.segment_s0 = {0.0};
+  m.segment_length = {3.0};
+  m.n_segment_points = 12;
+  m.segment_points = {from.x, from.y, from.z, from.x + 3.0, from.y, from.z, 0, 0, 0, 0, 0, 0};
+  // Jerk +1, -1, 0, -1, +1 for 1 s each: 0 -> 1 m/s -> 0 over exactly 3 m.
+  m.n_pieces = 5;
+  m.piece_t0 = {0.0, 1.0, 2.0, 3.0, 4.0};
+  m.piece_dur = {1.0, 1.0, 1.0, 1.0, 1.0};
+  m.piece_s0 = {0.0, 1.0 / 6.0, 1.0, 2.0, 2.0 + 5.0 / 6.0};
+  m.piece_v0 = {0.0, 0.5, 1.0, 1.0, 0.5};
+  m.piece_a0 = {0.0, 1.0, 0.0, 0.0, -1.0};
+  m.piece_j = {1.0, -1.0, 0.0, -1.0, 1.0};
+  m.duration_s = 5.0;
+  m.path_length_m = 3.0;
+  m.sample_count = 501;
+  return m;
+}
+
+TEST_F(AvoidNodeTest, GivenACompactOnlyTrajectoryThenItIsSampledAndFollowed) {
+  const tdo_vec3 start{1, 5, 2};
+  send(cfg_.trajectory_channel, compact_line(43, start));
+  EXPECT_EQ(node_->counters().trajectories, 1);
+  EXPECT_EQ(node_->counters().rejected, 0);
+  tdo::vehicle_state_t st = state_at(kT0, start);
+  int k = 0;
+  for (; k < 1000; ++k) {
+    send(cfg_.state_channel, st);
+    ASSERT_FALSE(setpoints_.empty());
+    const tdo::setpoint_t& sp = setpoints_.back();
+    ASSERT_EQ(sp.request_id, 43);
+    st = state_at(st.utime + kStepUs, tdo_vec3{sp.position[0], sp.position[1], sp.position[2]},
+                  tdo_vec3{sp.velocity[0], sp.velocity[1], sp.velocity[2]},
+                  tdo_vec3{sp.acceleration[0], sp.acceleration[1], sp.acceleration[2]});
+    if (node_->last_output().mode == TDO_APF_MODE_ARRIVED) break;
+  }
+  ASSERT_LT(k, 1000) << "did not arrive";
+  EXPECT_NEAR(st.position[0], 4.0, 0.2);
+  // A compact form that does not check out is refused by name.
+  tdo::trajectory_t bad = compact_line(44, start);
+  bad.piece_dur[2] = -1.0;
+  send(cfg_.trajectory_channel, bad);
+  EXPECT_EQ(node_->counters().reasons.at("trajectory.out_of_range"), 1);
+  bad = compact_line(45, start);
+  bad.sample_count = 5000;  // over the capacity of 2000 samples
+  send(cfg_.trajectory_channel, bad);
+  EXPECT_EQ(node_->counters().reasons.at("trajectory.over_capacity"), 1);
+}
+
+TEST_F(AvoidNodeTest, GivenAPromisedTrajectoryThatNeverArrivesThenTrajectoryMissingIsReported) {
+  const auto now = std::chrono::steady_clock::now();
+  tdo::feasibility_t report{};  // the planner answered request 7 ...
+  report.request_id = 7;
+  report.vehicle_id = kVehicle;
+  report.status = "ok";
+  send(cfg_.feasibility_channel, report);  // ... but its trajectory was lost
+  tdo::feasibility_t other = report;       // another vehicle's answer promises nothing here
+  other.request_id = 8;
+  other.vehicle_id = kVehicle + 1;
+  send(cfg_.feasibility_channel, other);
+  tdo::plan_request_t req{};  // request 9 is seen, and its trajectory arrives in time
+  req.request_id = 9;
+  req.vehicle_id = kVehicle;
+  send(cfg_.request_channel, req);
+  send(cfg_.trajectory_channel, straight(9, tdo_vec3{2, 5, 2}, 1.0, 2.0));
+  send(cfg_.feasibility_channel, [] {
+    tdo::feasibility_t f{};
+    f.request_id = 9;
+    f.vehicle_id = kVehicle;
+    return f;
+  }());  // its report after the trajectory: nothing pending
+  EXPECT_LE(node_->next_due(), now + std::chrono::milliseconds(2100));  // woken for the deadline
+  node_->poll(now + std::chrono::milliseconds(1500));
+  EXPECT_EQ(node_->counters().missing, 0);
+  node_->poll(now + std::chrono::milliseconds(2500));
+  EXPECT_EQ(node_->counters().missing, 1);
+  node_->poll(now + std::chrono::milliseconds(5000));  // reported once
+  EXPECT_EQ(node_->counters().missing, 1);
+  const tdo::status_t h = node_->status_message();
+  bool named = false;
+  for (int32_t i = 0; i < h.n_reasons; ++i)
+    named |= h.reason[static_cast<std::size_t>(i)] == "trajectory.missing" &&
+             h.reason_count[static_cast<std::size_t>(i)] == 1;
+  EXPECT_TRUE(named);
+  EXPECT_EQ(h.rejected, 1);
+}
+
 TEST_F(AvoidNodeTest, MoversAreMovedOnToTheStateTimeAndRepel) {
   const tdo_vec3 p{2, 5, 2};
   send(cfg_.trajectory_channel, straight(42, p, 6.0, 5.0));

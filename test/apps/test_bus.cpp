@@ -6,6 +6,7 @@
 
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/types.h"
+#include "tdo_lcm/url.h"
 #include "tdo_lcm/wire.h"
 
 namespace {
@@ -54,3 +55,18 @@ TEST(Bus, BadUrl) {
 }
 
 }  // namespace
+
+TEST(Url, GivenAUdpmUrlWithoutReceiveBufferThenTheAppsBufferIsAdded) {
+  EXPECT_EQ(tdo_lcm::with_recv_buf("udpm://239.255.76.67:7667?ttl=0"),
+            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(tdo_lcm::with_recv_buf("udpm://239.255.76.67:7667"),
+            "udpm://239.255.76.67:7667?recv_buf_size=4194304");
+  // An explicit size stays; other providers are not touched.
+  EXPECT_EQ(tdo_lcm::with_recv_buf("udpm://239.255.76.67:7667?recv_buf_size=1000"),
+            "udpm://239.255.76.67:7667?recv_buf_size=1000");
+  EXPECT_EQ(tdo_lcm::with_recv_buf("memq://"), "memq://");
+  EXPECT_EQ(tdo_lcm::with_recv_buf("file:///tmp/x.lcmlog?speed=0"), "file:///tmp/x.lcmlog?speed=0");
+  // The default URL already has it.
+  EXPECT_EQ(tdo_lcm::with_recv_buf(tdo_lcm::kDefaultUrl), tdo_lcm::kDefaultUrl);
+  EXPECT_NE(std::string(tdo_lcm::kDefaultUrl).find("recv_buf_size=4194304"), std::string::npos);
+}

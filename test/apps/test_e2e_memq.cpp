@@ -83,6 +83,7 @@ class EndToEndMemq : public ::testing::Test {
     m.request_id = request_id;
     m.vehicle_id = 0;
     m.map_id = 6;
+    m.samples = tdo::plan_request_t::SAMPLES_ON;  // the checks below read the samples
     ASSERT_TRUE(bus_.publish(tdo_lcm::kChannelPlanRequest, m));
     pump();
   }

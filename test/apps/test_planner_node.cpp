@@ -57,8 +57,10 @@ tdo::plan_request_t request(int64_t id) {
   tdo::plan_request_t m{};
   tdo_lcm::plan_request_to_msg(r, -1.0, &m);
   m.request_id = id;
+  m.seq = 100 + id;
   m.vehicle_id = kVehicle;
   m.map_id = -1;
+  m.samples = tdo::plan_request_t::SAMPLES_ON;  // these tests read the samples
   return m;
 }
 
@@ -100,8 +102,13 @@ class PlannerNodeTest
     EXPECT_EQ(t.status, "ok") << t.detail;
     EXPECT_EQ(t.status_code, 0);
     EXPECT_GT(t.n_samples, 2);
+    EXPECT_EQ(t.sample_count, t.n_samples);
+    EXPECT_GT(t.n_segments, 0);
+    EXPECT_GT(t.n_pieces, 0);
+    EXPECT_EQ(t.request_seq, 100 + id);
     EXPECT_GE(t.n_waypoints, 2);
     EXPECT_EQ(inbox_.feas.back().request_id, id);
+    EXPECT_EQ(inbox_.feas.back().request_seq, 100 + id);
     EXPECT_TRUE(inbox_.feas.back().checked);
     EXPECT_TRUE(inbox_.feas.back().ok);
   }
@@ -456,6 +463,73 @@ TEST_F(PlannerNodeTest, RequestBeforeAnyMapAndForAnotherVehicleInTheHeartbeat) {
   send(cfg_.map_channel, wall_map(1));
   send(cfg_.request_channel, request(3));
   expect_planned(3);
+}
+
+TEST_F(PlannerNodeTest, GivenSamplesOffWhenPlannedThenOnlyTheCompactFormTravels) {
+  send(cfg_.map_channel, wall_map(5));
+  tdo::plan_request_t r = request(1);
+  r.samples = tdo::plan_request_t::SAMPLES_OFF;
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  const tdo::trajectory_t& t = inbox_.traj[0];
+  EXPECT_EQ(t.status, "ok") << t.detail;
+  EXPECT_EQ(t.n_samples, 0);
+  EXPECT_TRUE(t.samples.empty());
+  EXPECT_GT(t.sample_count, 2);
+  EXPECT_GT(t.n_pieces, 0);
+  EXPECT_EQ(t.n_segment_points, 12 * t.n_segments);
+  EXPECT_EQ(t.request_seq, 101);
+  r.samples = 2;  // neither SAMPLES_OFF nor SAMPLES_ON
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.feas.size(), 2u);
+  EXPECT_EQ(inbox_.traj[1].status, "bad_enum");
+  EXPECT_EQ(inbox_.feas[1].refused_field, "samples");
+}
+
+TEST_F(PlannerNodeTest, GivenOnlyStartAndGoalWithUseDefaultsThenPlannedWithTheLibrarysDefaults) {
+  send(cfg_.map_channel, wall_map(5));
+  tdo::plan_request_t bare{};  // every parameter zero
+  bare.request_id = 1;
+  bare.seq = 101;
+  bare.vehicle_id = kVehicle;
+  bare.map_id = -1;
+  bare.start[0] = bare.start[1] = bare.start[2] = 1.25;
+  bare.goal[0] = 8.75;
+  bare.goal[1] = bare.goal[2] = 1.25;
+  send(cfg_.request_channel, bare);  // zeros are not defaults: refused, naming a field
+  ASSERT_EQ(inbox_.feas.size(), 1u);
+  EXPECT_EQ(inbox_.traj[0].status, "out_of_range");
+  EXPECT_EQ(inbox_.feas[0].refused_field, "h_weight");
+  EXPECT_NE(inbox_.feas[0].refused_reason.find("must be >= 1"), std::string::npos)
+      << inbox_.feas[0].refused_reason;
+  EXPECT_EQ(heartbeat_reason("request.out_of_range"), 1);
+  EXPECT_EQ(heartbeat_reason("field.h_weight"), 1);
+  bare.use_defaults = tdo::plan_request_t::USE_DEFAULT_ALL;
+  bare.samples = tdo::plan_request_t::SAMPLES_ON;
+  send(cfg_.request_channel, bare);
+  expect_planned(1);
+  const tdo::trajectory_t with_defaults = inbox_.traj.back();
+  send(cfg_.request_channel, request(1));  // every default written out: the same plan
+  expect_planned(1);
+  EXPECT_EQ(inbox_.traj.back().samples, with_defaults.samples);
+  // One field given, the rest defaulted: v_max 1 m/s flies slower.
+  bare.use_defaults =
+      tdo::plan_request_t::USE_DEFAULT_ALL & ~tdo::plan_request_t::USE_DEFAULT_V_MAX;
+  bare.v_max = 1.0;
+  send(cfg_.request_channel, bare);
+  expect_planned(1);
+  EXPECT_GT(inbox_.traj.back().flight_time_s, with_defaults.flight_time_s);
+  // Bits beyond USE_DEFAULT_ALL and a refused v_max name their fields.
+  bare.use_defaults = tdo::plan_request_t::USE_DEFAULT_ALL + 1;
+  send(cfg_.request_channel, bare);
+  EXPECT_EQ(inbox_.feas.back().refused_field, "use_defaults");
+  bare.use_defaults =
+      tdo::plan_request_t::USE_DEFAULT_ALL & ~tdo::plan_request_t::USE_DEFAULT_V_MAX;
+  bare.v_max = 0.0;
+  send(cfg_.request_channel, bare);
+  EXPECT_EQ(inbox_.traj.back().status_code, tdo::trajectory_t::STATUS_REJECTED);
+  EXPECT_EQ(inbox_.feas.back().refused_field, "v_max");
+  EXPECT_EQ(heartbeat_reason("field.v_max"), 1);
 }
 
 }  // namespace

@@ -68,6 +68,7 @@ def request(rid, vehicle=0):
     r.smoothing, r.k = tdo.plan_request_t.SMOOTHING_G2, 1.0
     r.v_max, r.a_max, r.j_max, r.a_lat_max, r.v_cruise = 3.0, 3.0, 10.0, 3.0, 3.0
     r.stop_angle, r.dt, r.corner_time = math.radians(150), 0.01, 1.0
+    r.seq, r.samples = rid, tdo.plan_request_t.SAMPLES_ON  # the checks below read the samples
     return r
 
 

@@ -6,6 +6,8 @@
 #   -DEXTRA_FLAGS=       compile and link flags for the consumer (sanitizer runtimes)
 #   -DREADME=            README.md: its ```c block must be project/readme_example.c and its first
 #                        ```text block after it that program's output
+#   -DEXPECT_LCMTYPES=ON the build has the LCM apps: the message types must be installed and the
+#                        consumer's LCM node (tdo::lcmtypes alone) must build and run
 cmake_minimum_required(VERSION 3.20)
 
 foreach(var TDO_BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR GENERATOR README)
@@ -44,9 +46,22 @@ if(NOT "${EXTRA_FLAGS}" STREQUAL "")
   list(APPEND configure "-DCMAKE_C_FLAGS=${EXTRA_FLAGS}" "-DCMAKE_CXX_FLAGS=${EXTRA_FLAGS}"
        "-DCMAKE_EXE_LINKER_FLAGS=${EXTRA_FLAGS}")
 endif()
+if(EXPECT_LCMTYPES)
+  list(APPEND configure "-DTDO_EXPECT_LCMTYPES=ON")
+endif()
 run_step("configure" ${configure})
 run_step("build" "${CMAKE_COMMAND}" --build "${build}")
 run_step("run" "${build}/tdo_consumer")
+if(EXPECT_LCMTYPES)
+  run_step("run the LCM node" "${build}/tdo_lcm_node")
+  foreach(f share/tdo/lcmtypes/tdo_trajectory_t.lcm include/tdo_lcmtypes/tdo_trajectory_t.h
+            include/tdo_lcmtypes/tdo/trajectory_t.hpp include/tdo_lcmtypes/tdo_traj_eval.h
+            share/tdo/python/tdo/trajectory_t.py)
+    if(NOT EXISTS "${prefix}/${f}")
+      message(FATAL_ERROR "[consumer] not installed: ${f}")
+    endif()
+  endforeach()
+endif()
 
 # The README's example: the source it shows, and the output it shows, byte for byte.
 function(readme_block fence from out_text out_end)

@@ -55,12 +55,13 @@ std::string idx(const char* name, std::size_t i) {
 
 Check need_finite(const char* name, double v) {
   if (std::isfinite(v)) return {};
-  return fail(Reason::non_finite, std::string(name) + " = " + num(v));
+  return fail_field(Reason::non_finite, name, std::string(name) + " = " + num(v));
 }
 
 Check need_finite3(const char* name, const double* v) {
   for (std::size_t i = 0; i < 3; ++i)
-    if (!std::isfinite(v[i])) return fail(Reason::non_finite, idx(name, i) + " = " + num(v[i]));
+    if (!std::isfinite(v[i]))
+      return fail_field(Reason::non_finite, idx(name, i), idx(name, i) + " = " + num(v[i]));
   return {};
 }
 
@@ -334,14 +335,100 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid) {
 
 // ---- plan requests ---------------------------------------------------------------------------
 
-Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, tdo_plan_request* out,
-                            double* clearance) {
+namespace {
+
+/** `m` with libtdo's default in every field whose use_defaults bit is set (pipeline.h). */
+tdo::plan_request_t with_defaults(const tdo::plan_request_t& in) {
+  using R = tdo::plan_request_t;
+  tdo::plan_request_t m = in;
+  const int32_t u = in.use_defaults;
+  if (u == 0) return m;
+  tdo_plan_params d{};
+  tdo_plan_params_default(&d);
+  const auto on = [u](int32_t bit) { return (u & bit) != 0; };
+  if (on(R::USE_DEFAULT_DEPTH)) m.depth = static_cast<int8_t>(d.depth);
+  if (on(R::USE_DEFAULT_SEARCH)) m.search = static_cast<int8_t>(d.search);
+  if (on(R::USE_DEFAULT_LAMBDA_TURN)) m.lambda_turn = d.lambda;
+  if (on(R::USE_DEFAULT_MU)) m.mu = d.mu;
+  if (on(R::USE_DEFAULT_THETA_MAX)) m.theta_max = d.theta_max;
+  if (on(R::USE_DEFAULT_D_TH)) m.d_th = d.d_th;
+  if (on(R::USE_DEFAULT_H_WEIGHT)) m.h_weight = d.h_weight;
+  if (on(R::USE_DEFAULT_FIRST_MEET)) m.first_meet = d.first_meet != 0;
+  if (on(R::USE_DEFAULT_GRID_FIRST)) m.grid_first = static_cast<int8_t>(d.grid_first);
+  if (on(R::USE_DEFAULT_MAX_EXPANSIONS)) m.max_expansions = static_cast<int32_t>(d.max_expansions);
+  if (on(R::USE_DEFAULT_CORRECTION)) m.correction = static_cast<int8_t>(d.correction);
+  if (on(R::USE_DEFAULT_SHORTEN)) m.shorten = d.shorten != 0;
+  if (on(R::USE_DEFAULT_TURN_THRESHOLD)) m.turn_threshold = d.turn_threshold;
+  if (on(R::USE_DEFAULT_SMOOTHING)) m.smoothing = static_cast<int8_t>(d.smoothing);
+  if (on(R::USE_DEFAULT_K)) m.k = d.k;
+  if (on(R::USE_DEFAULT_V_MAX)) m.v_max = d.v_max;
+  if (on(R::USE_DEFAULT_A_MAX)) m.a_max = d.a_max;
+  if (on(R::USE_DEFAULT_J_MAX)) m.j_max = d.j_max;
+  // pipeline.h: a_lat_max defaults to a_max, v_cruise to v_max (the request's, once resolved).
+  if (on(R::USE_DEFAULT_A_LAT_MAX)) m.a_lat_max = m.a_max;
+  if (on(R::USE_DEFAULT_V_CRUISE)) m.v_cruise = m.v_max;
+  if (on(R::USE_DEFAULT_STOP_ANGLE)) m.stop_angle = d.stop_angle;
+  if (on(R::USE_DEFAULT_DT)) m.dt = d.dt;
+  if (on(R::USE_DEFAULT_CLEARANCE)) m.clearance = -1.0;  // the map's hint
+  if (on(R::USE_DEFAULT_STATES)) m.states = static_cast<int8_t>(d.states);
+  if (on(R::USE_DEFAULT_CORNER_TIME)) m.corner_time = d.corner_time;
+  return m;
+}
+
+/** The library's documented ranges (tdo_planner_plan) of the stages the request's depth runs,
+ *  checked here so that a refusal names the field. */
+Check library_ranges(const tdo::plan_request_t& m) {
+  using R = tdo::plan_request_t;
+  const struct {
+    const char* name;
+    double value;
+    double min;
+    bool strict;   // value must be > min (else >= min)
+    int8_t depth;  // checked when the request runs this stage
+  } ranges[] = {{"lambda_turn", m.lambda_turn, 0.0, false, R::DEPTH_SEARCH},
+                {"mu", m.mu, 0.0, false, R::DEPTH_SEARCH},
+                {"theta_max", m.theta_max, 0.0, false, R::DEPTH_SEARCH},
+                {"d_th", m.d_th, 0.0, false, R::DEPTH_SEARCH},
+                {"h_weight", m.h_weight, 1.0, false, R::DEPTH_SEARCH},
+                {"turn_threshold", m.turn_threshold, 0.0, false, R::DEPTH_CORRECT},
+                {"k", m.k, 0.0, true, R::DEPTH_SMOOTH},
+                {"v_max", m.v_max, 0.0, true, R::DEPTH_SMOOTH},
+                {"a_max", m.a_max, 0.0, true, R::DEPTH_SMOOTH},
+                {"j_max", m.j_max, 0.0, true, R::DEPTH_SMOOTH},
+                {"a_lat_max", m.a_lat_max, 0.0, true, R::DEPTH_SMOOTH},
+                {"v_cruise", m.v_cruise, 0.0, true, R::DEPTH_SMOOTH},
+                {"stop_angle", m.stop_angle, 0.0, true, R::DEPTH_SMOOTH},
+                {"dt", m.dt, 0.0, true, R::DEPTH_TRAJECTORY}};
+  for (const auto& r : ranges) {
+    if (m.depth < r.depth) continue;
+    const bool in = r.strict ? r.value > r.min : r.value >= r.min;
+    if (!in)
+      return fail_field(Reason::out_of_range, r.name,
+                        std::string(r.name) + " = " + num(r.value) + ": must be " +
+                            (r.strict ? "> " : ">= ") + num(r.min));
+  }
+  if (m.depth >= R::DEPTH_SMOOTH && !(m.corner_time >= 0.0 && m.corner_time <= 1.0))
+    return fail_field(Reason::out_of_range, "corner_time",
+                      "corner_time = " + num(m.corner_time) + ": must be in [0, 1]");
+  return {};
+}
+
+}  // namespace
+
+Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
+                            tdo_plan_request* out, double* clearance) {
+  if (msg.use_defaults < 0 || msg.use_defaults > tdo::plan_request_t::USE_DEFAULT_ALL)
+    return fail_field(
+        Reason::out_of_range, "use_defaults",
+        "use_defaults " + std::to_string(msg.use_defaults) + ": bits outside USE_DEFAULT_ALL");
+  const tdo::plan_request_t m = with_defaults(msg);
   if (m.vehicle_id != vehicle_id)
     return fail(Reason::other_vehicle, "request for vehicle " + std::to_string(m.vehicle_id) +
                                            ", this planner serves vehicle " +
                                            std::to_string(vehicle_id));
   if (m.map_id < -1)
-    return fail(Reason::out_of_range, "map_id " + std::to_string(m.map_id) + " < -1");
+    return fail_field(Reason::out_of_range, "map_id",
+                      "map_id " + std::to_string(m.map_id) + " < -1");
   Check c = need_finite3("start", m.start);
   if (c.ok()) c = need_finite3("goal", m.goal);
   if (!c.ok()) return c;
@@ -370,25 +457,29 @@ Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, td
   }
   if (m.depth < tdo::plan_request_t::DEPTH_SEARCH ||
       m.depth > tdo::plan_request_t::DEPTH_TRAJECTORY)
-    return fail(Reason::bad_enum, "depth " + std::to_string(m.depth));
+    return fail_field(Reason::bad_enum, "depth", "depth " + std::to_string(m.depth));
   if (m.search != tdo::plan_request_t::SEARCH_ASTAR &&
       m.search != tdo::plan_request_t::SEARCH_BIDIR)
-    return fail(Reason::bad_enum, "search " + std::to_string(m.search));
+    return fail_field(Reason::bad_enum, "search", "search " + std::to_string(m.search));
   if (m.correction < tdo::plan_request_t::CORRECT_MULTISCALE ||
       m.correction > tdo::plan_request_t::CORRECT_NONE)
-    return fail(Reason::bad_enum, "correction " + std::to_string(m.correction));
+    return fail_field(Reason::bad_enum, "correction", "correction " + std::to_string(m.correction));
   if (m.smoothing < tdo::plan_request_t::SMOOTHING_G2 ||
       m.smoothing > tdo::plan_request_t::SMOOTHING_NONE)
-    return fail(Reason::bad_enum, "smoothing " + std::to_string(m.smoothing));
+    return fail_field(Reason::bad_enum, "smoothing", "smoothing " + std::to_string(m.smoothing));
   if (m.grid_first < tdo::plan_request_t::GRID_FIRST_OFF ||
       m.grid_first > tdo::plan_request_t::GRID_FIRST_TERMS)
-    return fail(Reason::bad_enum, "grid_first " + std::to_string(m.grid_first));
+    return fail_field(Reason::bad_enum, "grid_first", "grid_first " + std::to_string(m.grid_first));
   if (m.states < tdo::plan_request_t::STATES_HEADING ||
       m.states > tdo::plan_request_t::STATES_VOXEL)
-    return fail(Reason::bad_enum, "states " + std::to_string(m.states));
+    return fail_field(Reason::bad_enum, "states", "states " + std::to_string(m.states));
   if (m.max_expansions < 0)
-    return fail(Reason::out_of_range,
-                "max_expansions " + std::to_string(m.max_expansions) + " < 0");
+    return fail_field(Reason::out_of_range, "max_expansions",
+                      "max_expansions " + std::to_string(m.max_expansions) + " < 0");
+  if (m.samples != tdo::plan_request_t::SAMPLES_OFF && m.samples != tdo::plan_request_t::SAMPLES_ON)
+    return fail_field(Reason::bad_enum, "samples", "samples " + std::to_string(m.samples));
+  c = library_ranges(m);
+  if (!c.ok()) return c;
 
   tdo_plan_request r{};
   r.start = tdo_vec3{m.start[0], m.start[1], m.start[2]};
@@ -462,10 +553,11 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
 // ---- answers ---------------------------------------------------------------------------------
 
 Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, const AnswerIds& ids,
-                        double plan_ms, tdo::trajectory_t* out) {
+                        double plan_ms, tdo::trajectory_t* out, bool with_samples) {
   tdo::trajectory_t t{};
   t.utime = ids.utime;
   t.request_id = ids.request_id;
+  t.request_seq = ids.request_seq;
   t.vehicle_id = ids.vehicle_id;
   t.map_id = ids.map_id;
   t.status_code = static_cast<int32_t>(r.status);
@@ -474,13 +566,14 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
   Check c = copy_points("grid_path", r.grid_path, r.n_grid_path, &t.n_grid_path, &t.grid_path);
   if (c.ok())
     c = copy_points("waypoints", r.waypoints, r.n_waypoints, &t.n_waypoints, &t.waypoints);
-  if (c.ok()) c = count_of("samples", r.n_samples, &t.n_samples);
+  if (c.ok() && with_samples) c = count_of("samples", r.n_samples, &t.n_samples);
   if (!c.ok()) return c;
-  if (r.n_samples > 0 && r.samples == nullptr)
+  if (with_samples && r.n_samples > 0 && r.samples == nullptr)
     return fail(Reason::count_mismatch, "samples: no array for " + std::to_string(r.n_samples));
   t.dt = req.params.dt;
-  t.samples.assign(r.n_samples, std::vector<double>(10, 0.0));
-  for (uint32_t i = 0; i < r.n_samples; ++i) {
+  const uint32_t n_samples = with_samples ? r.n_samples : 0u;
+  t.samples.assign(n_samples, std::vector<double>(10, 0.0));
+  for (uint32_t i = 0; i < n_samples; ++i) {
     const tdo_sample& s = r.samples[i];
     const std::vector<double> row = {s.t,   s.p.x, s.p.y, s.p.z, s.v.x,
                                      s.v.y, s.v.z, s.a.x, s.a.y, s.a.z};
@@ -528,6 +621,7 @@ Check feasibility_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, 
   tdo::feasibility_t f{};
   f.utime = ids.utime;
   f.request_id = ids.request_id;
+  f.request_seq = ids.request_seq;
   f.vehicle_id = ids.vehicle_id;
   f.status_code = static_cast<int32_t>(r.status);
   f.status = tdo_status_str(r.status);
@@ -584,6 +678,7 @@ void error_answer(const AnswerIds& ids, int32_t status_code, const std::string& 
     *traj = tdo::trajectory_t{};
     traj->utime = ids.utime;
     traj->request_id = ids.request_id;
+    traj->request_seq = ids.request_seq;
     traj->vehicle_id = ids.vehicle_id;
     traj->map_id = ids.map_id;
     traj->status_code = status_code;
@@ -595,6 +690,7 @@ void error_answer(const AnswerIds& ids, int32_t status_code, const std::string& 
     *feas = tdo::feasibility_t{};
     feas->utime = ids.utime;
     feas->request_id = ids.request_id;
+    feas->request_seq = ids.request_seq;
     feas->vehicle_id = ids.vehicle_id;
     feas->status_code = status_code;
     feas->status = status;
@@ -644,6 +740,14 @@ Check check_counts(const tdo::trajectory_t& m) {
   Check c = need_rows("grid_path", m.n_grid_path, m.grid_path, 3);
   if (c.ok()) c = need_rows("waypoints", m.n_waypoints, m.waypoints, 3);
   if (c.ok()) c = need_rows("samples", m.n_samples, m.samples, 10);
+  // The compact form (compact.h): every array against its count.
+  if (c.ok()) c = need_count("segment_kind", m.n_segments, m.segment_kind.size());
+  if (c.ok()) c = need_count("segment_s0", m.n_segments, m.segment_s0.size());
+  if (c.ok()) c = need_count("segment_length", m.n_segments, m.segment_length.size());
+  if (c.ok()) c = need_count("segment_points", m.n_segment_points, m.segment_points.size());
+  for (const auto* v :
+       {&m.piece_t0, &m.piece_dur, &m.piece_s0, &m.piece_v0, &m.piece_a0, &m.piece_j})
+    if (c.ok()) c = need_count("piece_*", m.n_pieces, v->size());
   return c;
 }
 

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <utility>
 
+#include "tdo_lcm/url.h"
+
 namespace tdo_lcm {
 namespace {
 
@@ -22,9 +24,10 @@ std::string exact(const std::string& channel) {
 
 }  // namespace
 
+// udpm:// URLs get a receive buffer that fits the largest messages (url.h).
 Bus::Bus(const std::string& url, int queue_capacity)
     : capacity_(std::clamp(queue_capacity, 1, INT32_MAX / kDropCountFactor)),
-      lcm_(lcm_create(url.c_str())) {}
+      lcm_(lcm_create(with_recv_buf(url).c_str())) {}
 
 Bus::~Bus() {
   if (lcm_ == nullptr) return;

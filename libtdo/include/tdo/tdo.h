@@ -19,6 +19,7 @@
 #include "tdo/sim.h"
 #include "tdo/smooth.h"
 #include "tdo/status.h"
+#include "tdo/traj_profile.h"
 #include "tdo/trajectory.h"
 #include "tdo/types.h"
 

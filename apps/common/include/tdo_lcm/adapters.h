@@ -78,9 +78,14 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid);
  * @param vehicle_id the vehicle this planner serves
  * @param[out] out start, goal and every parameter
  * @param[out] clearance m, the requested clearance (< 0: use the map's hint)
- * @return ok; other_vehicle (checked first); non_finite (naming the field); out_of_range
- *         (negative max_expansions or map_id < -1); bad_enum (depth, search, correction,
- *         smoothing). Library-level ranges (v_max > 0, ...) are left to tdo_planner_plan.
+ *        Fields whose bit is set in use_defaults get libtdo's defaults first
+ *        (tdo_plan_params_default; a_lat_max = a_max and v_cruise = v_max as pipeline.h says;
+ *        clearance -1, the map's hint); their values in `m` are ignored.
+ * @return ok; out_of_range (use_defaults bits beyond USE_DEFAULT_ALL); other_vehicle; non_finite;
+ *         out_of_range (negative max_expansions, map_id < -1, or a parameter outside the range
+ *         tdo_planner_plan documents for the stages `depth` runs: v_max > 0, h_weight >= 1, ...);
+ *         bad_enum (depth, search, correction, smoothing, grid_first, samples). Every refusal
+ *         but other_vehicle names the field in Check::field.
  */
 Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, tdo_plan_request* out,
                             double* clearance);
@@ -93,21 +98,24 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
 
 /** Identity of an answer: copied from the request. */
 struct AnswerIds {
-  int64_t utime = 0;       /**< us since the epoch, when the answer is sent */
-  int64_t request_id = -1; /**< of the request */
-  int32_t vehicle_id = 0;  /**< of the request */
-  int64_t map_id = -1;     /**< map planned on; -1 = none */
+  int64_t utime = 0;        /**< us since the epoch, when the answer is sent */
+  int64_t request_id = -1;  /**< of the request */
+  int64_t request_seq = -1; /**< plan_request_t.seq of the request */
+  int32_t vehicle_id = 0;   /**< of the request */
+  int64_t map_id = -1;      /**< map planned on; -1 = none */
 };
 
 /**
- * @brief A plan result -> trajectory message (status, paths, samples, metrics).
+ * @brief A plan result -> trajectory message (status, paths, samples, metrics). The compact form
+ *        is compact.h's compact_to_msg.
  * @param plan_ms ms, wall time of the library call
+ * @param with_samples false: n_samples 0 and no samples (the request's SAMPLES_OFF)
  * @return ok; too_large (a count above INT32_MAX); non_finite (a path point or sample, or a NaN
  *         metric; metrics may be +inf where the library documents HUGE_VAL); count_mismatch (a
  *         null array with a non-zero count).
  */
 Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, const AnswerIds& ids,
-                        double plan_ms, tdo::trajectory_t* out);
+                        double plan_ms, tdo::trajectory_t* out, bool with_samples = true);
 
 /**
  * @brief A plan result -> feasibility message (maxima, limits, violations).

@@ -43,7 +43,8 @@ class Bus {
   static constexpr int kDropCountFactor = 4;
 
   /**
-   * Connect to `url` (memq://, udpm://..., file://LOG?speed=0); check good().
+   * Connect to `url` (memq://, udpm://..., file://LOG?speed=0); check good(). A udpm:// URL
+   * without recv_buf_size gets url.h's kRecvBufBytes.
    * @param queue_capacity messages each subscription queue holds (>= 1; smaller values: 1)
    */
   explicit Bus(const std::string& url, int queue_capacity = kDefaultQueueCapacity);

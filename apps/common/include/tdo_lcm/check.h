@@ -50,12 +50,20 @@ const char* reason_str(Reason reason);
 struct Check {
   Reason reason = Reason::ok;
   std::string detail; /**< empty when ok */
+  std::string field;  /**< the message field at fault ("v_max", "start[2]"), when one is */
 
   bool ok() const { return reason == Reason::ok; }
 };
 
 /** @return a failed check. */
-inline Check fail(Reason reason, std::string detail) { return Check{reason, std::move(detail)}; }
+inline Check fail(Reason reason, std::string detail) {
+  return Check{reason, std::move(detail), {}};
+}
+
+/** @return a failed check naming the field at fault. */
+inline Check fail_field(Reason reason, std::string field, std::string detail) {
+  return Check{reason, std::move(detail), std::move(field)};
+}
 
 }  // namespace tdo_lcm
 

@@ -40,8 +40,9 @@ inline constexpr const char* kChannelVehicleState = "TDO_UAV_STATE";
 inline constexpr const char* kChannelSetpoint = "TDO_SETPOINT";
 inline constexpr const char* kChannelStatus = "TDO_STATUS";
 
-/** Default LCM URL: UDP multicast that stays on this host (ttl=0). */
-inline constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+/** Default LCM URL: UDP multicast that stays on this host (ttl=0), with a 4 MB receive buffer
+ *  that holds the largest messages (url.h; Bus adds it to any udpm:// URL without one). */
+inline constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
 /** The generated C type info of a C++ message type (same fingerprint, same wire layout). */
 template <class Msg>
