@@ -88,7 +88,7 @@ int main(void) {
   memset(&r, 0, sizeof r);
   r.use_defaults = TDO_PLAN_REQUEST_T_USE_DEFAULT_ALL;
   if (received != 1 || fabs(end_x - 3.0) > 1e-12 || fabs(mid_v - 1.0) > 1e-12 ||
-      r.use_defaults != 16777215) {
+      r.use_defaults != 33554431) {
     fprintf(stderr, "lcm node: received %d, end x %g, v(2.5 s) %g\n", received, end_x, mid_v);
     return 1;
   }
