@@ -486,6 +486,20 @@ TEST_F(PlannerNodeTest, GivenSamplesOffWhenPlannedThenOnlyTheCompactFormTravels)
   EXPECT_EQ(inbox_.feas[1].refused_field, "samples");
 }
 
+TEST_F(PlannerNodeTest, GivenACornerTimeOutsideZeroToOneThenRefusedNamingTheField) {
+  send(cfg_.map_channel, wall_map(5));
+  tdo::plan_request_t r = request(1);
+  r.corner_time = 1.5;
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.feas.size(), 1u);
+  EXPECT_EQ(inbox_.traj[0].status, "out_of_range");
+  EXPECT_EQ(inbox_.feas[0].refused_field, "corner_time");
+  EXPECT_EQ(heartbeat_reason("field.corner_time"), 1);
+  r.corner_time = 0.0;  // the previous corner shapes: valid
+  send(cfg_.request_channel, r);
+  expect_planned(1);
+}
+
 TEST_F(PlannerNodeTest, GivenOnlyStartAndGoalWithUseDefaultsThenPlannedWithTheLibrarysDefaults) {
   send(cfg_.map_channel, wall_map(5));
   tdo::plan_request_t bare{};  // every parameter zero
