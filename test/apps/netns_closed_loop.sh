@@ -9,19 +9,9 @@
 #
 #   netns_closed_loop.sh REPO BUILD_DIR VENV_PYTHON PYDIR SCRATCH [N_REQUESTS]
 set -euo pipefail
-if [[ "${1:-}" != "--inside" ]]; then
-  for way in "unshare -n" "unshare -rn"; do
-    if $way true 2>/dev/null && $way bash -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo' 2>/dev/null; then
-      exec $way bash "$0" --inside "$@"
-    fi
-  done
-  echo "SKIPPED: cannot create a private network namespace (unshare -n / -rn not permitted here)"
-  exit 77
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/netns_enter.sh" "$0" "$@"
 shift
 repo="$1" build="$2" python="$3" pydir="$4" scratch="$5" n="${6:-200}"
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
 mkdir -p "$scratch"
 rm -f "$scratch"/*.lcmlog "$scratch"/*.err
 cd "$repo"

@@ -6,20 +6,10 @@
 #
 #   netns_udp.sh TDO_PLANNER TDO_PUBLISH_MAP TDO_REPLAY VENV_PYTHON LCM_LOGGER PYDIR MAP SCRATCH
 set -euo pipefail
-if [[ "${1:-}" != "--inside" ]]; then
-  for way in "unshare -n" "unshare -rn"; do
-    if $way true 2>/dev/null && $way bash -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo' 2>/dev/null; then
-      exec $way bash "$0" --inside "$@"
-    fi
-  done
-  echo "SKIPPED: cannot create a private network namespace (unshare -n / -rn not permitted here)"
-  exit 77
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/netns_enter.sh" "$0" "$@"
 shift
 planner="$1" publish_map="$2" replay="$3" python="$4" logger="$5" pydir="$6" map="$7" scratch="$8"
 
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
 # Answers carry thousands of samples (~270 kB): a receive buffer of 4 MB (the kernel's rmem_max
 # here) or UDP drops fragments under load (docs/design.md s.11).
 url="udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"

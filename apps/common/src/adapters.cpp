@@ -43,25 +43,19 @@ static_assert(sizeof(tdo_plan_params) == 160, "tdo_plan_params changed: update p
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
-
 std::string idx(const char* name, std::size_t i) {
   return std::string(name) + "[" + std::to_string(i) + "]";
 }
 
 Check need_finite(const char* name, double v) {
   if (std::isfinite(v)) return {};
-  return fail_field(Reason::non_finite, name, std::string(name) + " = " + num(v));
+  return fail_field(Reason::non_finite, name, std::string(name) + " = " + exact_num(v));
 }
 
 Check need_finite3(const char* name, const double* v) {
   for (std::size_t i = 0; i < 3; ++i)
     if (!std::isfinite(v[i]))
-      return fail_field(Reason::non_finite, idx(name, i), idx(name, i) + " = " + num(v[i]));
+      return fail_field(Reason::non_finite, idx(name, i), idx(name, i) + " = " + exact_num(v[i]));
   return {};
 }
 
@@ -120,8 +114,8 @@ uint64_t stencil_cells(double clearance, double res, uint64_t cap) {
 Check check_box(std::size_t i, const double* b) {
   for (std::size_t a = 0; a < 6; ++a)
     if (!std::isfinite(b[a]))
-      return fail(Reason::non_finite,
-                  "boxes[" + std::to_string(i) + "][" + std::to_string(a) + "] = " + num(b[a]));
+      return fail(Reason::non_finite, "boxes[" + std::to_string(i) + "][" + std::to_string(a) +
+                                          "] = " + exact_num(b[a]));
   static const char* const kAxis[3] = {"x", "y", "z"};
   for (std::size_t a = 0; a < 3; ++a)
     if (!(b[a + 3] > b[a]))
@@ -137,7 +131,7 @@ Check check_desc(const tdo_grid_desc& d) {
                                           ": each must be > 0");
   Check c = need_finite("resolution", d.res);
   if (!c.ok()) return c;
-  if (!(d.res > 0.0)) return fail(Reason::out_of_range, "resolution " + num(d.res) + " <= 0");
+  if (!(d.res > 0.0)) return fail(Reason::out_of_range, "resolution " + exact_num(d.res) + " <= 0");
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
   return need_finite3("origin", o);
 }
@@ -183,11 +177,12 @@ Check clearance_check(double clearance, double res, const tdo_capacity& cap) {
   Check c = need_finite("clearance", clearance);
   if (c.ok()) c = need_finite("resolution", res);
   if (!c.ok()) return c;
-  if (clearance < 0.0) return fail(Reason::out_of_range, "clearance " + num(clearance) + " < 0");
-  if (!(res > 0.0)) return fail(Reason::out_of_range, "resolution " + num(res) + " <= 0");
+  if (clearance < 0.0)
+    return fail(Reason::out_of_range, "clearance " + exact_num(clearance) + " < 0");
+  if (!(res > 0.0)) return fail(Reason::out_of_range, "resolution " + exact_num(res) + " <= 0");
   if (stencil_cells(clearance, res, cap.max_clear_cells) > cap.max_clear_cells)
-    return fail(Reason::map_capacity, "clearance " + num(clearance) + " m at resolution " +
-                                          num(res) + " m needs more than " +
+    return fail(Reason::map_capacity, "clearance " + exact_num(clearance) + " m at resolution " +
+                                          exact_num(res) + " m needs more than " +
                                           std::to_string(cap.max_clear_cells) + " stencil cells");
   return {};
 }
@@ -207,7 +202,7 @@ Check map_check(const tdo::map_t& m, const tdo_capacity& cap, double clearance) 
   c = need_finite("clearance", m.clearance);
   if (!c.ok()) return c;
   if (m.clearance < 0.0)
-    return fail(Reason::out_of_range, "clearance " + num(m.clearance) + " < 0");
+    return fail(Reason::out_of_range, "clearance " + exact_num(m.clearance) + " < 0");
   const double clear = effective_clearance(m, clearance);
   c = need_finite("requested clearance", clear);
   if (!c.ok()) return c;
@@ -278,7 +273,8 @@ Check map_from_occupancy(const tdo_grid_desc& desc, const std::vector<uint8_t>& 
   if (!c.ok()) return c;
   c = need_finite("clearance", clearance);
   if (!c.ok()) return c;
-  if (clearance < 0.0) return fail(Reason::out_of_range, "clearance " + num(clearance) + " < 0");
+  if (clearance < 0.0)
+    return fail(Reason::out_of_range, "clearance " + exact_num(clearance) + " < 0");
   const uint64_t n = static_cast<uint64_t>(desc.nx) * static_cast<uint64_t>(desc.ny) *
                      static_cast<uint64_t>(desc.nz);
   if (!occupancy.empty() && occupancy.size() != n)
@@ -404,12 +400,12 @@ Check library_ranges(const tdo::plan_request_t& m) {
     const bool in = r.strict ? r.value > r.min : r.value >= r.min;
     if (!in)
       return fail_field(Reason::out_of_range, r.name,
-                        std::string(r.name) + " = " + num(r.value) + ": must be " +
-                            (r.strict ? "> " : ">= ") + num(r.min));
+                        std::string(r.name) + " = " + exact_num(r.value) + ": must be " +
+                            (r.strict ? "> " : ">= ") + exact_num(r.min));
   }
   if (m.depth >= R::DEPTH_SMOOTH && !(m.corner_time >= 0.0 && m.corner_time <= 1.0))
     return fail_field(Reason::out_of_range, "corner_time",
-                      "corner_time = " + num(m.corner_time) + ": must be in [0, 1]");
+                      "corner_time = " + exact_num(m.corner_time) + ": must be in [0, 1]");
   return {};
 }
 
@@ -580,7 +576,7 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
     for (std::size_t a = 0; a < row.size(); ++a)
       if (!std::isfinite(row[a]))
         return fail(Reason::non_finite, "samples[" + std::to_string(i) + "][" + std::to_string(a) +
-                                            "] = " + num(row[a]));
+                                            "] = " + exact_num(row[a]));
     t.samples[i] = row;
   }
   const tdo_metrics& m = r.metrics;
@@ -706,10 +702,11 @@ Check samples_from_msg(const tdo::trajectory_t& m, std::vector<tdo_sample>* out)
     for (std::size_t a = 0; a < 10; ++a)
       if (!std::isfinite(row[a]))
         return fail(Reason::non_finite, "samples[" + std::to_string(i) + "][" + std::to_string(a) +
-                                            "] = " + num(row[a]));
+                                            "] = " + exact_num(row[a]));
     if (i > 0 && !(row[0] > m.samples[i - 1][0]))
-      return fail(Reason::out_of_range, "samples[" + std::to_string(i) + "]: time " + num(row[0]) +
-                                            " not after " + num(m.samples[i - 1][0]));
+      return fail(Reason::out_of_range, "samples[" + std::to_string(i) + "]: time " +
+                                            exact_num(row[0]) + " not after " +
+                                            exact_num(m.samples[i - 1][0]));
     s[i].t = row[0];
     s[i].p = tdo_vec3{row[1], row[2], row[3]};
     s[i].v = tdo_vec3{row[4], row[5], row[6]};

@@ -9,12 +9,6 @@
 namespace tdo_lcm {
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
-
 Check need_count(const char* name, int32_t n, std::size_t size) {
   if (n >= 0 && static_cast<std::size_t>(n) == size) return {};
   return fail(Reason::count_mismatch, std::string(name) + ": count " + std::to_string(n) +
@@ -41,13 +35,14 @@ Check segments_to_msg(const tdo_path& path, tdo::trajectory_t* t) {
     t->segment_s0[i] = s0;
     t->segment_length[i] = g.length;
     if (!std::isfinite(g.length))
-      return fail(Reason::non_finite, "segment " + std::to_string(i) + " length " + num(g.length));
+      return fail(Reason::non_finite,
+                  "segment " + std::to_string(i) + " length " + exact_num(g.length));
     for (int k = 0; k < 4; ++k) {
       const double xyz[3] = {g.p[k].x, g.p[k].y, g.p[k].z};
       for (int a = 0; a < 3; ++a) {
         if (!std::isfinite(xyz[a]))
           return fail(Reason::non_finite, "segment " + std::to_string(i) + " point " +
-                                              std::to_string(k) + " = " + num(xyz[a]));
+                                              std::to_string(k) + " = " + exact_num(xyz[a]));
         t->segment_points[12u * i + 3u * k + a] = xyz[a];
       }
     }
@@ -72,7 +67,7 @@ Check pieces_to_msg(const tdo_traj* traj, const tdo_traj_profile_info& info, tdo
     const double vals[6] = {p.t0, p.dur, p.s0, p.v0, p.a0, p.j};
     for (double v : vals)
       if (!std::isfinite(v))
-        return fail(Reason::non_finite, "piece " + std::to_string(k) + ": " + num(v));
+        return fail(Reason::non_finite, "piece " + std::to_string(k) + ": " + exact_num(v));
     t->piece_t0[k] = p.t0;
     t->piece_dur[k] = p.dur;
     t->piece_s0[k] = p.s0;
@@ -177,7 +172,7 @@ Check samples_from_compact(const tdo::trajectory_t& m, uint32_t max_samples,
   Check c = compact_view(m, &v);
   if (!c.ok()) return c;
   if (!(m.dt > 0.0) || !std::isfinite(m.dt))
-    return fail(Reason::out_of_range, "dt " + num(m.dt) + " is not > 0");
+    return fail(Reason::out_of_range, "dt " + exact_num(m.dt) + " is not > 0");
   if (m.sample_count < 2)
     return fail(Reason::out_of_range, "sample_count " + std::to_string(m.sample_count) + " < 2");
   if (static_cast<uint64_t>(m.sample_count) > max_samples)

@@ -12,12 +12,6 @@
 namespace tdo_lcm {
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
-
 std::string idx(const char* name, std::size_t i) {
   return std::string(name) + "[" + std::to_string(i) + "]";
 }
@@ -25,13 +19,13 @@ std::string idx(const char* name, std::size_t i) {
 Check need_finite3(const std::string& name, const double* v) {
   for (std::size_t i = 0; i < 3; ++i)
     if (!std::isfinite(v[i]))
-      return fail(Reason::non_finite, name + "[" + std::to_string(i) + "] = " + num(v[i]));
+      return fail(Reason::non_finite, name + "[" + std::to_string(i) + "] = " + exact_num(v[i]));
   return {};
 }
 
 Check need_finite(const char* name, double v) {
   if (std::isfinite(v)) return {};
-  return fail(Reason::non_finite, std::string(name) + " = " + num(v));
+  return fail(Reason::non_finite, std::string(name) + " = " + exact_num(v));
 }
 
 void put3(tdo_vec3 v, double* out) {
@@ -153,10 +147,11 @@ Check movers_from_msg(const tdo::obstacles_t& m, int32_t vehicle_id, uint32_t ma
     c = need_finite3(idx("position", i), m.position[i].data());
     if (c.ok()) c = need_finite3(idx("velocity", i), m.velocity[i].data());
     if (c.ok() && !std::isfinite(m.radius[i]))
-      c = fail(Reason::non_finite, idx("radius", i) + " = " + num(m.radius[i]));
+      c = fail(Reason::non_finite, idx("radius", i) + " = " + exact_num(m.radius[i]));
     if (!c.ok()) return c;
     if (!(m.radius[i] > 0.0))
-      return fail(Reason::out_of_range, idx("radius", i) + " = " + num(m.radius[i]) + " <= 0");
+      return fail(Reason::out_of_range,
+                  idx("radius", i) + " = " + exact_num(m.radius[i]) + " <= 0");
     if (m.id[i] < 0)
       return fail(Reason::out_of_range, idx("id", i) + " = " + std::to_string(m.id[i]) + " < 0");
     movers[i].id = static_cast<uint32_t>(m.id[i]);
@@ -191,7 +186,7 @@ Check movers_to_msg(const tdo_mover* movers, uint32_t n, int64_t utime, int32_t 
     if (!c.ok()) return c;
     if (!(v.radius > 0.0) || !std::isfinite(v.radius))
       return fail(std::isfinite(v.radius) ? Reason::out_of_range : Reason::non_finite,
-                  idx("radius", i) + " = " + num(v.radius));
+                  idx("radius", i) + " = " + exact_num(v.radius));
     m.id.push_back(static_cast<int32_t>(v.id));
     m.position.push_back(std::move(p));
     m.velocity.push_back(std::move(u));

@@ -8,10 +8,18 @@
 #ifndef TDO_LCM_CHECK_H
 #define TDO_LCM_CHECK_H
 
+#include <cstdio>
 #include <string>
 #include <utility>
 
 namespace tdo_lcm {
+
+/** `v` with every significant digit (%.17g): a detail quotes the exact value it refused. */
+inline std::string exact_num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
 
 /** Why a message was not accepted. Reason::ok is the only success. */
 enum class Reason {
