@@ -128,7 +128,8 @@ def draw(doc, out, dpi):
 
 
 def main(argv):
-    ap = argparse.ArgumentParser(prog="bench_plot", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="bench_plot", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("paths", nargs="+", help="tdo-bench paths/<map>.json files")
     ap.add_argument("-o", "--output", help="PNG (one input)")
     ap.add_argument("--out-dir", help="directory for <name>.png (any number of inputs)")
