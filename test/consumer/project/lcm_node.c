@@ -53,6 +53,7 @@ int main(void) {
   tdo_trajectory_t m;
   tdo_plan_request_t r;
   lcm_t* lcm = lcm_create("memq://");
+  tdo_trajectory_t_subscription_t* sub;
   int i;
   if (lcm == NULL) {
     fprintf(stderr, "lcm_create failed\n");
@@ -78,12 +79,15 @@ int main(void) {
   m.path_length_m = 3.0;
   m.dt = 0.01;
   m.sample_count = 501;
-  tdo_trajectory_t_subscribe(lcm, "TDO_TRAJECTORY", on_trajectory, NULL);
+  sub = tdo_trajectory_t_subscribe(lcm, "TDO_TRAJECTORY", on_trajectory, NULL);
   if (tdo_trajectory_t_publish(lcm, "TDO_TRAJECTORY", &m) != 0) {
     fprintf(stderr, "publish failed\n");
+    tdo_trajectory_t_unsubscribe(lcm, sub);
+    lcm_destroy(lcm);
     return 1;
   }
   for (i = 0; i < 10 && received == 0; ++i) lcm_handle_timeout(lcm, 100);
+  tdo_trajectory_t_unsubscribe(lcm, sub); /* frees the subscription lcm_destroy leaves */
   lcm_destroy(lcm);
   memset(&r, 0, sizeof r);
   r.use_defaults = TDO_PLAN_REQUEST_T_USE_DEFAULT_ALL;
