@@ -204,7 +204,7 @@ TEST_F(TrajEval, GivenBadCompactFormsThenTheViewNamesTheReason) {
   m.segment_kind[0] = 7;
   EXPECT_EQ(tdo_lcm::compact_view(m, &v).reason, tdo_lcm::Reason::bad_enum);
   m = a.traj;
-  m.segment_points[3] = NAN;
+  m.segment_points[3] = std::nan("");
   EXPECT_EQ(tdo_lcm::compact_view(m, &v).reason, tdo_lcm::Reason::non_finite);
   m = a.traj;
   m.n_pieces += 1;
