@@ -50,6 +50,21 @@ std::unique_ptr<TextbookAstar> make_textbook(const tdo_grid* grid) {
   return std::make_unique<TextbookAstar>(d.nx, d.ny, d.nz, std::move(blocked));
 }
 
+// One query planned `repeat` times: the status and result of the last call, the smallest time
+// in o->ms, o->ran set.
+tdo_status plan_best_of(tdo_planner* planner, const tdo_plan_request& req, uint64_t repeat,
+                        tdo_plan_result* res, ScaleOutcome* o) {
+  tdo_status st = TDO_OK;
+  o->ran = true;
+  o->ms = HUGE_VAL;
+  for (uint64_t r = 0; r < repeat; ++r) {
+    const auto t0 = Clock::now();
+    st = tdo_planner_plan(planner, &req, res);
+    o->ms = std::min(o->ms, ms_since(t0));
+  }
+  return st;
+}
+
 }  // namespace
 
 const char* scale_planner_name(int planner) {
@@ -144,15 +159,8 @@ ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
   tdo_plan_params_default(&req.params);
   req.params.states = states_;
   tdo_plan_result res{};
-  tdo_status st = TDO_OK;
   ScaleOutcome o;
-  o.ran = true;
-  o.ms = HUGE_VAL;
-  for (uint64_t r = 0; r < repeat; ++r) {
-    const auto t0 = Clock::now();
-    st = tdo_planner_plan(tdo_, &req, &res);
-    o.ms = std::min(o.ms, ms_since(t0));
-  }
+  const tdo_status st = plan_best_of(tdo_, req, repeat, &res, &o);
   if (st != TDO_OK && st != TDO_ERR_INFEASIBLE) {
     o.status = tdo_status_str(st);
     return o;
@@ -190,15 +198,8 @@ ScaleOutcome ScaleMapRun::run_astar(const ScaleQuery& q, uint64_t repeat) {
   req.params.mu = 0.0;
   req.params.theta_max = 0.0;
   tdo_plan_result res{};
-  tdo_status st = TDO_OK;
   ScaleOutcome o;
-  o.ran = true;
-  o.ms = HUGE_VAL;
-  for (uint64_t r = 0; r < repeat; ++r) {
-    const auto t0 = Clock::now();
-    st = tdo_planner_plan(env_->planner(), &req, &res);
-    o.ms = std::min(o.ms, ms_since(t0));
-  }
+  const tdo_status st = plan_best_of(env_->planner(), req, repeat, &res, &o);
   if (st != TDO_OK) {
     o.status = tdo_status_str(st);
     return o;
