@@ -48,7 +48,7 @@ for t in $TARGETS; do
 done
 
 # stat::<name> from a log's final statistics (empty when the run ended before printing them).
-stat() { sed -n "s/^stat::$2: *//p" "$1" | tail -n 1; }
+final_stat() { sed -n "s/^stat::$2: *//p" "$1" | tail -n 1; }
 
 failed=0
 printf '| target | seconds | executions | execs/s | peak RSS (MB) | new corpus files | result |\n'
@@ -57,18 +57,19 @@ for t in $TARGETS; do
   rc=0
   wait "${pids[$t]}" || rc=$?
   log="$OUT/$t.log"
-  secs="$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' "$log" | grep -oE '[0-9]+ second' | cut -d' ' -f1 |
-    tail -n 1)"
+  secs="$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -n 1)"
   findings="$(find "$OUT/artifacts/$t" -type f | wc -l)"
   result="no crash, hang or sanitizer report"
-  if ((rc != 0 || findings > 0)) || grep -qE 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$log"; then
+  if ((rc != 0 || findings > 0)) ||
+    grep -qE 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$log"; then
     result="FAILED (exit $rc, $findings artifact(s) in $OUT/artifacts/$t, see $log)"
     failed=1
   fi
-  corpus_files="$(($(find "$OUT/corpus/$t" -type f | wc -l) - $(find "$ROOT/test/fuzz/corpus/$t" -type f | wc -l)))"
+  seeds="$(find "$ROOT/test/fuzz/corpus/$t" -type f | wc -l)"
+  corpus_files="$(($(find "$OUT/corpus/$t" -type f | wc -l) - seeds))"
   printf '| `%s` | %s | %s | %s | %s | %s | %s |\n' "$t" "${secs:-?}" \
-    "$(stat "$log" number_of_executed_units)" "$(stat "$log" average_exec_per_sec)" \
-    "$(stat "$log" peak_rss_mb)" "$corpus_files" "$result"
+    "$(final_stat "$log" number_of_executed_units)" "$(final_stat "$log" average_exec_per_sec)" \
+    "$(final_stat "$log" peak_rss_mb)" "$corpus_files" "$result"
 done
 printf '[fuzz] load average at the end: %s\n' "$(cut -d' ' -f1-3 /proc/loadavg)"
 exit "$failed"

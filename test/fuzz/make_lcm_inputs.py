@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The LCM inputs of the fuzz targets, made from the committed replay log with the current types.
 
-    python3 make_lcm_inputs.py PYDIR            # rewrite them
-    python3 make_lcm_inputs.py PYDIR --check    # exit 1 when one has a stale fingerprint
+    .venv/bin/python test/fuzz/make_lcm_inputs.py PYDIR            # rewrite them
+    .venv/bin/python test/fuzz/make_lcm_inputs.py PYDIR --check    # exit 1: a stale fingerprint
 
 PYDIR holds the generated Python types (build/lcmtypes/python); the lcm wheel must import. Every
 LCM message starts with its type's 8-byte fingerprint, and a message of an older version of the
@@ -51,7 +51,8 @@ def check(tdo, lcm):
     for line in stale:
         print("STALE " + line)
     if stale:
-        print(f"regenerate: python3 {os.path.relpath(__file__, ROOT)} <build>/lcmtypes/python")
+        script = os.path.relpath(__file__, ROOT)
+        print(f"regenerate: .venv/bin/python {script} build/lcmtypes/python")
         return 1
     print("every fuzz_lcm and fuzz_replay input has its type's current fingerprint")
     return 0
