@@ -1,5 +1,5 @@
 // Small inline scalar helpers of the library's stages (internal): minimum, maximum and the
-// parameter checks "finite and positive" / "finite and not negative".
+// parameter checks "finite and positive" / "finite and not negative" (docs/design.md s.7).
 #ifndef TDO_SRC_SCALAR_H
 #define TDO_SRC_SCALAR_H
 
