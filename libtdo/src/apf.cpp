@@ -8,23 +8,13 @@
 
 #include <type_traits>
 
+#include "arena_typed.h"
 #include "scalar.h"
 #include "tdo/collision.h"
 #include "tdo/sim.h"
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::cross;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::lerp;
-using tdo_internal::mul;
-using tdo_internal::non_negative;
-using tdo_internal::norm;
-using tdo_internal::positive;
-using tdo_internal::sub;
-using tdo_internal::unit_or;
-using tdo_internal::v3;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 struct tdo_apf {
   tdo_apf_config cfg;
@@ -606,13 +596,10 @@ extern "C" tdo_status tdo_apf_init(tdo_apf** out, tdo_arena* arena, const tdo_ap
   if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_apf_footprint(cfg) == 0)
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
-  tdo_apf* c = static_cast<tdo_apf*>(tdo_arena_alloc(arena, sizeof(tdo_apf)));
+  tdo_apf* c = arena_context<tdo_apf>(arena, *cfg);
   if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(c, 0, sizeof(*c));
-  c->cfg = *cfg;
-  const size_t ns = cfg->max_samples;
-  c->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
-  c->arc = static_cast<double*>(tdo_arena_alloc(arena, ns * sizeof(double)));
+  c->samples = arena_array<tdo_sample>(arena, cfg->max_samples);
+  c->arc = arena_array<double>(arena, cfg->max_samples);
   if (c->samples == nullptr || c->arc == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = c;
   return TDO_OK;

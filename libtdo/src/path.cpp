@@ -8,14 +8,7 @@
 
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::cross;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::lerp;
-using tdo_internal::mul;
-using tdo_internal::norm;
-using tdo_internal::sub;
+using namespace tdo_internal;  // vec3.h
 
 namespace {
 

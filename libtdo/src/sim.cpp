@@ -5,19 +5,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "arena_typed.h"
 #include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::mul;
-using tdo_internal::non_negative;
-using tdo_internal::norm;
-using tdo_internal::positive;
-using tdo_internal::sub;
-using tdo_internal::v3;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 struct tdo_sim {
   tdo_sim_config cfg;
@@ -211,12 +204,9 @@ extern "C" tdo_status tdo_sim_init(tdo_sim** out, tdo_arena* arena, const tdo_si
   if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_sim_footprint(cfg) == 0)
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
-  tdo_sim* c = static_cast<tdo_sim*>(tdo_arena_alloc(arena, sizeof(tdo_sim)));
+  tdo_sim* c = arena_context<tdo_sim>(arena, *cfg);
   if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(c, 0, sizeof(*c));
-  c->cfg = *cfg;
-  c->movers = static_cast<tdo_mover*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_movers) * sizeof(tdo_mover)));
+  c->movers = arena_array<tdo_mover>(arena, cfg->max_movers);
   if (c->movers == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = c;
   return TDO_OK;

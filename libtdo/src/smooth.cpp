@@ -29,20 +29,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "arena_typed.h"
 #include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::cross;
-using tdo_internal::dmax;
-using tdo_internal::dmin;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::mul;
-using tdo_internal::norm;
-using tdo_internal::positive;
-using tdo_internal::sub;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 namespace {
 
@@ -386,14 +378,10 @@ extern "C" tdo_status tdo_smooth_init(tdo_smooth** out, tdo_arena* arena,
   *out = nullptr;
   if (arena->used > arena->size || arena->size - arena->used < tdo_smooth_footprint(cfg))
     return TDO_ERR_ARENA_TOO_SMALL;
-  tdo_smooth* ctx = static_cast<tdo_smooth*>(tdo_arena_alloc(arena, sizeof(tdo_smooth)));
+  tdo_smooth* ctx = arena_context<tdo_smooth>(arena, *cfg);
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(ctx, 0, sizeof(*ctx));
-  ctx->cfg = *cfg;
-  ctx->seg = static_cast<tdo_path_segment*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_segments) * sizeof(tdo_path_segment)));
-  ctx->corner = static_cast<Corner*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_waypoints) * sizeof(Corner)));
+  ctx->seg = arena_array<tdo_path_segment>(arena, cfg->max_segments);
+  ctx->corner = arena_array<Corner>(arena, cfg->max_waypoints);
   if (ctx->seg == nullptr || ctx->corner == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = ctx;
   return TDO_OK;

@@ -11,17 +11,13 @@
 
 #include "mapgen.h"
 #include "tdo/status.h"
+#include "tool_cli.h"
 
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitFailed = 1;
-constexpr int kExitBadInput = 2;
-
-/** Bad input: one line "tdo-mapgen: error: ..." on stderr, exit status 2. */
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
+using tdo_tool::kExitFailed;
+using tdo_tool::kExitOk;
 
 /** `v * scale` as an integer; it must be finite and on the grid of 1/scale (bad input if not). */
 int64_t to_units(double v, double scale, const std::string& what, const char* step) {
@@ -239,15 +235,8 @@ int run(int argc, char** argv) {
       "tdo-mapgen"};
   Options o;
   add_options(app, o);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    throw BadInput{e.what()};
-  }
+  const int parsed = tdo_tool::parse_args(app, argc, argv);
+  if (parsed >= 0) return parsed;
   o.columns_given = app.count("--columns") > 0;
   o.resolution_given = app.count("--resolution") > 0;
   if (!std::isfinite(o.clearance) || o.clearance < 0.0)
@@ -273,15 +262,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const BadInput& e) {
-    std::fflush(stdout);
-    std::fprintf(stderr, "tdo-mapgen: error: %s\n", e.message.c_str());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tdo-mapgen: error: %s\n", e.what());
-    return kExitBadInput;
-  }
-}
+int main(int argc, char** argv) { return tdo_tool::guarded_main("tdo-mapgen", run, argc, argv); }
