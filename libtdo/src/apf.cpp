@@ -8,20 +8,13 @@
 
 #include <type_traits>
 
+#include "arena_typed.h"
+#include "scalar.h"
 #include "tdo/collision.h"
 #include "tdo/sim.h"
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::cross;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::lerp;
-using tdo_internal::mul;
-using tdo_internal::norm;
-using tdo_internal::sub;
-using tdo_internal::unit_or;
-using tdo_internal::v3;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 struct tdo_apf {
   tdo_apf_config cfg;
@@ -94,9 +87,6 @@ tdo_vec3 distance_gradient(const tdo_grid* grid, const tdo_vec3& p, double cap) 
                 (2.0 * h));
 }
 
-bool pos(double x) { return isfinite(x) && x > 0.0; }
-bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
-
 bool params_ok(const tdo_apf_params* p) {
   // Read the enum's bytes as an int: a C caller may have stored any value there.
   // The underlying type has the enum's size on every ABI (short enums on arm-none-eabi).
@@ -106,14 +96,15 @@ bool params_ok(const tdo_apf_params* p) {
   memcpy(&kind, &p->kind, sizeof kind);
   if (kind != static_cast<Kind>(TDO_FOLLOWER_EAPF) && kind != static_cast<Kind>(TDO_FOLLOWER_APF))
     return false;
-  return pos(p->dt) && pos(p->k_a) && pos(p->att_dist) && nonneg(p->k_r) && pos(p->d_0) &&
-         pos(p->d_0_static) && pos(p->d_min) && nonneg(p->k_g) && pos(p->k_d) &&
-         nonneg(p->lookahead) && pos(p->hold_dist) && nonneg(p->horizon) &&
-         nonneg(p->vehicle_radius) && nonneg(p->mover_margin) && pos(p->v_max) && pos(p->a_max) &&
-         pos(p->j_max) && pos(p->goal_tol) && pos(p->lm_window) && pos(p->lm_progress) &&
-         pos(p->lm_force) && pos(p->lm_speed) && pos(p->lm_goal_dist) && nonneg(p->k_t) &&
-         pos(p->escape_time) && nonneg(p->k_r_static) && nonneg(p->safety_margin) &&
-         p->safety <= 1u;
+  return positive(p->dt) && positive(p->k_a) && positive(p->att_dist) && non_negative(p->k_r) &&
+         positive(p->d_0) && positive(p->d_0_static) && positive(p->d_min) &&
+         non_negative(p->k_g) && positive(p->k_d) && non_negative(p->lookahead) &&
+         positive(p->hold_dist) && non_negative(p->horizon) && non_negative(p->vehicle_radius) &&
+         non_negative(p->mover_margin) && positive(p->v_max) && positive(p->a_max) &&
+         positive(p->j_max) && positive(p->goal_tol) && positive(p->lm_window) &&
+         positive(p->lm_progress) && positive(p->lm_force) && positive(p->lm_speed) &&
+         positive(p->lm_goal_dist) && non_negative(p->k_t) && positive(p->escape_time) &&
+         non_negative(p->k_r_static) && non_negative(p->safety_margin) && p->safety <= 1u;
 }
 
 bool state_ok(const tdo_vehicle_state* s) {
@@ -123,7 +114,7 @@ bool state_ok(const tdo_vehicle_state* s) {
 bool movers_ok(const tdo_mover* m, uint32_t n) {
   if (n > 0u && m == nullptr) return false;
   for (uint32_t i = 0; i < n; ++i)
-    if (!finite3(m[i].p) || !finite3(m[i].v) || !pos(m[i].radius)) return false;
+    if (!finite3(m[i].p) || !finite3(m[i].v) || !positive(m[i].radius)) return false;
   return true;
 }
 
@@ -605,13 +596,10 @@ extern "C" tdo_status tdo_apf_init(tdo_apf** out, tdo_arena* arena, const tdo_ap
   if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_apf_footprint(cfg) == 0)
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
-  tdo_apf* c = static_cast<tdo_apf*>(tdo_arena_alloc(arena, sizeof(tdo_apf)));
+  tdo_apf* c = arena_context<tdo_apf>(arena, *cfg);
   if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(c, 0, sizeof(*c));
-  c->cfg = *cfg;
-  const size_t ns = cfg->max_samples;
-  c->samples = static_cast<tdo_sample*>(tdo_arena_alloc(arena, ns * sizeof(tdo_sample)));
-  c->arc = static_cast<double*>(tdo_arena_alloc(arena, ns * sizeof(double)));
+  c->samples = arena_array<tdo_sample>(arena, cfg->max_samples);
+  c->arc = arena_array<double>(arena, cfg->max_samples);
   if (c->samples == nullptr || c->arc == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = c;
   return TDO_OK;
@@ -636,7 +624,7 @@ extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
   double sdt = 0.0;
   if (n >= 2u) {
     sdt = task->samples[1].t - task->samples[0].t;
-    if (!(fabs(task->samples[0].t) <= 1e-9) || !pos(sdt)) return TDO_ERR_INVALID_ARGUMENT;
+    if (!(fabs(task->samples[0].t) <= 1e-9) || !positive(sdt)) return TDO_ERR_INVALID_ARGUMENT;
     for (uint32_t i = 0; i < n; ++i) {
       const tdo_sample& s = task->samples[i];
       const double expect = static_cast<double>(i) * sdt;
@@ -698,162 +686,151 @@ extern "C" tdo_status tdo_apf_eval(const tdo_apf* c, const tdo_vehicle_state* st
   return TDO_OK;
 }
 
-extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_output* out) {
-  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
-  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
-  if (in->n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
-  const tdo_vehicle_state* st = &in->state;
-  if (!state_ok(st) || !movers_ok(in->movers, in->n_movers)) return TDO_ERR_INVALID_ARGUMENT;
-  const tdo_apf_params& q = c->prm;
-  const bool eapf = q.kind == TDO_FOLLOWER_EAPF;
-  memset(out, 0, sizeof(*out));
-  uint32_t events = 0u;
+namespace {
 
-  // Trajectory clock.
-  const tdo_vec3 p = st->p;
+// Starts the trajectory clock at the first step; later steps advance it by the elapsed time
+// (E-APF only) unless the vehicle is too far from the clock's point. Returns the step's events.
+uint32_t advance_clock(tdo_apf* c, const tdo_vehicle_state* state, bool eapf) {
+  const tdo_apf_params& prm = c->prm;
+  const tdo_vec3 pos = state->p;
+  uint32_t events = 0u;
   if (!c->started) {
     c->started = 1;
-    double tau = st->t - c->t0;
+    double tau = state->t - c->t0;
     if (!(tau > 0.0)) tau = 0.0;
     c->tau = tau < c->t_end ? tau : c->t_end;
-    c->goal_d0 = norm(sub(p, c->goal));
+    c->goal_d0 = norm(sub(pos, c->goal));
     c->best_goal = c->goal_d0;
-    c->win_t = st->t;
-    c->win_pos = p;
+    c->win_t = state->t;
+    c->win_pos = pos;
   } else if (eapf) {
-    double el = st->t - c->prev_t;
-    if (!(el > 0.0)) el = 0.0;
-    if (el > kMaxElapsedSteps * q.dt) el = kMaxElapsedSteps * q.dt;
+    double elapsed = state->t - c->prev_t;
+    if (!(elapsed > 0.0)) elapsed = 0.0;
+    if (elapsed > kMaxElapsedSteps * prm.dt) elapsed = kMaxElapsedSteps * prm.dt;
     // Far from the clock's point (pushed away), the reference never lags the nearest trajectory
     // point: the vehicle may rejoin the plan further along. Not while tracking: near a corner the
     // nearest point may lie on a later, nearby part of the plan.
-    tdo_vec3 cp, cv, ca;
-    traj_at(c, c->tau, &cp, &cv, &ca);
-    if (norm(sub(cp, p)) > 0.5 * q.hold_dist && c->near_t - q.lookahead > c->tau) {
-      c->tau = c->near_t - q.lookahead;
-      traj_at(c, c->tau, &cp, &cv, &ca);
+    tdo_vec3 clock_p, clock_v, clock_a;
+    traj_at(c, c->tau, &clock_p, &clock_v, &clock_a);
+    if (norm(sub(clock_p, pos)) > 0.5 * prm.hold_dist && c->near_t - prm.lookahead > c->tau) {
+      c->tau = c->near_t - prm.lookahead;
+      traj_at(c, c->tau, &clock_p, &clock_v, &clock_a);
     }
-    if (norm(sub(cp, p)) <= q.hold_dist) {
-      c->tau += el;
+    if (norm(sub(clock_p, pos)) <= prm.hold_dist) {
+      c->tau += elapsed;
       if (c->tau > c->t_end) c->tau = c->t_end;
     } else {
       events |= TDO_APF_EVENT_CLOCK_HELD;
     }
   }
-  c->prev_t = st->t;
-  const double rt = ref_time_of(c);
+  c->prev_t = state->t;
+  return events;
+}
 
-  // Field.
-  Near near;
-  tdo_apf_terms* t = &out->terms;
-  compute_terms(c, st, in->movers, in->n_movers, rt, t, &near);
-  if (eapf) {
-    c->near_seg = near.seg;
-    c->near_t = near.t;
-  }
-  const double gd = norm(sub(p, c->goal));
-  if (gd < c->best_goal) c->best_goal = gd;
-  const double progress = eapf ? near.arc : c->goal_d0 - c->best_goal;
-  if (t->mover_pred_gap < q.d_0) events |= TDO_APF_EVENT_REPULSED;
-  c->win_f = add(c->win_f, t->f_total);
-  ++c->win_n;
+// Opens a new progress window of the local-minimum detector at the vehicle's state.
+void restart_window(tdo_apf* c, const tdo_vehicle_state* state, double progress) {
+  c->win_t = state->t;
+  c->win_p = progress;
+  c->win_pos = state->p;
+  c->win_f = v3(0.0, 0.0, 0.0);
+  c->win_n = 0u;
+}
 
-  // Reference velocity and feed-forward.
-  tdo_vec3 v_ref = v3(0.0, 0.0, 0.0), a_ref = v3(0.0, 0.0, 0.0);
-  if (eapf) {
-    tdo_vec3 rp;
-    traj_at(c, rt, &rp, &v_ref, &a_ref);
-  }
-  const double speed = norm(st->v);
-  const tdo_vec3 f_rep = add(t->f_rep_static, t->f_rep_movers);
+// Enters escape mode: turn about (repulsion normal) x (direction to the reference), towards the
+// goal side; head-on (the two opposite): about z, i.e. sideways.
+void start_escape(tdo_apf* c, const tdo_vehicle_state* state, const tdo_apf_terms* terms,
+                  tdo_vec3 f_rep, double progress) {
+  c->mode = TDO_APF_MODE_ESCAPE;
+  c->escape_end = state->t + c->prm.escape_time;
+  c->escape_p = progress;
+  const tdo_vec3 to_ref = unit_or(sub(terms->ref, state->p), v3(1.0, 0.0, 0.0), 1e-9);
+  const tdo_vec3 normal = unit_or(f_rep, mul(to_ref, -1.0), 1e-9);
+  tdo_vec3 axis = cross(normal, to_ref);
+  if (norm(axis) <= 1e-6) axis = v3(0.0, 0.0, 1.0);
+  if (norm(cross(axis, normal)) <= 1e-6) axis = v3(1.0, 0.0, 0.0);
+  c->escape_axis = unit_or(axis, v3(0.0, 0.0, 1.0), 1e-12);
+  c->escape_n = normal;
+}
 
-  // Arrival.
-  const bool clock_done = !eapf || c->tau >= c->t_end;
-  if (c->mode == TDO_APF_MODE_TRACK && clock_done && gd <= q.goal_tol && speed < kArriveSpeed) {
-    c->mode = TDO_APF_MODE_ARRIVED;
-    if (!c->arrived_reported) events |= TDO_APF_EVENT_GOAL_REACHED;
-    c->arrived_reported = 1;
-  }
-
-  // Local-minimum detector (track mode) and escape bookkeeping.
-  if (c->mode == TDO_APF_MODE_ESCAPE && st->t >= c->escape_end) {
+// Local-minimum detector (track mode) and escape bookkeeping. Returns the step's events.
+uint32_t detect_local_minimum(tdo_apf* c, const tdo_vehicle_state* state,
+                              const tdo_apf_terms* terms, tdo_vec3 f_rep, double progress,
+                              double goal_dist, double speed) {
+  const tdo_apf_params& prm = c->prm;
+  uint32_t events = 0u;
+  if (c->mode == TDO_APF_MODE_ESCAPE && state->t >= c->escape_end) {
     c->mode = TDO_APF_MODE_TRACK;
-    if (progress - c->escape_p >= q.lm_progress) {
+    if (progress - c->escape_p >= prm.lm_progress) {
       events |= TDO_APF_EVENT_ESCAPE_OK;
       c->fails_in_row = 0u;
     }
-    c->win_t = st->t;
-    c->win_p = progress;
-    c->win_pos = p;
-    c->win_f = v3(0.0, 0.0, 0.0);
-    c->win_n = 0u;
+    restart_window(c, state, progress);
   }
-  if (c->mode == TDO_APF_MODE_TRACK && st->t - c->win_t >= q.lm_window) {
-    const bool no_progress = progress - c->win_p < q.lm_progress;
-    const bool far = gd > q.lm_goal_dist;
-    // Small force or slow: also over the window, so that an oscillation in front of an obstacle
-    // (large force and speed at every instant, none on average) counts.
-    const double span = st->t - c->win_t;
-    const double mean_f = c->win_n > 0u ? norm(c->win_f) / static_cast<double>(c->win_n) : 0.0;
-    const double mean_v = norm(sub(p, c->win_pos)) / span;
-    const bool weak = norm(t->f_total) < q.lm_force || speed < q.lm_speed || mean_f < q.lm_force ||
-                      mean_v < q.lm_speed;
-    if (no_progress && far && weak) {
-      ++c->lm_detections;
-      events |= TDO_APF_EVENT_LM_DETECTED;
-      if (c->fails_in_row >= q.max_escapes) {
-        c->mode = TDO_APF_MODE_STUCK;
-        events |= TDO_APF_EVENT_ESCAPE_FAILED;
-      } else {
-        ++c->fails_in_row;
-        ++c->escapes;
-        events |= TDO_APF_EVENT_ESCAPE_START;
-        c->mode = TDO_APF_MODE_ESCAPE;
-        c->escape_end = st->t + q.escape_time;
-        c->escape_p = progress;
-        const tdo_vec3 g = unit_or(sub(t->ref, p), v3(1.0, 0.0, 0.0), 1e-9);
-        const tdo_vec3 n = unit_or(f_rep, mul(g, -1.0), 1e-9);
-        // Turn about n x g (towards the goal side); head-on (g = -n): about z, i.e. sideways.
-        tdo_vec3 axis = cross(n, g);
-        if (norm(axis) <= 1e-6) axis = v3(0.0, 0.0, 1.0);
-        if (norm(cross(axis, n)) <= 1e-6) axis = v3(1.0, 0.0, 0.0);
-        c->escape_axis = unit_or(axis, v3(0.0, 0.0, 1.0), 1e-12);
-        c->escape_n = n;
-      }
-    } else if (!no_progress && c->fails_in_row > 0u) {
-      events |= TDO_APF_EVENT_ESCAPE_OK;
-      c->fails_in_row = 0u;
+  if (c->mode != TDO_APF_MODE_TRACK || state->t - c->win_t < prm.lm_window) return events;
+  const bool no_progress = progress - c->win_p < prm.lm_progress;
+  const bool far = goal_dist > prm.lm_goal_dist;
+  // Small force or slow: also over the window, so that an oscillation in front of an obstacle
+  // (large force and speed at every instant, none on average) counts.
+  const double span = state->t - c->win_t;
+  const double mean_f = c->win_n > 0u ? norm(c->win_f) / static_cast<double>(c->win_n) : 0.0;
+  const double mean_v = norm(sub(state->p, c->win_pos)) / span;
+  const bool weak = norm(terms->f_total) < prm.lm_force || speed < prm.lm_speed ||
+                    mean_f < prm.lm_force || mean_v < prm.lm_speed;
+  if (no_progress && far && weak) {
+    ++c->lm_detections;
+    events |= TDO_APF_EVENT_LM_DETECTED;
+    if (c->fails_in_row >= prm.max_escapes) {
+      c->mode = TDO_APF_MODE_STUCK;
+      events |= TDO_APF_EVENT_ESCAPE_FAILED;
+    } else {
+      ++c->fails_in_row;
+      ++c->escapes;
+      events |= TDO_APF_EVENT_ESCAPE_START;
+      start_escape(c, state, terms, f_rep, progress);
     }
-    c->win_t = st->t;
-    c->win_p = progress;
-    c->win_pos = p;
-    c->win_f = v3(0.0, 0.0, 0.0);
-    c->win_n = 0u;
+  } else if (!no_progress && c->fails_in_row > 0u) {
+    events |= TDO_APF_EVENT_ESCAPE_OK;
+    c->fails_in_row = 0u;
   }
+  restart_window(c, state, progress);
+  return events;
+}
 
-  // Command.
+// The mode's desired acceleration before the wall terms: escape (repulsion, tangential push and
+// damping), stuck (repulsion and damping) or track (field, damping towards the reference
+// velocity and, for E-APF, the trajectory's feed-forward acceleration).
+tdo_vec3 mode_command(tdo_apf* c, const tdo_vehicle_state* state, const tdo_apf_terms* terms,
+                      tdo_vec3 f_rep, tdo_vec3 v_ref, tdo_vec3 a_ref, bool eapf) {
+  const tdo_apf_params& prm = c->prm;
   tdo_vec3 a_des;
   switch (c->mode) {
     case TDO_APF_MODE_ESCAPE: {
       if (norm(f_rep) > 1e-9) c->escape_n = unit_or(f_rep, c->escape_n, 1e-9);
       const tdo_vec3 tan = unit_or(cross(c->escape_axis, c->escape_n), v3(0.0, 0.0, 0.0), 1e-9);
-      a_des = add(add(f_rep, mul(tan, q.k_t)), mul(st->v, -q.k_d));
+      a_des = add(add(f_rep, mul(tan, prm.k_t)), mul(state->v, -prm.k_d));
       break;
     }
     case TDO_APF_MODE_STUCK:
-      a_des = add(f_rep, mul(st->v, -q.k_d));
+      a_des = add(f_rep, mul(state->v, -prm.k_d));
       break;
     default:
-      a_des = add(t->f_total, mul(sub(st->v, v_ref), -q.k_d));
+      a_des = add(terms->f_total, mul(sub(state->v, v_ref), -prm.k_d));
       if (eapf) a_des = add(a_des, a_ref);
       break;
   }
+  return a_des;
+}
+
+// Wall terms of the command (not on the plan: E-APF within kOnPlan of it, tracking, where the
+// plan vouches for the clearance).
+tdo_vec3 apply_wall_terms(const tdo_apf* c, const tdo_vehicle_state* state, const Near& near,
+                          tdo_vec3 a_des, tdo_vec3 a_ref, bool eapf, bool on_plan) {
+  if (on_plan) return a_des;
+  const tdo_apf_params& prm = c->prm;
   // Near a wall (within kWallFade beyond vehicle_radius) the corrective command's component
   // into the wall (everything but the trajectory's own feed-forward acceleration) fades out, to
   // zero at contact: the field may move the vehicle along or away from a wall, not into it.
-  // On the plan (E-APF within kOnPlan of it) the plan vouches for the clearance: no wall terms.
-  const bool on_plan = eapf && t->deviation < kOnPlan && c->mode == TDO_APF_MODE_TRACK;
-  if (near.wall_d < kWallFade && !on_plan) {
+  if (near.wall_d < kWallFade) {
     const tdo_vec3 ff = (c->mode == TDO_APF_MODE_TRACK && eapf) ? a_ref : v3(0.0, 0.0, 0.0);
     const tdo_vec3 corr = sub(a_des, ff);
     const double into = dot(corr, near.wall_n);
@@ -863,31 +840,87 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   // Braking at walls (in every mode): approaching the static geometry at normal speed v_n within
   // the wall zone asks for the deceleration that stops within the remaining distance (less the
   // distance covered while the jerk limit builds it up).
-  if (near.wall_w < 1.0 && !on_plan) {
-    const double v_n = -dot(st->v, near.wall_n);
+  if (near.wall_w < 1.0) {
+    const double v_n = -dot(state->v, near.wall_n);
     if (v_n > 0.0) {
-      double room = near.wall_d - v_n * (q.a_max / q.j_max);
-      if (room < q.d_min) room = q.d_min;
+      double room = near.wall_d - v_n * (prm.a_max / prm.j_max);
+      if (room < prm.d_min) room = prm.d_min;
       a_des = add(a_des, mul(near.wall_n, v_n * v_n / (2.0 * room)));
     }
   }
+  return a_des;
+}
+
+}  // namespace
+
+extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_output* out) {
+  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  if (in->n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
+  const tdo_vehicle_state* state = &in->state;
+  if (!state_ok(state) || !movers_ok(in->movers, in->n_movers)) return TDO_ERR_INVALID_ARGUMENT;
+  const tdo_apf_params& prm = c->prm;
+  const bool eapf = prm.kind == TDO_FOLLOWER_EAPF;
+  memset(out, 0, sizeof(*out));
+
+  uint32_t events = advance_clock(c, state, eapf);
+  const double ref_time = ref_time_of(c);
+
+  // Field.
+  Near near;
+  tdo_apf_terms* terms = &out->terms;
+  compute_terms(c, state, in->movers, in->n_movers, ref_time, terms, &near);
+  if (eapf) {
+    c->near_seg = near.seg;
+    c->near_t = near.t;
+  }
+  const double goal_dist = norm(sub(state->p, c->goal));
+  if (goal_dist < c->best_goal) c->best_goal = goal_dist;
+  const double progress = eapf ? near.arc : c->goal_d0 - c->best_goal;
+  if (terms->mover_pred_gap < prm.d_0) events |= TDO_APF_EVENT_REPULSED;
+  c->win_f = add(c->win_f, terms->f_total);
+  ++c->win_n;
+
+  // Reference velocity and feed-forward.
+  tdo_vec3 v_ref = v3(0.0, 0.0, 0.0), a_ref = v3(0.0, 0.0, 0.0);
+  if (eapf) {
+    tdo_vec3 ref_p;
+    traj_at(c, ref_time, &ref_p, &v_ref, &a_ref);
+  }
+  const double speed = norm(state->v);
+  const tdo_vec3 f_rep = add(terms->f_rep_static, terms->f_rep_movers);
+
+  // Arrival.
+  const bool clock_done = !eapf || c->tau >= c->t_end;
+  if (c->mode == TDO_APF_MODE_TRACK && clock_done && goal_dist <= prm.goal_tol &&
+      speed < kArriveSpeed) {
+    c->mode = TDO_APF_MODE_ARRIVED;
+    if (!c->arrived_reported) events |= TDO_APF_EVENT_GOAL_REACHED;
+    c->arrived_reported = 1;
+  }
+  events |= detect_local_minimum(c, state, terms, f_rep, progress, goal_dist, speed);
+
+  // Command.
+  const bool on_plan = eapf && terms->deviation < kOnPlan && c->mode == TDO_APF_MODE_TRACK;
+  tdo_vec3 a_des = mode_command(c, state, terms, f_rep, v_ref, a_ref, eapf);
+  a_des = apply_wall_terms(c, state, near, a_des, a_ref, eapf, on_plan);
   // Evasion when a mover is predicted within mover_margin, or, while the safety filter is
   // braking, when it would come that close to the vehicle standing still.
   const bool threat =
-      t->mover_pred_gap < 0.0 ||
-      (c->braked && in->n_movers > 0u && standing_gap(q, p, in->movers, in->n_movers) < 0.0);
-  if (eapf && q.safety != 0u && in->n_movers > 0u && threat) {
-    if (evade_movers(c, st, in->movers, in->n_movers, &a_des)) events |= TDO_APF_EVENT_EVADE;
+      terms->mover_pred_gap < 0.0 || (c->braked && in->n_movers > 0u &&
+                                      standing_gap(prm, state->p, in->movers, in->n_movers) < 0.0);
+  if (eapf && prm.safety != 0u && in->n_movers > 0u && threat) {
+    if (evade_movers(c, state, in->movers, in->n_movers, &a_des)) events |= TDO_APF_EVENT_EVADE;
   }
   out->a_des = a_des;
-  tdo_motion_limit(st, a_des, q.v_max, q.a_max, q.j_max, q.dt, &out->setpoint);
-  if (q.safety != 0u && c->grid != nullptr) {
-    if (safety_filter(c, st, a_des, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
+  tdo_motion_limit(state, a_des, prm.v_max, prm.a_max, prm.j_max, prm.dt, &out->setpoint);
+  if (prm.safety != 0u && c->grid != nullptr) {
+    if (safety_filter(c, state, a_des, &out->setpoint)) events |= TDO_APF_EVENT_SAFETY;
   }
   c->braked = (events & TDO_APF_EVENT_SAFETY) != 0u ? 1 : 0;
 
   ++c->steps;
-  out->ref_time = rt;
+  out->ref_time = ref_time;
   out->progress = progress;
   out->mode = c->mode;
   out->events = events;

@@ -27,19 +27,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "arena_typed.h"
 #include "collision_internal.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
 namespace {
 
-using tdo_internal::add;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::lerp;
-using tdo_internal::mul;
-using tdo_internal::norm;
-using tdo_internal::sub;
+using namespace tdo_internal;  // vec3.h, collision_internal.h, arena_typed.h
 
 constexpr double kCollinearRad = 1e-9;  // rad, turns below this are "collinear"
 constexpr uint32_t kMemo = 8;           // failed chords remembered per start point
@@ -524,14 +519,12 @@ extern "C" tdo_status tdo_correct_init(tdo_correct** out, tdo_arena* arena,
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
   const size_t n = cfg->max_points;
-  tdo_correct* ctx = static_cast<tdo_correct*>(tdo_arena_alloc(arena, sizeof(tdo_correct)));
+  tdo_correct* ctx = arena_context<tdo_correct>(arena, *cfg);
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(ctx, 0, sizeof(*ctx));
-  ctx->cfg = *cfg;
-  ctx->pts = static_cast<tdo_vec3*>(tdo_arena_alloc(arena, n * sizeof(tdo_vec3)));
-  ctx->orig = static_cast<uint32_t*>(tdo_arena_alloc(arena, n * sizeof(uint32_t)));
-  ctx->memo = static_cast<uint32_t*>(tdo_arena_alloc(arena, n * kMemo * sizeof(uint32_t)));
-  ctx->memo_at = static_cast<uint8_t*>(tdo_arena_alloc(arena, n));
+  ctx->pts = arena_array<tdo_vec3>(arena, n);
+  ctx->orig = arena_array<uint32_t>(arena, n);
+  ctx->memo = arena_array<uint32_t>(arena, n * kMemo);
+  ctx->memo_at = arena_array<uint8_t>(arena, n);
   if (ctx->pts == nullptr || ctx->orig == nullptr || ctx->memo == nullptr ||
       ctx->memo_at == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "sample_energy.h"
+#include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
@@ -40,32 +41,15 @@ constexpr double kGlX[4] = {0.1834346424956498049394761, 0.525532409916328985817
 constexpr double kGlW[4] = {0.3626837833783619829651504, 0.3137066458778872873379622,
                             0.2223810344533744705443560, 0.1012285362903762591525314};
 
-struct V3 {
-  double x, y, z;
-};
-inline V3 mk(const tdo_vec3& a) { return V3{a.x, a.y, a.z}; }
-inline tdo_vec3 tv(const V3& a) { return tdo_vec3{a.x, a.y, a.z}; }
-inline V3 sub(const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 add(const V3& a, const V3& b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 mul(const V3& a, double k) { return V3{a.x * k, a.y * k, a.z * k}; }
-inline double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline double norm(const V3& a) { return sqrt(dot(a, a)); }
-inline V3 cross(const V3& a, const V3& b) {
-  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline V3 lerp(const V3& a, const V3& b, double t) { return add(a, mul(sub(b, a), t)); }
-inline double dmin(double a, double b) { return a < b ? a : b; }
-inline double dmax(double a, double b) { return a > b ? a : b; }
-
 /** rad, angle between two vectors (0 when either is zero). */
-double angle(const V3& a, const V3& b) {
+double angle(const tdo_vec3& a, const tdo_vec3& b) {
   if (!(norm(a) > 0.0) || !(norm(b) > 0.0)) return 0.0;
   return atan2(norm(cross(a, b)), dot(a, b));
 }
 
 /** m, distance from q to the segment [a, b]. */
-double point_segment(const V3& q, const V3& a, const V3& b) {
-  const V3 d = sub(b, a);
+double point_segment(const tdo_vec3& q, const tdo_vec3& a, const tdo_vec3& b) {
+  const tdo_vec3 d = sub(b, a);
   const double dd = dot(d, d);
   double t = dd > 0.0 ? dot(sub(q, a), d) / dd : 0.0;
   t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
@@ -90,14 +74,14 @@ Turns turn_stats(const tdo_vec3* w, uint32_t n) {
   uint32_t prev = 0, at = 0;
   bool have_at = false;
   for (uint32_t i = 1; i < n; ++i) {
-    const V3 p = mk(w[i]);
-    const V3 last = mk(w[have_at ? at : prev]);
+    const tdo_vec3 p = w[i];
+    const tdo_vec3 last = w[have_at ? at : prev];
     const double seg = norm(sub(p, last));
     if (!(seg > 0.0)) continue;  // repeated point
     r.length += seg;
     if (have_at) {
-      const V3 a = sub(mk(w[at]), mk(w[prev]));
-      const V3 b = sub(p, mk(w[at]));
+      const tdo_vec3 a = sub(w[at], w[prev]);
+      const tdo_vec3 b = sub(p, w[at]);
       const double theta = angle(a, b);
       const double deg = theta * 180.0 / kPi;
       if (deg > kTurnThresholdDeg) {
@@ -124,13 +108,13 @@ Turns turn_stats(const tdo_vec3* w, uint32_t n) {
  * integrands |B' x B''| / |B'|^2 and |B' x B''|^2 / |B'|^5, kPanels panels of the 8-point rule.
  */
 void bezier_curvature_integrals(const tdo_path_segment& seg, double* abs_int, double* sq_int) {
-  const V3 d0 = sub(mk(seg.p[1]), mk(seg.p[0])), d1 = sub(mk(seg.p[2]), mk(seg.p[1])),
-           d2 = sub(mk(seg.p[3]), mk(seg.p[2]));
-  const V3 e0 = sub(d1, d0), e1 = sub(d2, d1);
+  const tdo_vec3 d0 = sub(seg.p[1], seg.p[0]), d1 = sub(seg.p[2], seg.p[1]),
+                 d2 = sub(seg.p[3], seg.p[2]);
+  const tdo_vec3 e0 = sub(d1, d0), e1 = sub(d2, d1);
   const auto add_at = [&](double u, double w, double* a, double* q) {
     const double v = 1.0 - u;
-    const V3 b1 = mul(add(add(mul(d0, v * v), mul(d1, 2.0 * v * u)), mul(d2, u * u)), 3.0);
-    const V3 b2 = mul(add(mul(e0, v), mul(e1, u)), 6.0);
+    const tdo_vec3 b1 = mul(add(add(mul(d0, v * v), mul(d1, 2.0 * v * u)), mul(d2, u * u)), 3.0);
+    const tdo_vec3 b2 = mul(add(mul(e0, v), mul(e1, u)), 6.0);
     const double sp2 = dot(b1, b1);
     if (!(sp2 > 0.0)) return;  // a cusp of a degenerate curve: no curvature counted
     const double c = norm(cross(b1, b2));
@@ -185,8 +169,8 @@ int curvature_continuous(const tdo_path& path) {
     if (have) {
       tdo_segment_state start;
       tdo_segment_eval(&seg, 0.0, &start);
-      if (angle(mk(end.t), mk(start.t)) > kAngleTol) return 0;
-      if (norm(sub(mk(end.kn), mk(start.kn))) > kCurvatureJumpTol) return 0;
+      if (angle(end.t, start.t) > kAngleTol) return 0;
+      if (norm(sub(end.kn, start.kn)) > kCurvatureJumpTol) return 0;
     }
     tdo_segment_eval(&seg, seg.length, &end);
     have = 1;
@@ -205,15 +189,15 @@ int curvature_continuous(const tdo_path& path) {
  * more than a rounding error and best stays; below it the distance is the same exact value. So the
  * result is bit for bit that of querying every chord at cap + sagitta.
  */
-double piece_bound(const tdo_grid* grid, const V3& a, const V3& b, double sagitta, double cap,
-                   double best) {
+double piece_bound(const tdo_grid* grid, const tdo_vec3& a, const tdo_vec3& b, double sagitta,
+                   double cap, double best) {
   const double full = cap + sagitta;
   double q = full;
   if (best < cap) {
     const double tight = (best + sagitta) * (1.0 + 1e-9) + 1e-12;
     if (tight < full) q = tight;
   }
-  const double d = tdo_collision_segment_distance(grid, tv(a), tv(b), q);
+  const double d = tdo_collision_segment_distance(grid, a, b, q);
   if (q < full && !(d < q)) return best;  // reached the tight cap: no lower bound below best
   return dmin(best, d - sagitta);
 }
@@ -226,37 +210,38 @@ uint32_t chords_for(double flatness) {
 }
 
 struct Bezier {
-  V3 p[4];
+  tdo_vec3 p[4];
 };
 
-V3 bez_point(const Bezier& b, double u) {
+tdo_vec3 bez_point(const Bezier& b, double u) {
   if (u <= 0.0) return b.p[0];
   if (u >= 1.0) return b.p[3];
-  const V3 a0 = lerp(b.p[0], b.p[1], u), a1 = lerp(b.p[1], b.p[2], u), a2 = lerp(b.p[2], b.p[3], u);
+  const tdo_vec3 a0 = lerp(b.p[0], b.p[1], u), a1 = lerp(b.p[1], b.p[2], u),
+                 a2 = lerp(b.p[2], b.p[3], u);
   return lerp(lerp(a0, a1, u), lerp(a1, a2, u), u);
 }
 
-V3 bez_d1(const Bezier& b, double u) {
+tdo_vec3 bez_d1(const Bezier& b, double u) {
   const double w = 1.0 - u;
-  const V3 d0 = sub(b.p[1], b.p[0]), d1 = sub(b.p[2], b.p[1]), d2 = sub(b.p[3], b.p[2]);
+  const tdo_vec3 d0 = sub(b.p[1], b.p[0]), d1 = sub(b.p[2], b.p[1]), d2 = sub(b.p[3], b.p[2]);
   return mul(add(add(mul(d0, w * w), mul(d1, 2.0 * w * u)), mul(d2, u * u)), 3.0);
 }
 
 double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap,
                         double best) {
-  const Bezier b{{mk(seg.p[0]), mk(seg.p[1]), mk(seg.p[2]), mk(seg.p[3])}};
+  const Bezier b{{seg.p[0], seg.p[1], seg.p[2], seg.p[3]}};
   const double flat =
       dmax(point_segment(b.p[1], b.p[0], b.p[3]), point_segment(b.p[2], b.p[0], b.p[3]));
   const uint32_t k = chords_for(flat);
-  V3 q0 = b.p[0], d0 = bez_d1(b, 0.0);
+  tdo_vec3 q0 = b.p[0], d0 = bez_d1(b, 0.0);
   for (uint32_t i = 0; i < k; ++i) {
     const double u1 = i + 1u == k ? 1.0 : static_cast<double>(i + 1u) / k;
     const double u0 = static_cast<double>(i) / k;
     const double du = u1 - u0;
-    const V3 q3 = bez_point(b, u1), d1 = bez_d1(b, u1);
+    const tdo_vec3 q3 = bez_point(b, u1), d1 = bez_d1(b, u1);
     // Control points of the piece [u0, u1] (exact for a cubic: Hermite data at both ends).
-    const V3 q1 = add(q0, mul(d0, du / 3.0));
-    const V3 q2 = sub(q3, mul(d1, du / 3.0));
+    const tdo_vec3 q1 = add(q0, mul(d0, du / 3.0));
+    const tdo_vec3 q2 = sub(q3, mul(d1, du / 3.0));
     const double sag = dmax(point_segment(q1, q0, q3), point_segment(q2, q0, q3));
     best = piece_bound(grid, q0, q3, sag, cap, best);
     q0 = q3;
@@ -266,8 +251,8 @@ double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, doubl
 }
 
 double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap, double best) {
-  const double r = norm(sub(mk(seg.p[0]), mk(seg.p[2])));
-  const double whole = norm(sub(mk(seg.p[1]), mk(seg.p[0])));
+  const double r = norm(sub(seg.p[0], seg.p[2]));
+  const double whole = norm(sub(seg.p[1], seg.p[0]));
   // Sagitta of a chord c on a circle of radius r: (c^2/4) / (r + sqrt(r^2 - c^2/4)).
   const auto sagitta = [r](double c) {
     const double q = 0.25 * c * c;
@@ -275,10 +260,9 @@ double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double c
     return q / (r + sqrt(root > 0.0 ? root : 0.0)) + kSagittaSlack;
   };
   const uint32_t k = chords_for(sagitta(whole));
-  V3 a = mk(seg.p[0]);
+  tdo_vec3 a = seg.p[0];
   for (uint32_t i = 0; i < k; ++i) {
-    const V3 b =
-        i + 1u == k ? mk(seg.p[1]) : mk(tdo_segment_point(&seg, seg.length * (i + 1u) / k));
+    const tdo_vec3 b = i + 1u == k ? seg.p[1] : tdo_segment_point(&seg, seg.length * (i + 1u) / k);
     best = piece_bound(grid, a, b, sagitta(norm(sub(b, a))), cap, best);
     a = b;
   }
@@ -291,8 +275,7 @@ double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
   for (uint32_t i = 0; i < path.n; ++i) {
     const tdo_path_segment& seg = path.seg[i];
     if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0))
-      best =
-          piece_bound(grid, mk(seg.p[0]), mk(tdo_segment_point(&seg, seg.length)), 0.0, cap, best);
+      best = piece_bound(grid, seg.p[0], tdo_segment_point(&seg, seg.length), 0.0, cap, best);
     else if (seg.kind == TDO_SEGMENT_ARC)
       best = arc_clearance(grid, seg, cap, best);
     else
@@ -303,7 +286,7 @@ double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
 
 double polyline_clearance(const tdo_grid* grid, const tdo_vec3* w, uint32_t n, double cap) {
   double best = HUGE_VAL;
-  for (uint32_t i = 1; i < n; ++i) best = piece_bound(grid, mk(w[i - 1]), mk(w[i]), 0.0, cap, best);
+  for (uint32_t i = 1; i < n; ++i) best = piece_bound(grid, w[i - 1], w[i], 0.0, cap, best);
   return best;
 }
 

@@ -8,27 +8,11 @@
 
 #include "vec3.h"
 
-using tdo_internal::finite3;
+using namespace tdo_internal;  // vec3.h
 
 namespace {
 
-struct V {
-  double x, y, z;
-};
-
-inline V mk(const tdo_vec3& a) { return V{a.x, a.y, a.z}; }
-inline tdo_vec3 tv(const V& a) { return tdo_vec3{a.x, a.y, a.z}; }
-inline V add(const V& a, const V& b) { return V{a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V sub(const V& a, const V& b) { return V{a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V mul(const V& a, double k) { return V{a.x * k, a.y * k, a.z * k}; }
-inline double dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V cross(const V& a, const V& b) {
-  return V{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double norm(const V& a) { return sqrt(dot(a, a)); }
-inline V lerp(const V& a, const V& b, double t) { return add(a, mul(sub(b, a), t)); }
-
-constexpr V kZero{0.0, 0.0, 0.0};
+constexpr tdo_vec3 kZero{0.0, 0.0, 0.0};
 
 // 8-point Gauss-Legendre on [-1, 1]: exact for polynomials of degree 15.
 constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
@@ -42,34 +26,34 @@ constexpr double kQuadRelTol = 1e-14;
 
 /** Cubic Bezier with precomputed derivative coefficients. */
 struct Bez {
-  V p[4];
-  V d[3];       // hodograph control points: B'(t) = 3 * sum Bernstein2_i(t) d[i]
-  V dd[2];      // second differences: B''(t) = 6 * ((1-t) dd[0] + t dd[1])
-  V ddd;        // B''' = 6 * ddd
-  double poly;  // m, control polygon length
-  double len;   // m, total arclength (filled by bez_setup)
+  tdo_vec3 p[4];
+  tdo_vec3 d[3];   // hodograph control points: B'(t) = 3 * sum Bernstein2_i(t) d[i]
+  tdo_vec3 dd[2];  // second differences: B''(t) = 6 * ((1-t) dd[0] + t dd[1])
+  tdo_vec3 ddd;    // B''' = 6 * ddd
+  double poly;     // m, control polygon length
+  double len;      // m, total arclength (filled by bez_setup)
 };
 
-inline V bez_d1(const Bez& b, double t) {
+inline tdo_vec3 bez_d1(const Bez& b, double t) {
   const double u = 1.0 - t;
-  const V h = add(add(mul(b.d[0], u * u), mul(b.d[1], 2.0 * u * t)), mul(b.d[2], t * t));
+  const tdo_vec3 h = add(add(mul(b.d[0], u * u), mul(b.d[1], 2.0 * u * t)), mul(b.d[2], t * t));
   return mul(h, 3.0);
 }
-inline V bez_d2(const Bez& b, double t) {
+inline tdo_vec3 bez_d2(const Bez& b, double t) {
   return mul(add(mul(b.dd[0], 1.0 - t), mul(b.dd[1], t)), 6.0);
 }
-inline V bez_d3(const Bez& b) { return mul(b.ddd, 6.0); }
+inline tdo_vec3 bez_d3(const Bez& b) { return mul(b.ddd, 6.0); }
 inline double bez_speed(const Bez& b, double t) { return norm(bez_d1(b, t)); }
 
-inline V bez_point(const Bez& b, double t) {
+inline tdo_vec3 bez_point(const Bez& b, double t) {
   if (t <= 0.0) return b.p[0];
   if (t >= 1.0) return b.p[3];
   // de Casteljau: numerically stable, exact at the ends.
-  const V a0 = lerp(b.p[0], b.p[1], t);
-  const V a1 = lerp(b.p[1], b.p[2], t);
-  const V a2 = lerp(b.p[2], b.p[3], t);
-  const V b0 = lerp(a0, a1, t);
-  const V b1 = lerp(a1, a2, t);
+  const tdo_vec3 a0 = lerp(b.p[0], b.p[1], t);
+  const tdo_vec3 a1 = lerp(b.p[1], b.p[2], t);
+  const tdo_vec3 a2 = lerp(b.p[2], b.p[3], t);
+  const tdo_vec3 b0 = lerp(a0, a1, t);
+  const tdo_vec3 b1 = lerp(a1, a2, t);
   return lerp(b0, b1, t);
 }
 
@@ -128,7 +112,7 @@ double arclen(const Bez& bz, double a, double b) {
 
 Bez bez_setup(const tdo_path_segment& seg) {
   Bez b;
-  for (int i = 0; i < 4; ++i) b.p[i] = mk(seg.p[i]);
+  for (int i = 0; i < 4; ++i) b.p[i] = seg.p[i];
   for (int i = 0; i < 3; ++i) b.d[i] = sub(b.p[i + 1], b.p[i]);
   b.dd[0] = sub(b.d[1], b.d[0]);
   b.dd[1] = sub(b.d[2], b.d[1]);
@@ -177,16 +161,16 @@ double bez_invert(const Bez& bz, double s, double total) {
 
 /** Arc frame: centre c, radius r, unit u (to the start), unit w (in-plane, towards the end). */
 struct Arc {
-  V c, u, w;
+  tdo_vec3 c, u, w;
   double r, sweep;  // m, rad
   int ok;           // 0: degenerate (zero radius or sweep), evaluated as a line
 };
 
 Arc arc_setup(const tdo_path_segment& seg) {
   Arc a;
-  a.c = mk(seg.p[2]);
-  const V r0 = sub(mk(seg.p[0]), a.c);
-  const V r1 = sub(mk(seg.p[1]), a.c);
+  a.c = seg.p[2];
+  const tdo_vec3 r0 = sub(seg.p[0], a.c);
+  const tdo_vec3 r1 = sub(seg.p[1], a.c);
   a.r = norm(r0);
   a.ok = 0;
   a.u = kZero;
@@ -195,8 +179,8 @@ Arc arc_setup(const tdo_path_segment& seg) {
   const double r1n = norm(r1);
   if (!(a.r > 0.0) || !(r1n > 0.0)) return a;
   a.u = mul(r0, 1.0 / a.r);
-  const V v = mul(r1, 1.0 / r1n);
-  const V wr = sub(v, mul(a.u, dot(v, a.u)));
+  const tdo_vec3 v = mul(r1, 1.0 / r1n);
+  const tdo_vec3 wr = sub(v, mul(a.u, dot(v, a.u)));
   const double wn = norm(wr);
   a.sweep = atan2(norm(cross(a.u, v)), dot(a.u, v));
   if (!(wn > 1e-300) || !(a.sweep > 0.0)) return a;
@@ -220,18 +204,18 @@ int eval(const tdo_path_segment* seg, double s, tdo_segment_state* out) {
   const double len = seg->length > 0.0 ? seg->length : 0.0;
   switch (seg->kind) {
     case TDO_SEGMENT_LINE: {
-      const V a = mk(seg->p[0]);
-      const V b = mk(seg->p[1]);
-      const V d = sub(b, a);
+      const tdo_vec3 a = seg->p[0];
+      const tdo_vec3 b = seg->p[1];
+      const tdo_vec3 d = sub(b, a);
       const double n = norm(d);
       if (s >= len)
         out->p = seg->p[1];
       else if (s <= 0.0 || !(n > 0.0))
         out->p = seg->p[0];
       else
-        out->p = tv(add(a, mul(d, s / n)));
+        out->p = add(a, mul(d, s / n));
       if (!(n > 0.0)) return 0;
-      out->t = tv(mul(d, 1.0 / n));
+      out->t = mul(d, 1.0 / n);
       return 1;
     }
     case TDO_SEGMENT_ARC: {
@@ -242,16 +226,16 @@ int eval(const tdo_path_segment* seg, double s, tdo_segment_state* out) {
       }
       const double ang = s / a.r;
       const double ca = cos(ang), sa = sin(ang);
-      const V radial = add(mul(a.u, ca), mul(a.w, sa));  // unit, centre -> point
+      const tdo_vec3 radial = add(mul(a.u, ca), mul(a.w, sa));  // unit, centre -> point
       if (s >= len)
         out->p = seg->p[1];
       else if (s <= 0.0)
         out->p = seg->p[0];
       else
-        out->p = tv(add(a.c, mul(radial, a.r)));
-      out->t = tv(sub(mul(a.w, ca), mul(a.u, sa)));
+        out->p = add(a.c, mul(radial, a.r));
+      out->t = sub(mul(a.w, ca), mul(a.u, sa));
       out->kappa = 1.0 / a.r;
-      out->kn = tv(mul(radial, -1.0 / a.r));
+      out->kn = mul(radial, -1.0 / a.r);
       return 1;
     }
     case TDO_SEGMENT_BEZIER: {
@@ -263,23 +247,23 @@ int eval(const tdo_path_segment* seg, double s, tdo_segment_state* out) {
         t = 1.0;
       else
         t = bez_invert(bz, s, len);
-      out->p = tv(bez_point(bz, t));
-      const V d1 = bez_d1(bz, t);
-      const V d2 = bez_d2(bz, t);
+      out->p = bez_point(bz, t);
+      const tdo_vec3 d1 = bez_d1(bz, t);
+      const tdo_vec3 d2 = bez_d2(bz, t);
       const double sp = norm(d1);
       if (!(sp > 0.0)) return 0;
-      const V tan = mul(d1, 1.0 / sp);
-      out->t = tv(tan);
+      const tdo_vec3 tan = mul(d1, 1.0 / sp);
+      out->t = tan;
       // dT/ds = (B'' - (B''.T) T) / |B'|^2
-      const V perp = sub(d2, mul(tan, dot(d2, tan)));
+      const tdo_vec3 perp = sub(d2, mul(tan, dot(d2, tan)));
       const double sp2 = sp * sp;
-      out->kn = tv(mul(perp, 1.0 / sp2));
-      const V c = cross(d1, d2);
+      out->kn = mul(perp, 1.0 / sp2);
+      const tdo_vec3 c = cross(d1, d2);
       const double cn = norm(c);
       const double sp3 = sp2 * sp;
       out->kappa = cn / sp3;
       // kappa = |c| / |B'|^3 with c = B' x B'', c' = B' x B''' (B'' x B'' = 0).
-      const V cp = cross(d1, bez_d3(bz));
+      const tdo_vec3 cp = cross(d1, bez_d3(bz));
       double dcn;  // d|c|/dt
       if (cn > 1e-12 * (norm(cp) + sp3 / (len > 0.0 ? len : 1.0)))
         dcn = dot(c, cp) / cn;
@@ -301,11 +285,11 @@ extern "C" double tdo_segment_length(const tdo_path_segment* seg) {
   switch (seg->kind) {
     case TDO_SEGMENT_LINE:
       if (!finite3(seg->p[0]) || !finite3(seg->p[1])) return 0.0;
-      return norm(sub(mk(seg->p[1]), mk(seg->p[0])));
+      return norm(sub(seg->p[1], seg->p[0]));
     case TDO_SEGMENT_ARC: {
       if (!finite3(seg->p[0]) || !finite3(seg->p[1]) || !finite3(seg->p[2])) return 0.0;
       const Arc a = arc_setup(*seg);
-      return a.ok ? a.r * a.sweep : norm(sub(mk(seg->p[1]), mk(seg->p[0])));
+      return a.ok ? a.r * a.sweep : norm(sub(seg->p[1], seg->p[0]));
     }
     case TDO_SEGMENT_BEZIER: {
       for (int i = 0; i < 4; ++i)
@@ -331,7 +315,7 @@ extern "C" tdo_vec3 tdo_segment_point(const tdo_path_segment* seg, double s) {
     if (s <= 0.0) return seg->p[0];
     if (s >= len) return seg->p[3];
     const Bez bz = bez_setup(*seg);
-    return tv(bez_point(bz, bez_invert(bz, s, len)));
+    return bez_point(bz, bez_invert(bz, s, len));
   }
   tdo_segment_state st;
   eval(seg, s, &st);

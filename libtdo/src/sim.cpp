@@ -5,16 +5,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "arena_typed.h"
+#include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
-using tdo_internal::add;
-using tdo_internal::dot;
-using tdo_internal::finite3;
-using tdo_internal::mul;
-using tdo_internal::norm;
-using tdo_internal::sub;
-using tdo_internal::v3;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 struct tdo_sim {
   tdo_sim_config cfg;
@@ -32,9 +28,6 @@ namespace {
 
 constexpr double kStaticCap = 10.0;  // m, cap of the static distance query
 constexpr int kMaxReflections = 4;   // per axis and step
-
-bool pos(double x) { return isfinite(x) && x > 0.0; }
-bool nonneg(double x) { return isfinite(x) && x >= 0.0; }
 
 double comp(tdo_vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 void set_comp(tdo_vec3* v, int k, double x) {
@@ -211,12 +204,9 @@ extern "C" tdo_status tdo_sim_init(tdo_sim** out, tdo_arena* arena, const tdo_si
   if (out == nullptr || arena == nullptr || cfg == nullptr || tdo_sim_footprint(cfg) == 0)
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
-  tdo_sim* c = static_cast<tdo_sim*>(tdo_arena_alloc(arena, sizeof(tdo_sim)));
+  tdo_sim* c = arena_context<tdo_sim>(arena, *cfg);
   if (c == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(c, 0, sizeof(*c));
-  c->cfg = *cfg;
-  c->movers = static_cast<tdo_mover*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_movers) * sizeof(tdo_mover)));
+  c->movers = arena_array<tdo_mover>(arena, cfg->max_movers);
   if (c->movers == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = c;
   return TDO_OK;
@@ -229,8 +219,9 @@ extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
   c->ready = 0;
   if (prm == nullptr || initial == nullptr || (n_movers > 0u && movers == nullptr))
     return TDO_ERR_INVALID_ARGUMENT;
-  if (!pos(prm->dt) || !pos(prm->v_max) || !pos(prm->a_max) || !pos(prm->j_max) ||
-      !nonneg(prm->vehicle_radius) || !nonneg(prm->static_clearance) || !nonneg(prm->accel_noise) ||
+  if (!positive(prm->dt) || !positive(prm->v_max) || !positive(prm->a_max) ||
+      !positive(prm->j_max) || !non_negative(prm->vehicle_radius) ||
+      !non_negative(prm->static_clearance) || !non_negative(prm->accel_noise) ||
       !finite3(prm->bounds.min) || !finite3(prm->bounds.max) ||
       !(prm->bounds.max.x > prm->bounds.min.x) || !(prm->bounds.max.y > prm->bounds.min.y) ||
       !(prm->bounds.max.z > prm->bounds.min.z))
@@ -238,7 +229,7 @@ extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
   if (!isfinite(initial->t) || !finite3(initial->p) || !finite3(initial->v) || !finite3(initial->a))
     return TDO_ERR_INVALID_ARGUMENT;
   for (uint32_t i = 0; i < n_movers; ++i)
-    if (!finite3(movers[i].p) || !finite3(movers[i].v) || !pos(movers[i].radius))
+    if (!finite3(movers[i].p) || !finite3(movers[i].v) || !positive(movers[i].radius))
       return TDO_ERR_INVALID_ARGUMENT;
   if (n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
   if (prm->grid != nullptr && !(tdo_grid_clearance(prm->grid) >= 0.0)) return TDO_ERR_MAP_NOT_READY;

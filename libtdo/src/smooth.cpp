@@ -29,10 +29,12 @@
 #include <math.h>
 #include <string.h>
 
+#include "arena_typed.h"
+#include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
-using tdo_internal::finite3;
+using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 
 namespace {
 
@@ -64,23 +66,6 @@ constexpr double kGentleH = 0.32;  // |B2 - B1| / d
 constexpr int kShapeBlends = 4;    // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
 constexpr double kTimeJerkShare = 0.4;  // of j_max: lateral jerk the jerk radius designs for
 
-struct V {
-  double x, y, z;
-};
-inline V mk(const tdo_vec3& a) { return V{a.x, a.y, a.z}; }
-inline tdo_vec3 tv(const V& a) { return tdo_vec3{a.x, a.y, a.z}; }
-inline V add(const V& a, const V& b) { return V{a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V sub(const V& a, const V& b) { return V{a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V mul(const V& a, double k) { return V{a.x * k, a.y * k, a.z * k}; }
-inline double dot(const V& a, const V& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V cross(const V& a, const V& b) {
-  return V{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double norm(const V& a) { return sqrt(dot(a, a)); }
-inline bool positive(double x) { return isfinite(x) && x > 0.0; }
-inline double dmin(double a, double b) { return a < b ? a : b; }
-inline double dmax(double a, double b) { return a > b ? a : b; }
-
 enum CornerKind : uint8_t {
   kCornerStraight = 0,  // no turn: the lines meet end to end
   kCornerStop = 1,      // polyline corner, vehicle at rest there
@@ -89,20 +74,20 @@ enum CornerKind : uint8_t {
 
 /** Per-waypoint state. Index 0 and n-1 are start and goal (kCornerStraight, no room needed). */
 struct Corner {
-  V w;             // m, waypoint
-  V u;             // unit direction of the segment from this waypoint to the next
-  double len;      // m, length of that segment
-  double gf, hf;   // G2 shape: |B1 - B0| and |B2 - B1| as fractions of the tangent length
-  double tau;      // tangent length per metre of radius (dimensionless)
-  double rate;     // max|dkappa/ds| * r^2 of the G2 shape (dimensionless); 0 for arcs
-  double r_des;    // m, wanted radius
-  double t_des;    // m, wanted tangent length
-  double r;        // m, final radius
-  double t;        // m, final tangent length
-  double v;        // m/s, speed cap of the corner curve
-  V entry, exit;   // m, where the curve leaves the incoming line and joins the outgoing one
-  uint8_t kind;    // CornerKind
-  uint8_t shrunk;  // 1 when r < r_des
+  tdo_vec3 w;            // m, waypoint
+  tdo_vec3 u;            // unit direction of the segment from this waypoint to the next
+  double len;            // m, length of that segment
+  double gf, hf;         // G2 shape: |B1 - B0| and |B2 - B1| as fractions of the tangent length
+  double tau;            // tangent length per metre of radius (dimensionless)
+  double rate;           // max|dkappa/ds| * r^2 of the G2 shape (dimensionless); 0 for arcs
+  double r_des;          // m, wanted radius
+  double t_des;          // m, wanted tangent length
+  double r;              // m, final radius
+  double t;              // m, final tangent length
+  double v;              // m/s, speed cap of the corner curve
+  tdo_vec3 entry, exit;  // m, where the curve leaves the incoming line and joins the outgoing one
+  uint8_t kind;          // CornerKind
+  uint8_t shrunk;        // 1 when r < r_des
 };
 
 /** Tangent length per metre of radius of the G2 corner with half-deflection beta. */
@@ -134,66 +119,6 @@ double g2_rate_at(const double px[4], const double py[4], double t) {
   const double sp3 = sp2 * sp;
   const double dk_dt = cp / sp3 - 3.0 * c * (d1[0] * d2[0] + d1[1] * d2[1]) / (sp3 * sp2);
   return fabs(dk_dt / sp);
-}
-
-/**
- * max |dkappa/ds| of the unit-radius G2 corner (both halves are mirror images): 32 uniform samples
- * in t, then golden-section refinement around the best one; a 1e-6 relative safety margin.
- * Scale: a corner of radius r has max |dkappa/ds| = g2_rate(beta) / r^2.
- */
-double g2_rate(double beta) {
-  const double d = g2_tau(beta);
-  const double h = kC3 * d, g = kC2 * h;
-  const double theta = 2.0 * beta;
-  // Waypoint at the origin, incoming along +x, outgoing along (cos theta, sin theta).
-  const double b2 = d - g - h;
-  const double px[4] = {-d, -(d - g), -b2, 0.5 * (-b2 + b2 * cos(theta))};
-  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
-  int best = 0;
-  double best_v = -1.0;
-  for (int i = 0; i <= kRateSamples; ++i) {
-    const double v = g2_rate_at(px, py, static_cast<double>(i) / kRateSamples);
-    if (v > best_v) {
-      best_v = v;
-      best = i;
-    }
-  }
-  double lo = static_cast<double>(best > 0 ? best - 1 : 0) / kRateSamples;
-  double hi = static_cast<double>(best < kRateSamples ? best + 1 : kRateSamples) / kRateSamples;
-  const double gr = 0.6180339887498948482;
-  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-  double f1 = g2_rate_at(px, py, x1), f2 = g2_rate_at(px, py, x2);
-  for (int it = 0; it < kRateGolden; ++it) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + gr * (hi - lo);
-      f2 = g2_rate_at(px, py, x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - gr * (hi - lo);
-      f1 = g2_rate_at(px, py, x1);
-    }
-  }
-  return dmax(best_v, dmax(f1, f2)) * kRateMargin;
-}
-
-/** kappa (signed, >= 0 for a left turn) at parameter t of a planar Bezier (see g2_rate_at). */
-double g2_kappa_at(const double px[4], const double py[4], double t) {
-  const double u = 1.0 - t;
-  double d1[2], d2[2];
-  const double* p[2] = {px, py};
-  for (int i = 0; i < 2; ++i) {
-    const double* c = p[i];
-    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
-    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
-  }
-  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
-  if (!(sp2 > 0.0)) return 0.0;
-  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
 }
 
 /** Maximum over t in [0, 1] of f: kRateSamples + 1 samples, golden-section refinement. */
@@ -232,6 +157,37 @@ double max_on_unit(F f) {
 }
 
 /**
+ * max |dkappa/ds| of the unit-radius G2 corner (both halves are mirror images): max_on_unit over
+ * the first half, with a 1e-6 relative safety margin.
+ * Scale: a corner of radius r has max |dkappa/ds| = g2_rate(beta) / r^2.
+ */
+double g2_rate(double beta) {
+  const double d = g2_tau(beta);
+  const double h = kC3 * d, g = kC2 * h;
+  const double theta = 2.0 * beta;
+  // Waypoint at the origin, incoming along +x, outgoing along (cos theta, sin theta).
+  const double b2 = d - g - h;
+  const double px[4] = {-d, -(d - g), -b2, 0.5 * (-b2 + b2 * cos(theta))};
+  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
+  return max_on_unit([&](double t) { return g2_rate_at(px, py, t); }) * kRateMargin;
+}
+
+/** kappa (signed, >= 0 for a left turn) at parameter t of a planar Bezier (see g2_rate_at). */
+double g2_kappa_at(const double px[4], const double py[4], double t) {
+  const double u = 1.0 - t;
+  double d1[2], d2[2];
+  const double* p[2] = {px, py};
+  for (int i = 0; i < 2; ++i) {
+    const double* c = p[i];
+    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
+    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
+  }
+  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
+  if (!(sp2 > 0.0)) return 0.0;
+  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
+}
+
+/**
  * Tangent length per metre of radius (tau) and rate = max|dkappa/ds| r^2 of the G2 corner whose
  * inner control points sit at fractions gf, hf of the tangent length, with half-deflection beta:
  * "radius" r = 1 / max kappa, so that the corner of radius r has tangent length tau r, peak
@@ -256,36 +212,37 @@ tdo_path_segment blank_segment(tdo_segment_kind kind) {
 }
 
 /** The two Beziers of a G2 corner at waypoint w with tangent length d from entry to exit. */
-void g2_corner(const V& w, const V& u_in, const V& u_out, double gf, double hf, double d,
-               const V& entry, const V& exit, tdo_path_segment out[2]) {
+void g2_corner(const tdo_vec3& w, const tdo_vec3& u_in, const tdo_vec3& u_out, double gf, double hf,
+               double d, const tdo_vec3& entry, const tdo_vec3& exit, tdo_path_segment out[2]) {
   const double h = hf * d, g = gf * d;
-  const V b1 = sub(w, mul(u_in, d - g));
-  const V b2 = sub(w, mul(u_in, d - g - h));
-  const V e1 = add(w, mul(u_out, d - g));
-  const V e2 = add(w, mul(u_out, d - g - h));
-  const V j = mul(add(b2, e2), 0.5);
+  const tdo_vec3 b1 = sub(w, mul(u_in, d - g));
+  const tdo_vec3 b2 = sub(w, mul(u_in, d - g - h));
+  const tdo_vec3 e1 = add(w, mul(u_out, d - g));
+  const tdo_vec3 e2 = add(w, mul(u_out, d - g - h));
+  const tdo_vec3 j = mul(add(b2, e2), 0.5);
   out[0] = blank_segment(TDO_SEGMENT_BEZIER);
-  out[0].p[0] = tv(entry);
-  out[0].p[1] = tv(b1);
-  out[0].p[2] = tv(b2);
-  out[0].p[3] = tv(j);
+  out[0].p[0] = entry;
+  out[0].p[1] = b1;
+  out[0].p[2] = b2;
+  out[0].p[3] = j;
   out[1] = blank_segment(TDO_SEGMENT_BEZIER);
-  out[1].p[0] = tv(j);
-  out[1].p[1] = tv(e2);
-  out[1].p[2] = tv(e1);
-  out[1].p[3] = tv(exit);
+  out[1].p[0] = j;
+  out[1].p[1] = e2;
+  out[1].p[2] = e1;
+  out[1].p[3] = exit;
 }
 
 /** The arc of radius r at waypoint w with tangent length t, from entry to exit. */
-tdo_path_segment arc_corner(const V& w, const V& u_in, const V& u_out, double r, double t,
-                            const V& entry, const V& exit) {
+tdo_path_segment arc_corner(const tdo_vec3& w, const tdo_vec3& u_in, const tdo_vec3& u_out,
+                            double r, double t, const tdo_vec3& entry, const tdo_vec3& exit) {
   tdo_path_segment s = blank_segment(TDO_SEGMENT_ARC);
-  const V n_raw = sub(u_out, mul(u_in, dot(u_in, u_out)));  // in-plane normal towards the turn
-  const V n = mul(n_raw, 1.0 / norm(n_raw));
-  const V c = add(sub(w, mul(u_in, t)), mul(n, r));
-  s.p[0] = tv(entry);
-  s.p[1] = tv(exit);
-  s.p[2] = tv(c);
+  const tdo_vec3 n_raw =
+      sub(u_out, mul(u_in, dot(u_in, u_out)));  // in-plane normal towards the turn
+  const tdo_vec3 n = mul(n_raw, 1.0 / norm(n_raw));
+  const tdo_vec3 c = add(sub(w, mul(u_in, t)), mul(n, r));
+  s.p[0] = entry;
+  s.p[1] = exit;
+  s.p[2] = c;
   return s;
 }
 
@@ -308,8 +265,8 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
                  uint32_t* checks) {
   if (in.grid == nullptr) return 1;
   const double clearance = in.clearance + margin;
-  const V entry = sub(c.w, mul(prev.u, c.t));
-  const V exit = add(c.w, mul(c.u, c.t));
+  const tdo_vec3 entry = sub(c.w, mul(prev.u, c.t));
+  const tdo_vec3 exit = add(c.w, mul(c.u, c.t));
   if (in.mode == TDO_SMOOTHING_G2) {
     tdo_path_segment b[2];
     g2_corner(c.w, prev.u, c.u, c.gf, c.hf, c.t, entry, exit, b);
@@ -421,56 +378,48 @@ extern "C" tdo_status tdo_smooth_init(tdo_smooth** out, tdo_arena* arena,
   *out = nullptr;
   if (arena->used > arena->size || arena->size - arena->used < tdo_smooth_footprint(cfg))
     return TDO_ERR_ARENA_TOO_SMALL;
-  tdo_smooth* ctx = static_cast<tdo_smooth*>(tdo_arena_alloc(arena, sizeof(tdo_smooth)));
+  tdo_smooth* ctx = arena_context<tdo_smooth>(arena, *cfg);
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
-  memset(ctx, 0, sizeof(*ctx));
-  ctx->cfg = *cfg;
-  ctx->seg = static_cast<tdo_path_segment*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_segments) * sizeof(tdo_path_segment)));
-  ctx->corner = static_cast<Corner*>(
-      tdo_arena_alloc(arena, static_cast<size_t>(cfg->max_waypoints) * sizeof(Corner)));
+  ctx->seg = arena_array<tdo_path_segment>(arena, cfg->max_segments);
+  ctx->corner = arena_array<Corner>(arena, cfg->max_waypoints);
   if (ctx->seg == nullptr || ctx->corner == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   *out = ctx;
   return TDO_OK;
 }
 
-extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in_ptr,
-                                     tdo_smooth_output* out) {
-  if (ctx == nullptr || in_ptr == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
-  memset(out, 0, sizeof(*out));
-  const tdo_smooth_input& in = *in_ptr;
-  if (!valid_input(in)) return TDO_ERR_INVALID_ARGUMENT;
-  if (in.n_waypoints > ctx->cfg.max_waypoints) return TDO_ERR_PATH_CAPACITY;
-  Corner* const c = ctx->corner;
+namespace {
 
-  // 1. Waypoints, consecutive duplicates merged (the exact goal is kept).
+// Step 1. Waypoints into c[0..n), consecutive duplicates merged (the exact goal is kept), with the
+// direction and length of each line.
+tdo_status load_waypoints(const tdo_smooth_input& in, Corner* c, uint32_t* n_out) {
   uint32_t n = 0;
   for (uint32_t i = 0; i < in.n_waypoints; ++i) {
     const tdo_vec3& p = in.waypoints[i];
     if (!finite3(p)) return TDO_ERR_INVALID_ARGUMENT;
-    if (n > 0u && norm(sub(mk(p), c[n - 1u].w)) <= kDuplicate) {
-      if (i + 1u == in.n_waypoints && n >= 2u) c[n - 1u].w = mk(p);
+    if (n > 0u && norm(sub(p, c[n - 1u].w)) <= kDuplicate) {
+      if (i + 1u == in.n_waypoints && n >= 2u) c[n - 1u].w = p;
       continue;
     }
     memset(&c[n], 0, sizeof(Corner));
-    c[n].w = mk(p);
+    c[n].w = p;
     ++n;
   }
   if (n < 2u) return TDO_ERR_INVALID_ARGUMENT;  // start == goal
   for (uint32_t i = 0; i + 1u < n; ++i) {
-    const V d = sub(c[i + 1u].w, c[i].w);
+    const tdo_vec3 d = sub(c[i + 1u].w, c[i].w);
     c[i].len = norm(d);
     c[i].u = mul(d, 1.0 / c[i].len);
   }
+  *n_out = n;
+  return TDO_OK;
+}
 
-  // 2. Wanted radius and tangent length per corner.
-  const double r_min = in.v_cruise * in.v_cruise / in.a_lat_max;  // m, R_min
-  const double r_floor =
-      dmax(in.min_radius > 0.0 ? in.min_radius : kDefaultMinRadius * r_min, kAbsMinRadius);
+// Step 2. Kind, shape, wanted radius and tangent length of every interior corner.
+void want_corners(const tdo_smooth_input& in, double r_min, Corner* c, uint32_t n) {
   const double v_c = dmin(in.v_cruise, in.v_max);
   for (uint32_t i = 1; i + 1u < n; ++i) {
     Corner& k = c[i];
-    const V& u_in = c[i - 1u].u;
+    const tdo_vec3& u_in = c[i - 1u].u;
     const double theta = atan2(norm(cross(u_in, k.u)), dot(u_in, k.u));
     if (theta < kStraightAngle) {
       k.kind = kCornerStraight;
@@ -492,48 +441,58 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
     }
     k.t_des = k.tau * k.r_des;
   }
+}
 
-  // 3. Fit into the room, keep clearance, else stop.
-  uint32_t checks = 0;
-  for (uint32_t i = 1; i + 1u < n; ++i) {
-    Corner& k = c[i];
-    if (k.kind != kCornerCurve) continue;
-    const double l_in = c[i - 1u].len, l_out = k.len;
-    const double room_in = dmax(0.5 * l_in, l_in - c[i - 1u].t_des);
-    const double room_out = dmax(0.5 * l_out, l_out - c[i + 1u].t_des);
-    const double room = dmin(room_in, room_out);
-    const double margin = kMergeRel * dmax(1.0, dmax(l_in, l_out));
-    double r = k.r_des;
-    if (k.tau * r > room) {
-      r = room / k.tau;
-      k.shrunk = 1u;
-    }
-    int ok = 0;
-    for (uint32_t attempt = 0; attempt <= ctx->cfg.max_shrinks; ++attempt) {
-      if (!(r >= r_floor)) break;
-      k.r = r;
-      k.t = dmin(k.tau * r, room);
-      if (corner_clear(in, k, c[i - 1u], margin, &checks)) {
-        ok = 1;
-        break;
-      }
-      r *= kShrink;
-      k.shrunk = 1u;
-    }
-    if (!ok) {
-      k.kind = kCornerStop;
-      k.r = 0.0;
-      k.t = 0.0;
-      k.shrunk = 0u;
-      continue;
-    }
-    double v = dmin(in.v_max, sqrt(in.a_lat_max * k.r));
-    if (k.rate > 0.0) v = dmin(v, cbrt(in.j_max * k.r * k.r / k.rate));
-    k.v = v;
+// Step 3 for corner i: fit it into the room its neighbours leave, shrink it until its curve keeps
+// the clearance (at most max_shrinks times, not below r_floor), else make it a stop point. Sets
+// the corner's speed cap.
+void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor, Corner* c,
+                uint32_t i, uint32_t* checks) {
+  Corner& k = c[i];
+  const double l_in = c[i - 1u].len, l_out = k.len;
+  const double room_in = dmax(0.5 * l_in, l_in - c[i - 1u].t_des);
+  const double room_out = dmax(0.5 * l_out, l_out - c[i + 1u].t_des);
+  const double room = dmin(room_in, room_out);
+  const double margin = kMergeRel * dmax(1.0, dmax(l_in, l_out));
+  double r = k.r_des;
+  if (k.tau * r > room) {
+    r = room / k.tau;
+    k.shrunk = 1u;
   }
+  int ok = 0;
+  for (uint32_t attempt = 0; attempt <= max_shrinks; ++attempt) {
+    if (!(r >= r_floor)) break;
+    k.r = r;
+    k.t = dmin(k.tau * r, room);
+    if (corner_clear(in, k, c[i - 1u], margin, checks)) {
+      ok = 1;
+      break;
+    }
+    r *= kShrink;
+    k.shrunk = 1u;
+  }
+  if (!ok) {
+    k.kind = kCornerStop;
+    k.r = 0.0;
+    k.t = 0.0;
+    k.shrunk = 0u;
+    return;
+  }
+  double v = dmin(in.v_max, sqrt(in.a_lat_max * k.r));
+  if (k.rate > 0.0) v = dmin(v, cbrt(in.j_max * k.r * k.r / k.rate));
+  k.v = v;
+}
 
-  // 4. Cut points. A line left shorter than kMergeRel collapses to one point, preferring an exact
-  //    waypoint (start, goal, stop) so those stay bit-exact.
+// True when the line from corner a to corner b keeps more than kMergeRel (relative, >= 1 m) of
+// its length between the two curves.
+bool line_left(const Corner& a, const Corner& b) {
+  const double gap = a.len - a.t - b.t;
+  return gap > kMergeRel * dmax(1.0, a.len);
+}
+
+// Step 4. Cut points. A line left shorter than kMergeRel collapses to one point, preferring an
+// exact waypoint (start, goal, stop) so those stay bit-exact.
+void cut_points(Corner* c, uint32_t n) {
   for (uint32_t i = 0; i < n; ++i) {
     c[i].entry = c[i].w;
     c[i].exit = c[i].w;
@@ -545,15 +504,18 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
   for (uint32_t j = 0; j + 1u < n; ++j) {
     Corner& a = c[j];
     Corner& b = c[j + 1u];
-    const double gap = a.len - a.t - b.t;
-    if (gap > kMergeRel * dmax(1.0, a.len)) continue;
+    if (line_left(a, b)) continue;
     if (a.kind != kCornerCurve)
       b.entry = a.exit;
     else
       a.exit = b.entry;  // b.entry is b.w unless b is a curve; then either will do
   }
+}
 
-  // 5. Emit in flight order.
+// Step 5. The segments in flight order into ctx->seg: per line what is left of it, then the
+// corner curve at its end; counts corners, shrunk corners and stops into `out`.
+tdo_status emit_segments(tdo_smooth* ctx, const tdo_smooth_input& in, const Corner* c, uint32_t n,
+                         tdo_smooth_output* out) {
   tdo_path_segment* const seg = ctx->seg;
   const uint32_t cap = ctx->cfg.max_segments;
   uint32_t ns = 0;
@@ -563,12 +525,11 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
     const Corner& a = c[j];
     const Corner& b = c[j + 1u];
     const bool stop_b = b.kind == kCornerStop;
-    const double gap = a.len - a.t - b.t;
-    if (gap > kMergeRel * dmax(1.0, a.len)) {
+    if (line_left(a, b)) {
       if (ns >= cap) return TDO_ERR_PATH_CAPACITY;
       tdo_path_segment s = blank_segment(TDO_SEGMENT_LINE);
-      s.p[0] = tv(a.exit);
-      s.p[1] = tv(b.entry);
+      s.p[0] = a.exit;
+      s.p[1] = b.entry;
       s.v_limit = in.v_max;
       s.stop_at_end = stop_b ? 1 : 0;
       s.length = tdo_segment_length(&s);
@@ -603,6 +564,35 @@ extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in
   out->n_corners = n_corners;
   out->n_shrunk = n_shrunk;
   out->n_stops = n_stops;
+  return TDO_OK;
+}
+
+}  // namespace
+
+extern "C" tdo_status tdo_smooth_run(tdo_smooth* ctx, const tdo_smooth_input* in_ptr,
+                                     tdo_smooth_output* out) {
+  if (ctx == nullptr || in_ptr == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  const tdo_smooth_input& in = *in_ptr;
+  if (!valid_input(in)) return TDO_ERR_INVALID_ARGUMENT;
+  if (in.n_waypoints > ctx->cfg.max_waypoints) return TDO_ERR_PATH_CAPACITY;
+  Corner* const c = ctx->corner;
+  uint32_t n = 0;
+  const tdo_status loaded = load_waypoints(in, c, &n);
+  if (loaded != TDO_OK) return loaded;
+
+  const double r_min = in.v_cruise * in.v_cruise / in.a_lat_max;  // m, R_min
+  const double r_floor =
+      dmax(in.min_radius > 0.0 ? in.min_radius : kDefaultMinRadius * r_min, kAbsMinRadius);
+  want_corners(in, r_min, c, n);
+
+  uint32_t checks = 0;
+  for (uint32_t i = 1; i + 1u < n; ++i)
+    if (c[i].kind == kCornerCurve) fit_corner(in, ctx->cfg.max_shrinks, r_floor, c, i, &checks);
+
+  cut_points(c, n);
+  const tdo_status emitted = emit_segments(ctx, in, c, n, out);
+  if (emitted != TDO_OK) return emitted;
   out->n_clear_checks = checks;
   return TDO_OK;
 }

@@ -48,19 +48,10 @@ def main():
     for k in ("plan", "steps", "movers", "metrics"):
         if k not in ep:
             die(f"{a.episode}: missing key '{k}' (not a tdo-sim-run episode)")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        from matplotlib.patches import Circle, Rectangle
-    except ImportError:
-        # A Python without matplotlib (a venv first on PATH): retry once with Debian's python3.
-        alt = "/usr/bin/python3"
-        if (os.path.exists(alt) and not os.environ.get("TDO_PLOT_REEXEC")
-                and os.path.realpath(sys.executable) != os.path.realpath(alt)):
-            os.environ["TDO_PLOT_REEXEC"] = "1"
-            os.execv(alt, [alt] + sys.argv)
-        die("matplotlib is not installed (Debian: python3-matplotlib)")
+    # tdo_plot sets the Agg backend and re-executes with Debian's python3 when matplotlib is missing.
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from tdo_plot import plt
+    from matplotlib.patches import Circle, Rectangle
 
     steps = ep["steps"]
     plan = ep["plan"]

@@ -106,14 +106,20 @@ bool set_param(tdo_apf_params* p, const std::string& name, double value) {
 
 const char* follower_name(tdo_follower_kind k) { return k == TDO_FOLLOWER_APF ? "apf" : "eapf"; }
 
-bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* error) {
-  *out = Episode{};
+namespace {
+
+/** The planner's memory, kept for the flight: the follower and the simulator use its grid. */
+struct PlannerBox {
+  std::unique_ptr<unsigned char[]> mem;
+  tdo_grid* grid = nullptr;
+  tdo_plan_params params{};
+};
+
+// Step 1: plan the map's query with the default parameters into out->plan. False with `error`
+// when the map cannot be loaded into a planner; an unplannable query leaves m.planned false.
+bool plan_episode(const tdo_io::Map& map, const Options& o, PlannerBox* box, Episode* out,
+                  std::string* error) {
   Metrics& m = out->m;
-  if (!map.has_start || !map.has_goal) {
-    *error = map.path + ": the map has no start or goal";
-    return false;
-  }
-  // Planner.
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, o.clearance, 27u, 0u);
   const std::size_t fp = tdo_planner_footprint(&cfg);
@@ -121,15 +127,15 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     *error = "invalid planner configuration for this map";
     return false;
   }
-  std::unique_ptr<unsigned char[]> pmem(new unsigned char[fp]);
+  box->mem.reset(new unsigned char[fp]);
   tdo_planner* planner = nullptr;
-  tdo_status st = tdo_planner_init(&planner, pmem.get(), fp, &cfg);
+  tdo_status st = tdo_planner_init(&planner, box->mem.get(), fp, &cfg);
   if (st != TDO_OK) {
     *error = std::string("planner init: ") + tdo_status_str(st);
     return false;
   }
-  tdo_grid* grid = tdo_planner_grid(planner);
-  st = tdo_io::load_into(map, grid, o.clearance);
+  box->grid = tdo_planner_grid(planner);
+  st = tdo_io::load_into(map, box->grid, o.clearance);
   if (st != TDO_OK) {
     *error = std::string("map load: ") + tdo_status_str(st);
     return false;
@@ -138,6 +144,7 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
   req.start = map.start;
   req.goal = map.goal;
   tdo_plan_params_default(&req.params);
+  box->params = req.params;
   tdo_plan_result res{};
   st = tdo_planner_plan(planner, &req, &res);
   m.plan_status = static_cast<int>(st);
@@ -145,34 +152,22 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
   if (st != TDO_OK || res.n_samples < 2u) return true;
   m.planned = true;
   out->plan.assign(res.samples, res.samples + res.n_samples);
-  const std::vector<tdo_sample>& plan = out->plan;
-  m.plan_duration = plan.back().t;
+  m.plan_duration = out->plan.back().t;
   m.v_limit = req.params.v_max;
   m.a_limit = req.params.a_max;
   m.j_limit = req.params.j_max;
+  return true;
+}
 
-  // Follower and simulator.
-  const uint32_t n_movers = m.movers;
-  tdo_apf_config acfg{};
-  acfg.max_samples = static_cast<uint32_t>(plan.size());
-  acfg.max_movers = std::max<uint32_t>(n_movers, 1u);
-  acfg.nearest_window = 200u;  // 2 s of 0.01 s samples either way
-  tdo_sim_config scfg{};
-  scfg.max_movers = acfg.max_movers;
-  Arena arena(tdo_apf_footprint(&acfg) + tdo_sim_footprint(&scfg));
-  tdo_apf* apf = nullptr;
-  tdo_sim* sim = nullptr;
-  if ((st = tdo_apf_init(&apf, &arena.a, &acfg)) != TDO_OK ||
-      (st = tdo_sim_init(&sim, &arena.a, &scfg)) != TDO_OK) {
-    *error = std::string("follower/simulator init: ") + tdo_status_str(st);
-    return false;
-  }
+// Step 2: the follower's parameters (the options' overrides applied) and its reset on the plan.
+bool start_follower(const tdo_io::Map& map, const Options& o, const PlannerBox& box, tdo_apf* apf,
+                    Episode* out, std::string* error) {
   tdo_apf_params prm;
   tdo_apf_params_default(&prm, o.follower);
   prm.vehicle_radius = o.vehicle_radius;
-  prm.v_max = req.params.v_max;
-  prm.a_max = req.params.a_max;
-  prm.j_max = req.params.j_max;
+  prm.v_max = box.params.v_max;
+  prm.a_max = box.params.a_max;
+  prm.j_max = box.params.j_max;
   prm.goal_tol = o.goal_tol;
   for (const auto& kv : o.params) {
     if (!set_param(&prm, kv.first, kv.second)) {
@@ -182,16 +177,25 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
   }
   out->params = prm;
   tdo_apf_task task{};
-  task.samples = plan.data();
-  task.n_samples = static_cast<uint32_t>(plan.size());
+  task.samples = out->plan.data();
+  task.n_samples = static_cast<uint32_t>(out->plan.size());
   task.goal = map.goal;
-  task.grid = grid;
+  task.grid = box.grid;
   task.t0 = 0.0;
-  if ((st = tdo_apf_reset(apf, &prm, &task)) != TDO_OK) {
+  const tdo_status st = tdo_apf_reset(apf, &prm, &task);
+  if (st != TDO_OK) {
     *error = std::string("follower reset: ") + tdo_status_str(st) +
              (st == TDO_ERR_INVALID_ARGUMENT ? " (a follower parameter out of range)" : "");
     return false;
   }
+  return true;
+}
+
+// Step 3: the simulator on the map's bounds with the first m.movers movers, vehicle at the start.
+bool start_sim(const tdo_io::Map& map, const Options& o, const PlannerBox& box, tdo_sim* sim,
+               tdo_sim_params* sp, Episode* out, std::string* error) {
+  const tdo_apf_params& prm = out->params;
+  const uint32_t n_movers = out->m.movers;
   std::vector<tdo_mover> movers;
   for (uint32_t i = 0; i < n_movers; ++i) {
     const tdo_io::Mover& mv = map.movers[i];
@@ -199,36 +203,41 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     out->radii.push_back(mv.radius);
   }
   out->tracks.assign(n_movers, {});
-  tdo_sim_params sp;
-  tdo_sim_params_default(&sp);
-  sp.dt = prm.dt;
-  sp.v_max = prm.v_max;
-  sp.a_max = prm.a_max;
-  sp.j_max = prm.j_max;
-  sp.bounds.min = map.desc.origin;
-  sp.bounds.max = tdo_vec3{map.desc.origin.x + map.desc.nx * map.desc.res,
-                           map.desc.origin.y + map.desc.ny * map.desc.res,
-                           map.desc.origin.z + map.desc.nz * map.desc.res};
-  sp.vehicle_radius = o.vehicle_radius;
-  sp.static_clearance = o.static_clearance;
-  sp.grid = grid;
-  sp.seed = o.seed;
-  sp.accel_noise = o.accel_noise;
+  tdo_sim_params_default(sp);
+  sp->dt = prm.dt;
+  sp->v_max = prm.v_max;
+  sp->a_max = prm.a_max;
+  sp->j_max = prm.j_max;
+  sp->bounds.min = map.desc.origin;
+  sp->bounds.max = tdo_vec3{map.desc.origin.x + map.desc.nx * map.desc.res,
+                            map.desc.origin.y + map.desc.ny * map.desc.res,
+                            map.desc.origin.z + map.desc.nz * map.desc.res};
+  sp->vehicle_radius = o.vehicle_radius;
+  sp->static_clearance = o.static_clearance;
+  sp->grid = box.grid;
+  sp->seed = o.seed;
+  sp->accel_noise = o.accel_noise;
   tdo_vehicle_state s0{};
   s0.p = map.start;
-  if ((st = tdo_sim_reset(sim, &sp, &s0, movers.data(), n_movers)) != TDO_OK) {
+  const tdo_status st = tdo_sim_reset(sim, sp, &s0, movers.data(), n_movers);
+  if (st != TDO_OK) {
     *error = std::string("simulator reset: ") + tdo_status_str(st);
     return false;
   }
+  return true;
+}
 
-  // Fly.
+// Step 4: fly until the goal is within goal_tol or the time limit; positions into `pos`.
+bool fly(const tdo_io::Map& map, const Options& o, double dt, tdo_apf* apf, tdo_sim* sim,
+         Episode* out, std::vector<tdo_vec3>* pos, std::string* error) {
+  Metrics& m = out->m;
   const double t_limit = o.time_factor * m.plan_duration + o.time_extra;
-  const auto max_steps = static_cast<uint32_t>(std::ceil(t_limit / sp.dt));
+  const auto max_steps = static_cast<uint32_t>(std::ceil(t_limit / dt));
   tdo_sim_output so{};
   tdo_sim_get(sim, &so);
   m.min_mover_sep = so.mover_gap;
   m.min_static_dist = so.static_dist;
-  std::vector<tdo_vec3> pos{so.state.p};
+  pos->assign(1, so.state.p);
   double dev_sum = 0.0;
   uint32_t dev_n = 0;
   bool arrived = false;
@@ -238,7 +247,7 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     in.movers = so.movers;
     in.n_movers = so.n_movers;
     tdo_apf_output ao;
-    st = tdo_apf_run(apf, &in, &ao);
+    const tdo_status st = tdo_apf_run(apf, &in, &ao);
     if (st != TDO_OK && st != TDO_ERR_LOCAL_MINIMUM) {
       *error = std::string("follower step: ") + tdo_status_str(st);
       return false;
@@ -253,12 +262,12 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     si.setpoint = ao.setpoint;
     tdo_sim_run(sim, &si, &so);
     ++m.steps;
-    pos.push_back(so.state.p);
+    pos->push_back(so.state.p);
     m.min_mover_sep = std::min(m.min_mover_sep, so.mover_gap);
     m.min_static_dist = std::min(m.min_static_dist, so.static_dist);
     if (so.collision_mover) m.collision_mover = true;
     if (so.collision_static) m.collision_static = true;
-    const double dev = path_dist(so.state.p, plan);
+    const double dev = path_dist(so.state.p, out->plan);
     m.max_deviation = std::max(m.max_deviation, dev);
     dev_sum += dev;
     ++dev_n;
@@ -275,8 +284,11 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
   m.mean_deviation = dev_n > 0 ? dev_sum / dev_n : 0.0;
   m.time = so.state.t;
   m.time_overhead = arrived ? m.time - m.plan_duration : 0.0;
-  // Executed v, a, j by finite differences of the positions (paper eq. 15-17).
-  const double dt = sp.dt;
+  return true;
+}
+
+// Step 5: executed v, a, j maxima by finite differences of the positions (paper eq. 15-17).
+void executed_limits(const std::vector<tdo_vec3>& pos, double dt, Metrics* m) {
   std::vector<tdo_vec3> v, a;
   for (std::size_t i = 0; i + 1 < pos.size(); ++i)
     v.push_back(tdo_vec3{(pos[i + 1].x - pos[i].x) / dt, (pos[i + 1].y - pos[i].y) / dt,
@@ -285,10 +297,45 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
     a.push_back(tdo_vec3{(v[i + 1].x - v[i].x) / dt, (v[i + 1].y - v[i].y) / dt,
                          (v[i + 1].z - v[i].z) / dt});
   const tdo_vec3 zero{0.0, 0.0, 0.0};
-  for (const auto& x : v) m.max_speed = std::max(m.max_speed, dist(x, zero));
-  for (const auto& x : a) m.max_acc = std::max(m.max_acc, dist(x, zero));
+  for (const auto& x : v) m->max_speed = std::max(m->max_speed, dist(x, zero));
+  for (const auto& x : a) m->max_acc = std::max(m->max_acc, dist(x, zero));
   for (std::size_t i = 0; i + 1 < a.size(); ++i)
-    m.max_jerk = std::max(m.max_jerk, dist(a[i + 1], a[i]) / dt);
+    m->max_jerk = std::max(m->max_jerk, dist(a[i + 1], a[i]) / dt);
+}
+
+}  // namespace
+
+bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* error) {
+  *out = Episode{};
+  if (!map.has_start || !map.has_goal) {
+    *error = map.path + ": the map has no start or goal";
+    return false;
+  }
+  PlannerBox box;
+  if (!plan_episode(map, o, &box, out, error)) return false;
+  if (!out->m.planned) return true;
+
+  tdo_apf_config acfg{};
+  acfg.max_samples = static_cast<uint32_t>(out->plan.size());
+  acfg.max_movers = std::max<uint32_t>(out->m.movers, 1u);
+  acfg.nearest_window = 200u;  // 2 s of 0.01 s samples either way
+  tdo_sim_config scfg{};
+  scfg.max_movers = acfg.max_movers;
+  Arena arena(tdo_apf_footprint(&acfg) + tdo_sim_footprint(&scfg));
+  tdo_apf* apf = nullptr;
+  tdo_sim* sim = nullptr;
+  tdo_status st;
+  if ((st = tdo_apf_init(&apf, &arena.a, &acfg)) != TDO_OK ||
+      (st = tdo_sim_init(&sim, &arena.a, &scfg)) != TDO_OK) {
+    *error = std::string("follower/simulator init: ") + tdo_status_str(st);
+    return false;
+  }
+  if (!start_follower(map, o, box, apf, out, error)) return false;
+  tdo_sim_params sp;
+  if (!start_sim(map, o, box, sim, &sp, out, error)) return false;
+  std::vector<tdo_vec3> pos;
+  if (!fly(map, o, sp.dt, apf, sim, out, &pos, error)) return false;
+  executed_limits(pos, sp.dt, &out->m);
   return true;
 }
 

@@ -15,16 +15,14 @@
 
 #include "episode.h"
 #include "mapgen.h"
+#include "tool_cli.h"
 
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitFailed = 1;
-constexpr int kExitBadInput = 2;
-
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
+using tdo_tool::kExitBadInput;
+using tdo_tool::kExitFailed;
+using tdo_tool::kExitOk;
 
 struct RandomSpec {
   std::vector<int> size{20, 20, 10};
@@ -341,14 +339,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "tdo-sim-run: error: %s\n", e.message.c_str());
-    return kExitBadInput;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tdo-sim-run: error: %s\n", e.what());
-    return kExitBadInput;
-  }
-}
+int main(int argc, char** argv) { return tdo_tool::guarded_main("tdo-sim-run", run, argc, argv); }
