@@ -1,4 +1,4 @@
-// Tests of the OctoMap input of tools/io: voxelization of .bt and .ot OcTrees checked against the
+// Tests of the OctoMap input of mapio: voxelization of .bt and .ot OcTrees checked against the
 // OctoMap API itself (node searches and leaf counts), the shipped trees, and the error messages.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
