@@ -406,12 +406,20 @@ inline int64_t parabola_key(const uint32_t* f, int32_t x) {
   return static_cast<int64_t>(f[x]) + static_cast<int64_t>(x) * x;
 }
 
+// Smallest integer q with num < q * den (den > 0): floor(num / den) + 1.
+inline int64_t first_above(int64_t num, int64_t den) {
+  const int64_t fl = num >= 0 ? num / den : -((-num + den - 1) / den);
+  return fl + 1;
+}
+
 // 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to
-// df[base + q * stride]. Keys F <= 3 * 32767^2 and denominators <= 2 * 32767, so the cross
+// out[0..n) (the line f was copied from: a line without a site is left as it is). Keys F <= 3 * 32767^2 and denominators <= 2 * 32767, so the cross
 // products stay below 2^48 and the results below 2^32. Bounded: every site is pushed and popped
-// at most once, and the evaluation sweep advances monotonically.
-void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base, int64_t stride) {
+// at most once, and the evaluation sweep advances monotonically. The keys of the two topmost
+// sites and the crossing of the current and next parabola are kept, not recomputed.
+void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
   int32_t k = -1;
+  int64_t fa = 0, fb = 0;  // keys of v[k - 1] and v[k]
   for (int32_t q = 0; q < n; ++q) {
     if (f[q] == kDfInfinite) continue;
     const int64_t fq = parabola_key(f, q);
@@ -419,26 +427,35 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base,
     // s(v[k], q) <= s(v[k-1], v[k]) with s(a, b) = (F(b) - F(a)) / (2 (b - a)).
     while (k >= 1) {
       const int32_t a = v[k - 1], b = v[k];
-      const int64_t fb = parabola_key(f, b);
       const int64_t n1 = fq - fb, d1 = 2 * static_cast<int64_t>(q - b);
-      const int64_t n2 = fb - parabola_key(f, a), d2 = 2 * static_cast<int64_t>(b - a);
+      const int64_t n2 = fb - fa, d2 = 2 * static_cast<int64_t>(b - a);
       if (n1 * d2 > n2 * d1) break;
       --k;
+      fb = fa;
+      if (k >= 1) fa = parabola_key(f, v[k - 1]);
     }
+    fa = fb;
+    fb = fq;
     v[++k] = q;
   }
   if (k < 0) return;  // no site: the line read from df is infinite already, and stays so
+  // Parabola j is the lowest from q on while q < bound, its crossing with parabola j + 1:
+  // s(v[j], v[j+1]) < q.
   int32_t j = 0;
+  int64_t fj = parabola_key(f, v[0]);
+  int64_t fj1 = k >= 1 ? parabola_key(f, v[1]) : 0;
+  int64_t bound = k >= 1 ? first_above(fj1 - fj, 2 * static_cast<int64_t>(v[1] - v[0])) : n;
   for (int32_t q = 0; q < n; ++q) {
-    // Advance while the next parabola is lower from q on: s(v[j], v[j+1]) < q.
-    while (j < k) {
-      const int64_t num = parabola_key(f, v[j + 1]) - parabola_key(f, v[j]);
-      const int64_t den = 2 * static_cast<int64_t>(v[j + 1] - v[j]);
-      if (!(num < static_cast<int64_t>(q) * den)) break;
+    while (j < k && q >= bound) {
       ++j;
+      fj = fj1;
+      if (j < k) {
+        fj1 = parabola_key(f, v[j + 1]);
+        bound = first_above(fj1 - fj, 2 * static_cast<int64_t>(v[j + 1] - v[j]));
+      }
     }
     const int64_t dq = q - v[j];
-    df_store(df, base + q * stride, static_cast<uint32_t>(dq * dq + f[v[j]]));
+    out[q] = static_cast<uint32_t>(dq * dq + f[v[j]]);
   }
 }
 
@@ -500,6 +517,28 @@ float df_metres(uint32_t d2, double res) {
   return m;
 }
 
+// dst[c * rows + r] = src[r * cols + c] for a rows x cols matrix of 4-byte words (either may be
+// the float distance field, so words are moved with memcpy), in 16 x 16 tiles.
+void transpose_words(const void* src, void* dst, int64_t rows, int64_t cols) {
+  constexpr int64_t kTile = 16;
+  const unsigned char* s = static_cast<const unsigned char*>(src);
+  unsigned char* t = static_cast<unsigned char*>(dst);
+  for (int64_t r0 = 0; r0 < rows; r0 += kTile) {
+    const int64_t r1 = r0 + kTile < rows ? r0 + kTile : rows;
+    for (int64_t c0 = 0; c0 < cols; c0 += kTile) {
+      const int64_t c1 = c0 + kTile < cols ? c0 + kTile : cols;
+      for (int64_t r = r0; r < r1; ++r)
+        for (int64_t c = c0; c < c1; ++c) memcpy(t + 4 * (c * rows + r), s + 4 * (r * cols + c), 4);
+    }
+  }
+}
+
+// EDT pass over one contiguous line of n squared distances, in place.
+void edt_in_place(tdo_grid* g, uint32_t* line, int64_t n) {
+  memcpy(g->df_f, line, static_cast<size_t>(n) * sizeof(uint32_t));
+  edt_line(g->df_f, g->df_v, static_cast<int32_t>(n), line);
+}
+
 // df of every voxel; see tdo_grid::df. Three passes (x, y, z lines) then conversion to metres.
 void build_distance_field(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
@@ -512,25 +551,20 @@ void build_distance_field(tdo_grid* g) {
     for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
     return;
   }
-  const int64_t strides[3] = {1, g->stride_y, g->stride_z};
   for (int64_t k = 0; k < d.nz; ++k)
     for (int64_t j = 0; j < d.ny; ++j) edt_row_x(g, j, k);
-  for (int axis = 1; axis < 3; ++axis) {
-    const int32_t n = n_axis[axis];
-    const int64_t stride = strides[axis];
-    // Lines along `axis`, one per (u, w) position on the two other axes.
-    const int32_t nu = axis == 0 ? d.ny : d.nx;
-    const int32_t nw = axis == 2 ? d.ny : d.nz;
-    for (int64_t w = 0; w < nw; ++w) {
-      for (int64_t u = 0; u < nu; ++u) {
-        const int64_t base = axis == 0   ? index_of(g, 0, u, w)
-                             : axis == 1 ? index_of(g, u, 0, w)
-                                         : index_of(g, u, w, 0);
-        for (int32_t q = 0; q < n; ++q) g->df_f[q] = df_load(g->df, base + q * stride);
-        edt_line(g->df_f, g->df_v, n, g->df, base, stride);
-      }
-    }
+  // The y and z lines are made contiguous in the moves array (free until compute_moves, which
+  // runs after this), transformed there and copied back: strided lines missed the cache.
+  uint32_t* scratch = g->moves;
+  const int64_t plane = g->stride_z;
+  for (int64_t k = 0; k < d.nz; ++k) {  // y lines: plane k as [ny][nx] -> [nx][ny]
+    transpose_words(g->df + k * plane, scratch, d.ny, d.nx);
+    for (int64_t x = 0; x < d.nx; ++x) edt_in_place(g, scratch + x * d.ny, d.ny);
+    transpose_words(scratch, g->df + k * plane, d.nx, d.ny);
   }
+  transpose_words(g->df, scratch, d.nz, plane);  // z lines: [nz][plane] -> [plane][nz]
+  for (int64_t p = 0; p < plane; ++p) edt_in_place(g, scratch + p * d.nz, d.nz);
+  transpose_words(scratch, g->df, plane, d.nz);
   for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = df_metres(df_load(g->df, v), d.res);
 }
 
@@ -765,10 +799,11 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   uint32_t blocked = 0;
   for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
   g->n_blocked = blocked;
-  compute_moves(g);
-  // Collision-query structures (collision.h): they change no blocked flag and no move.
+  // Collision-query structures (collision.h): they change no blocked flag and no move. The
+  // distance field borrows the moves array as scratch, so it comes first.
   if (g->n_cubes > 0) mark_surface(g);
   if (g->cap.boxes_only == 0u) build_distance_field(g);
+  compute_moves(g);
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;
