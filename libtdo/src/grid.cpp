@@ -308,8 +308,8 @@ struct Squares {
   void slide(const tdo_grid* g, const uint8_t* c) {  // c: the new voxel
     constexpr uint32_t kKeep = 0x1B6u;  // columns dx = 0, +1 of each row, moved to -1, 0
     for (int dz = -1; dz <= 1; ++dz)
-      p[dz + 1] = ((p[dz + 1] & kKeep) >> 1) |
-                  (free_column(c + 1 + dz * g->stride_z, g->stride_y) << 2);
+      p[dz + 1] =
+          ((p[dz + 1] & kKeep) >> 1) | (free_column(c + 1 + dz * g->stride_z, g->stride_y) << 2);
   }
   // moves_of from the squares: three table reads instead of 26 mask tests. Direction d of cell
   // (dz+1)*9 + (dy+1)*3 + (dx+1) is that cell with the centre skipped (directions.h): dz = -1
@@ -362,8 +362,8 @@ void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k)
   moves[nx - 1] = moves_of(g, need, nx - 1, j, k);
   int64_t i = 1;
   for (; i + 8 < nx; i += 8) {  // voxels i .. i+7 and their neighbours i-1 .. i+8
-    if ((blocked_9rows(g, row, i - 1) | blocked_9rows(g, row, i) |
-         blocked_9rows(g, row, i + 1)) == 0) {
+    if ((blocked_9rows(g, row, i - 1) | blocked_9rows(g, row, i) | blocked_9rows(g, row, i + 1)) ==
+        0) {
       for (int64_t t = 0; t < 8; ++t) moves[i + t] = kAllMoves;
     } else {
       span_moves(g, row, moves, i, i + 8);
@@ -412,11 +412,12 @@ inline int64_t first_above(int64_t num, int64_t den) {
   return fl + 1;
 }
 
-// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to
-// out[0..n) (the line f was copied from: a line without a site is left as it is). Keys F <= 3 * 32767^2 and denominators <= 2 * 32767, so the cross
-// products stay below 2^48 and the results below 2^32. Bounded: every site is pushed and popped
-// at most once, and the evaluation sweep advances monotonically. The keys of the two topmost
-// sites and the crossing of the current and next parabola are kept, not recomputed.
+// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to out[0..n),
+// the line f was copied from (a line without a site is left as it is). Keys F <= 3 * 32767^2 and
+// denominators <= 2 * 32767, so the cross products stay below 2^48 and the results below 2^32.
+// Bounded: every site is pushed and popped at most once, and the evaluation sweep advances
+// monotonically. The keys of the two topmost sites and the crossing of the current and next
+// parabola are kept, not recomputed.
 void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
   int32_t k = -1;
   int64_t fa = 0, fb = 0;  // keys of v[k - 1] and v[k]
@@ -486,8 +487,7 @@ void edt_row_x(tdo_grid* g, int64_t j, int64_t k) {
   int64_t last = -1;
   for (int64_t q = 0; q < n; ++q) {
     if ((row[q] & kFlagOccupied) != 0) last = q;
-    df_store(out, q,
-             last < 0 ? kDfInfinite : static_cast<uint32_t>((q - last) * (q - last)));
+    df_store(out, q, last < 0 ? kDfInfinite : static_cast<uint32_t>((q - last) * (q - last)));
   }
   int64_t next = -1;
   for (int64_t q = n - 1; q >= 0; --q) {
