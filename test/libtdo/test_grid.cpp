@@ -463,7 +463,8 @@ TEST_F(GridTest, GivenRandomBoxesCubesAndClearances_WhenFinished_ThenBlockedMatc
 // scattered voxels) on grids long enough for the word-at-a-time paths of tdo_grid_finish (runs of
 // cubes, 8 voxels per read), at real-map resolutions and random clearances: the blocked set and
 // every voxel's legal steps equal the brute force (distance to every cube; MovingAI rule).
-TEST(GridInflation, GivenRandomVoxelMaps_WhenFinishedWithRandomClearance_ThenBlockedAndStepsMatchBruteForce) {
+TEST(GridInflation,
+     GivenRandomVoxelMaps_WhenFinishedWithRandomClearance_ThenBlockedAndStepsMatchBruteForce) {
   TestPlanner pl(tdo_test::make_cap(40 * 12 * 8, 16, 16, 1, 20000));
   ASSERT_EQ(pl.status(), TDO_OK);
   tdo_grid* grid = pl.grid();
@@ -509,8 +510,8 @@ TEST(GridInflation, GivenRandomVoxelMaps_WhenFinishedWithRandomClearance_ThenBlo
       near += blk[n] != 0 && cubes.count(std::make_tuple(v.i, v.j, v.k)) == 0 ? 1u : 0u;
       if (tdo_grid_is_blocked(grid, v) != blk[n] && reported++ < 5)
         ADD_FAILURE() << "round " << round << " voxel " << tdo_test::str(v) << " res " << res
-                      << " clearance " << clearance << ": blocked "
-                      << tdo_grid_is_blocked(grid, v) << ", brute force " << int(blk[n]);
+                      << " clearance " << clearance << ": blocked " << tdo_grid_is_blocked(grid, v)
+                      << ", brute force " << int(blk[n]);
       const uint32_t moves = gi->moves[n];
       for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
@@ -524,9 +525,9 @@ TEST(GridInflation, GivenRandomVoxelMaps_WhenFinishedWithRandomClearance_ThenBlo
             const bool got_step = ((moves >> d) & 1u) != 0;
             ++steps_checked;
             if (want_step != got_step && reported++ < 5)
-              ADD_FAILURE() << "round " << round << " voxel " << tdo_test::str(v) << " step ("
-                            << dx << "," << dy << "," << dz << "): legal " << got_step
-                            << ", brute force " << want_step;
+              ADD_FAILURE() << "round " << round << " voxel " << tdo_test::str(v) << " step (" << dx
+                            << "," << dy << "," << dz << "): legal " << got_step << ", brute force "
+                            << want_step;
           }
       partial += m.is_free(v.i, v.j, v.k) && moves != (1u << 26) - 1u && moves != 0u ? 1u : 0u;
     }
