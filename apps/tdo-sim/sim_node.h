@@ -2,7 +2,7 @@
  * @file sim_node.h
  * @brief The tdo-sim program minus its main(): libtdo's deterministic simulator (sim.h) on LCM.
  *        TDO_SETPOINT -> TDO_UAV_STATE + TDO_OBSTACLES at a fixed rate; optionally a map file
- *        (.tdomap, .3dmap, .bt, .ot, read by tools/io) published on TDO_MAP, whose moving spheres
+ *        (.tdomap, .3dmap, .bt, .ot, read by mapio) published on TDO_MAP, whose moving spheres
  *        are the simulated movers and whose geometry is the static collision check.
  *
  * Thin: decode (wire.h) -> adapter (vehicle.h) -> tdo_sim_run -> encode. Steps:

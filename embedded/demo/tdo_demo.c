@@ -289,7 +289,7 @@ int tdo_demo_run(tdo_demo_info* info) {
   put_str(&l, "tdo-demo " TDO_DEMO_MAP_NAME " (" TDO_DEMO_MAP_FILE ")");
   emit(&l);
 
-  /* The grid: voxel counts from the bounds, as tools/io reads a .tdomap. */
+  /* The grid: voxel counts from the bounds, as mapio reads a .tdomap. */
   const double* b = tdo_demo_map_bounds;
   tdo_grid_desc desc;
   desc.nx = (int32_t)ceil((b[3] - b[0]) / tdo_demo_map_res - 1e-9);

@@ -129,10 +129,68 @@ bool is_buried(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
          is_cube(g, i, j + 1, k) && is_cube(g, i, j, k - 1) && is_cube(g, i, j, k + 1);
 }
 
-tdo_status inflate_cubes(tdo_grid* g, double c) {
-  uint32_t n_cells = 0;
-  const tdo_status st = build_stencil(g, c, &n_cells);
-  if (st != TDO_OK) return st;
+// The stencil as rows along x: when every (dj, dk) of the stencil holds exactly the offsets
+// di = -w .. w (the distance is monotone in |di|, so this holds unless rounding breaks it; it is
+// checked, not assumed), rewrite it in place as one triple (dj, dk, w) per row and return true.
+// Cells come from build_stencil with dk outer, dj middle and di ascending, so a row's cells are
+// consecutive and the triples never overtake the cells still to be read.
+bool stencil_rows(tdo_grid* g, uint32_t n_cells, uint32_t* n_rows) {
+  const int32_t* s = g->stencil;
+  for (uint32_t a = 0; a < n_cells;) {  // check every row first, then rewrite
+    uint32_t b = a;
+    while (b < n_cells && s[3 * b + 1] == s[3 * a + 1] && s[3 * b + 2] == s[3 * a + 2]) ++b;
+    const int32_t w = s[3 * (b - 1)];
+    if (w < 0 || s[3 * a] != -w || b - a != 2u * static_cast<uint32_t>(w) + 1u) return false;
+    for (uint32_t c = a + 1; c < b; ++c)
+      if (s[3 * c] != s[3 * (c - 1)] + 1) return false;
+    a = b;
+  }
+  uint32_t rows = 0;
+  for (uint32_t a = 0; a < n_cells;) {
+    uint32_t b = a;
+    while (b < n_cells && s[3 * b + 1] == s[3 * a + 1] && s[3 * b + 2] == s[3 * a + 2]) ++b;
+    const int32_t dj = s[3 * a + 1], dk = s[3 * a + 2], w = s[3 * (b - 1)];
+    g->stencil[3 * rows] = dj;
+    g->stencil[3 * rows + 1] = dk;
+    g->stencil[3 * rows + 2] = w;
+    ++rows;
+    a = b;
+  }
+  *n_rows = rows;
+  return true;
+}
+
+// Block, from one run of cubes [i0, i1] in row (j, k), every voxel the stencil rows reach: per
+// row (dj, dk, w) the span [i0 - w, i1 + w] of row (j + dj, k + dk). A run is the union of its
+// cubes' stencils, since each stencil row is an interval.
+void inflate_run(tdo_grid* g, uint32_t n_rows, int64_t i0, int64_t i1, int64_t j, int64_t k) {
+  const tdo_grid_desc& d = g->desc;
+  for (uint32_t r = 0; r < n_rows; ++r) {
+    const int64_t b = j + g->stencil[3 * r], e = k + g->stencil[3 * r + 1];
+    if (b < 0 || e < 0 || b >= d.ny || e >= d.nz) continue;
+    const int64_t w = g->stencil[3 * r + 2];
+    const int64_t lo = i0 - w < 0 ? 0 : i0 - w;
+    const int64_t hi = i1 + w > d.nx - 1 ? d.nx - 1 : i1 + w;
+    uint8_t* row = g->flags + index_of(g, 0, b, e);
+    for (int64_t i = lo; i <= hi; ++i) row[i] |= kFlagBlocked;
+  }
+}
+
+// Next x >= i in row `row` (nx voxels) holding a cube, or nx; skips 8 voxels per word read.
+int64_t next_cube(const uint8_t* row, int64_t i, int64_t nx) {
+  constexpr uint64_t kCubeBytes = 0x0202020202020202ull;  // kFlagCube in every byte
+  while (i + 8 <= nx) {
+    uint64_t w;
+    memcpy(&w, row + i, sizeof w);
+    if ((w & kCubeBytes) != 0) break;
+    i += 8;
+  }
+  while (i < nx && (row[i] & kFlagCube) == 0) ++i;
+  return i;
+}
+
+// Per voxel, the stencil at every cube: the general form, used when stencil_rows refuses.
+void inflate_cells(tdo_grid* g, uint32_t n_cells) {
   const tdo_grid_desc& d = g->desc;
   for (int64_t k = 0; k < d.nz; ++k) {
     for (int64_t j = 0; j < d.ny; ++j) {
@@ -143,6 +201,31 @@ tdo_status inflate_cubes(tdo_grid* g, double c) {
                         e = k + g->stencil[3 * s + 2];
           if (in_grid(g, a, b, e)) g->flags[index_of(g, a, b, e)] |= kFlagBlocked;
         }
+      }
+    }
+  }
+}
+
+// Block every voxel whose centre lies strictly closer than c to a cube: the union of the
+// stencil placed at every cube. Done per run of consecutive cubes along x and per stencil row,
+// so the work is about the number of voxels blocked, not cubes x stencil cells.
+tdo_status inflate_cubes(tdo_grid* g, double c) {
+  uint32_t n_cells = 0;
+  const tdo_status st = build_stencil(g, c, &n_cells);
+  if (st != TDO_OK) return st;
+  uint32_t n_rows = 0;
+  if (!stencil_rows(g, n_cells, &n_rows)) {
+    inflate_cells(g, n_cells);
+    return TDO_OK;
+  }
+  const tdo_grid_desc& d = g->desc;
+  for (int64_t k = 0; k < d.nz; ++k) {
+    for (int64_t j = 0; j < d.ny; ++j) {
+      const uint8_t* row = g->flags + index_of(g, 0, j, k);
+      for (int64_t i = next_cube(row, 0, d.nx); i < d.nx; i = next_cube(row, i, d.nx)) {
+        const int64_t i0 = i;
+        while (i < d.nx && (row[i] & kFlagCube) != 0) ++i;
+        inflate_run(g, n_rows, i0, i - 1, j, k);
       }
     }
   }
@@ -159,33 +242,148 @@ uint32_t swept_cells(int d) {
   return m;
 }
 
+// Legal steps of voxel (i, j, k) from its 3x3x3 block (any voxel of the grid).
+uint32_t moves_of(const tdo_grid* g, const uint32_t need[kNumDirs], int64_t i, int64_t j,
+                  int64_t k) {
+  const int64_t v = index_of(g, i, j, k);
+  if ((g->flags[v] & kFlagBlocked) != 0) return 0;
+  uint32_t free27 = 0;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!in_grid(g, i + dx, j + dy, k + dz)) continue;
+        const int64_t w = v + dx + dy * g->stride_y + dz * g->stride_z;
+        if ((g->flags[w] & kFlagBlocked) == 0) free27 |= 1u << cell_of(dx, dy, dz);
+      }
+    }
+  }
+  uint32_t mask = 0;
+  for (int d = 0; d < kNumDirs; ++d)
+    if ((free27 & need[d]) == need[d]) mask |= 1u << d;
+  return mask;
+}
+
+// Steps from the 3x3 free squares of the three planes around a voxel (dz = -1, 0, 1), bit
+// (dy+1)*3 + (dx+1) of a square set when voxel (dx, dy) of that plane is free. A step
+// (dx, dy, dz) sweeps the xy square {0, dx} x {0, dy} in plane 0 and, for dz != 0, in plane dz
+// too (docs/design.md s.0), so square[p] = the xy steps whose square lies free in plane p.
+struct StepSquares {
+  uint16_t square[512];
+  constexpr StepSquares() : square() {
+    for (uint32_t p = 0; p < 512u; ++p) {
+      uint32_t u = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          bool ok = true;
+          for (int b = 0; b <= (dy != 0 ? 1 : 0); ++b)
+            for (int a = 0; a <= (dx != 0 ? 1 : 0); ++a)
+              if (((p >> ((b * dy + 1) * 3 + (a * dx + 1))) & 1u) == 0) ok = false;
+          if (ok) u |= 1u << ((dy + 1) * 3 + (dx + 1));
+        }
+      square[p] = static_cast<uint16_t>(u);
+    }
+  }
+};
+constexpr StepSquares kStepSquares{};
+
+// Free bits (dy+1)*3 of the voxels (x, -1), (x, 0), (x, +1) of one plane, x the voxel at `c`.
+uint32_t free_column(const uint8_t* c, int64_t sy) {
+  const uint32_t lo = static_cast<uint32_t>(c[-sy]), mid = static_cast<uint32_t>(c[0]),
+                 hi = static_cast<uint32_t>(c[sy]), b = kFlagBlocked;  // b = 4: bit 2
+  return (((lo & b) ^ b) >> 2) | (((mid & b) ^ b) << 1) | (((hi & b) ^ b) << 4);
+}
+
+// Free bits of the 3x3 square of one plane around the voxel at `c` (not on the grid's border).
+uint32_t free_square(const uint8_t* c, int64_t sy) {
+  return free_column(c - 1, sy) | (free_column(c, sy) << 1) | (free_column(c + 1, sy) << 2);
+}
+
+// The free squares of the planes dz = -1, 0, +1 around a voxel off the grid's border, slid along
+// x: the square of x + 1 is the square of x shifted by one column plus the column at x + 2.
+struct Squares {
+  uint32_t p[3];
+  void load(const tdo_grid* g, const uint8_t* c) {
+    for (int dz = -1; dz <= 1; ++dz) p[dz + 1] = free_square(c + dz * g->stride_z, g->stride_y);
+  }
+  void slide(const tdo_grid* g, const uint8_t* c) {  // c: the new voxel
+    constexpr uint32_t kKeep = 0x1B6u;  // columns dx = 0, +1 of each row, moved to -1, 0
+    for (int dz = -1; dz <= 1; ++dz)
+      p[dz + 1] =
+          ((p[dz + 1] & kKeep) >> 1) | (free_column(c + 1 + dz * g->stride_z, g->stride_y) << 2);
+  }
+  // moves_of from the squares: three table reads instead of 26 mask tests. Direction d of cell
+  // (dz+1)*9 + (dy+1)*3 + (dx+1) is that cell with the centre skipped (directions.h): dz = -1
+  // gives bits 0..8, dz = 0 bits 9..16, dz = +1 bits 17..25.
+  uint32_t moves() const {
+    const uint32_t u0 = kStepSquares.square[p[1]];
+    const uint32_t um = kStepSquares.square[p[0]];
+    const uint32_t up = kStepSquares.square[p[2]];
+    return (u0 & um) | ((u0 & 0xFu) << 9) | ((u0 >> 5) << 13) | ((u0 & up) << 17);
+  }
+};
+
+// Blocked bits of the 8 voxels x .. x+7 of the 3x3 rows around row (j, k), ORed (one byte each).
+uint64_t blocked_9rows(const tdo_grid* g, const uint8_t* row, int64_t x) {
+  constexpr uint64_t kBlockedBytes = 0x0404040404040404ull;  // kFlagBlocked in every byte
+  uint64_t any = 0;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      uint64_t w;
+      memcpy(&w, row + x + dy * g->stride_y + dz * g->stride_z, sizeof w);
+      any |= w;
+    }
+  }
+  return any & kBlockedBytes;
+}
+
+// Moves of voxels [a, b) of row `row` (a >= 1, b <= nx - 1, so off the border in x).
+void span_moves(const tdo_grid* g, const uint8_t* row, uint32_t* moves, int64_t a, int64_t b) {
+  Squares sq;
+  sq.load(g, row + a);
+  for (int64_t i = a; i < b; ++i) {
+    if (i > a) sq.slide(g, row + i);
+    moves[i] = sq.moves();  // 0 for a blocked voxel: every square needs the centre free
+  }
+}
+
+// Moves of one row (j, k) with 0 < j < ny - 1 and 0 < k < nz - 1: 8 voxels at a time whose
+// 3x3x3 blocks hold no blocked voxel get every step, the others span_moves; the row's two end
+// voxels go through moves_of.
+void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k) {
+  constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;
+  const int64_t nx = g->desc.nx, v0 = index_of(g, 0, j, k);
+  const uint8_t* row = g->flags + v0;
+  uint32_t* moves = g->moves + v0;
+  if (nx < 3) {
+    for (int64_t i = 0; i < nx; ++i) moves[i] = moves_of(g, need, i, j, k);
+    return;
+  }
+  moves[0] = moves_of(g, need, 0, j, k);
+  moves[nx - 1] = moves_of(g, need, nx - 1, j, k);
+  int64_t i = 1;
+  for (; i + 8 < nx; i += 8) {  // voxels i .. i+7 and their neighbours i-1 .. i+8
+    if ((blocked_9rows(g, row, i - 1) | blocked_9rows(g, row, i) | blocked_9rows(g, row, i + 1)) ==
+        0) {
+      for (int64_t t = 0; t < 8; ++t) moves[i + t] = kAllMoves;
+    } else {
+      span_moves(g, row, moves, i, i + 8);
+    }
+  }
+  if (i < nx - 1) span_moves(g, row, moves, i, nx - 1);
+}
+
 void compute_moves(tdo_grid* g) {
   uint32_t need[kNumDirs];
   for (int d = 0; d < kNumDirs; ++d) need[d] = swept_cells(d);
   const tdo_grid_desc& desc = g->desc;
   for (int64_t k = 0; k < desc.nz; ++k) {
     for (int64_t j = 0; j < desc.ny; ++j) {
-      for (int64_t i = 0; i < desc.nx; ++i) {
-        const int64_t v = index_of(g, i, j, k);
-        if ((g->flags[v] & kFlagBlocked) != 0) {
-          g->moves[v] = 0;
-          continue;
-        }
-        uint32_t free27 = 0;
-        for (int dz = -1; dz <= 1; ++dz) {
-          for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-              if (!in_grid(g, i + dx, j + dy, k + dz)) continue;
-              const int64_t w = v + dx + dy * g->stride_y + dz * g->stride_z;
-              if ((g->flags[w] & kFlagBlocked) == 0) free27 |= 1u << cell_of(dx, dy, dz);
-            }
-          }
-        }
-        uint32_t mask = 0;
-        for (int d = 0; d < kNumDirs; ++d)
-          if ((free27 & need[d]) == need[d]) mask |= 1u << d;
-        g->moves[v] = mask;
+      if (j > 0 && k > 0 && j < desc.ny - 1 && k < desc.nz - 1) {
+        row_moves(g, need, j, k);
+        continue;
       }
+      for (int64_t i = 0; i < desc.nx; ++i)
+        g->moves[index_of(g, i, j, k)] = moves_of(g, need, i, j, k);
     }
   }
 }
@@ -208,12 +406,21 @@ inline int64_t parabola_key(const uint32_t* f, int32_t x) {
   return static_cast<int64_t>(f[x]) + static_cast<int64_t>(x) * x;
 }
 
-// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to
-// df[base + q * stride]. Keys F <= 3 * 32767^2 and denominators <= 2 * 32767, so the cross
-// products stay below 2^48 and the results below 2^32. Bounded: every site is pushed and popped
-// at most once, and the evaluation sweep advances monotonically.
-void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base, int64_t stride) {
+// Smallest integer q with num < q * den (den > 0): floor(num / den) + 1.
+inline int64_t first_above(int64_t num, int64_t den) {
+  const int64_t fl = num >= 0 ? num / den : -((-num + den - 1) / den);
+  return fl + 1;
+}
+
+// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to out[0..n),
+// the line f was copied from (a line without a site is left as it is). Keys F <= 3 * 32767^2 and
+// denominators <= 2 * 32767, so the cross products stay below 2^48 and the results below 2^32.
+// Bounded: every site is pushed and popped at most once, and the evaluation sweep advances
+// monotonically. The keys of the two topmost sites and the crossing of the current and next
+// parabola are kept, not recomputed.
+void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
   int32_t k = -1;
+  int64_t fa = 0, fb = 0;  // keys of v[k - 1] and v[k]
   for (int32_t q = 0; q < n; ++q) {
     if (f[q] == kDfInfinite) continue;
     const int64_t fq = parabola_key(f, q);
@@ -221,30 +428,115 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, float* df, int64_t base,
     // s(v[k], q) <= s(v[k-1], v[k]) with s(a, b) = (F(b) - F(a)) / (2 (b - a)).
     while (k >= 1) {
       const int32_t a = v[k - 1], b = v[k];
-      const int64_t fb = parabola_key(f, b);
       const int64_t n1 = fq - fb, d1 = 2 * static_cast<int64_t>(q - b);
-      const int64_t n2 = fb - parabola_key(f, a), d2 = 2 * static_cast<int64_t>(b - a);
+      const int64_t n2 = fb - fa, d2 = 2 * static_cast<int64_t>(b - a);
       if (n1 * d2 > n2 * d1) break;
       --k;
+      fb = fa;
+      if (k >= 1) fa = parabola_key(f, v[k - 1]);
     }
+    fa = fb;
+    fb = fq;
     v[++k] = q;
   }
-  if (k < 0) {  // no site on this line
-    for (int32_t q = 0; q < n; ++q) df_store(df, base + q * stride, kDfInfinite);
-    return;
-  }
+  if (k < 0) return;  // no site: the line read from df is infinite already, and stays so
+  // Parabola j is the lowest from q on while q < bound, its crossing with parabola j + 1:
+  // s(v[j], v[j+1]) < q.
   int32_t j = 0;
+  int64_t fj = parabola_key(f, v[0]);
+  int64_t fj1 = k >= 1 ? parabola_key(f, v[1]) : 0;
+  int64_t bound = k >= 1 ? first_above(fj1 - fj, 2 * static_cast<int64_t>(v[1] - v[0])) : n;
   for (int32_t q = 0; q < n; ++q) {
-    // Advance while the next parabola is lower from q on: s(v[j], v[j+1]) < q.
-    while (j < k) {
-      const int64_t num = parabola_key(f, v[j + 1]) - parabola_key(f, v[j]);
-      const int64_t den = 2 * static_cast<int64_t>(v[j + 1] - v[j]);
-      if (!(num < static_cast<int64_t>(q) * den)) break;
+    while (j < k && q >= bound) {
       ++j;
+      fj = fj1;
+      if (j < k) {
+        fj1 = parabola_key(f, v[j + 1]);
+        bound = first_above(fj1 - fj, 2 * static_cast<int64_t>(v[j + 1] - v[j]));
+      }
     }
     const int64_t dq = q - v[j];
-    df_store(df, base + q * stride, static_cast<uint32_t>(dq * dq + f[v[j]]));
+    out[q] = static_cast<uint32_t>(dq * dq + f[v[j]]);
   }
+}
+
+// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
+int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
+  const uint64_t bytes = 0x0101010101010101ull * bit;
+  while (i + 8 <= n) {
+    uint64_t w;
+    memcpy(&w, row + i, sizeof w);
+    if ((w & bytes) != 0) break;
+    i += 8;
+  }
+  while (i < n && (row[i] & bit) == 0) ++i;
+  return i;
+}
+
+// The x pass of the EDT for row (j, k): squared distance to the nearest occupied voxel of the row
+// (the same values as edt_line: the lower envelope of (q - s)^2 is the nearest site's), by one
+// sweep each way; kDfInfinite for the whole row when it has no occupied voxel.
+void edt_row_x(tdo_grid* g, int64_t j, int64_t k) {
+  const int64_t n = g->desc.nx, base = index_of(g, 0, j, k);
+  const uint8_t* row = g->flags + base;
+  float* out = g->df + base;
+  if (next_flagged(row, 0, n, kFlagOccupied) == n) {
+    memset(out, 0xFF, static_cast<size_t>(n) * sizeof(float));  // kDfInfinite in every entry
+    return;
+  }
+  int64_t last = -1;
+  for (int64_t q = 0; q < n; ++q) {
+    if ((row[q] & kFlagOccupied) != 0) last = q;
+    df_store(out, q, last < 0 ? kDfInfinite : static_cast<uint32_t>((q - last) * (q - last)));
+  }
+  int64_t next = -1;
+  for (int64_t q = n - 1; q >= 0; --q) {
+    if ((row[q] & kFlagOccupied) != 0) next = q;
+    if (next < 0) continue;
+    const uint32_t d2 = static_cast<uint32_t>((next - q) * (next - q));
+    if (d2 < df_load(out, q)) df_store(out, q, d2);
+  }
+}
+
+// Metres from a squared distance in voxel^2, rounded down (see tdo_grid::df).
+float df_metres(uint32_t d2, double res) {
+  if (d2 == 0u) return 0.0f;
+  if (d2 == kDfInfinite) return HUGE_VALF;
+  // Round down: float conversion may round up, and one more ulp absorbs the double rounding.
+  // One ulp towards zero of a positive float is its bit pattern minus one (as nextafterf).
+  const double exact = sqrt(static_cast<double>(d2)) * res;
+  float m = static_cast<float>(exact);
+  uint32_t bits;
+  memcpy(&bits, &m, sizeof bits);
+  if (bits != 0u) --bits;
+  memcpy(&m, &bits, sizeof m);
+  if (static_cast<double>(m) > exact && bits != 0u) {
+    --bits;
+    memcpy(&m, &bits, sizeof m);
+  }
+  return m;
+}
+
+// dst[c * rows + r] = src[r * cols + c] for a rows x cols matrix of 4-byte words (either may be
+// the float distance field, so words are moved with memcpy), in 16 x 16 tiles.
+void transpose_words(const void* src, void* dst, int64_t rows, int64_t cols) {
+  constexpr int64_t kTile = 16;
+  const unsigned char* s = static_cast<const unsigned char*>(src);
+  unsigned char* t = static_cast<unsigned char*>(dst);
+  for (int64_t r0 = 0; r0 < rows; r0 += kTile) {
+    const int64_t r1 = r0 + kTile < rows ? r0 + kTile : rows;
+    for (int64_t c0 = 0; c0 < cols; c0 += kTile) {
+      const int64_t c1 = c0 + kTile < cols ? c0 + kTile : cols;
+      for (int64_t r = r0; r < r1; ++r)
+        for (int64_t c = c0; c < c1; ++c) memcpy(t + 4 * (c * rows + r), s + 4 * (r * cols + c), 4);
+    }
+  }
+}
+
+// EDT pass over one contiguous line of n squared distances, in place.
+void edt_in_place(tdo_grid* g, uint32_t* line, int64_t n) {
+  memcpy(g->df_f, line, static_cast<size_t>(n) * sizeof(uint32_t));
+  edt_line(g->df_f, g->df_v, static_cast<int32_t>(n), line);
 }
 
 // df of every voxel; see tdo_grid::df. Three passes (x, y, z lines) then conversion to metres.
@@ -259,42 +551,21 @@ void build_distance_field(tdo_grid* g) {
     for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
     return;
   }
-  const int64_t strides[3] = {1, g->stride_y, g->stride_z};
-  for (int axis = 0; axis < 3; ++axis) {
-    const int32_t n = n_axis[axis];
-    const int64_t stride = strides[axis];
-    // Lines along `axis`, one per (u, w) position on the two other axes.
-    const int32_t nu = axis == 0 ? d.ny : d.nx;
-    const int32_t nw = axis == 2 ? d.ny : d.nz;
-    for (int64_t w = 0; w < nw; ++w) {
-      for (int64_t u = 0; u < nu; ++u) {
-        const int64_t base = axis == 0   ? index_of(g, 0, u, w)
-                             : axis == 1 ? index_of(g, u, 0, w)
-                                         : index_of(g, u, w, 0);
-        for (int32_t q = 0; q < n; ++q) {
-          const int64_t v = base + q * stride;
-          g->df_f[q] = axis == 0 ? ((g->flags[v] & kFlagOccupied) != 0 ? 0u : kDfInfinite)
-                                 : df_load(g->df, v);
-        }
-        edt_line(g->df_f, g->df_v, n, g->df, base, stride);
-      }
-    }
+  for (int64_t k = 0; k < d.nz; ++k)
+    for (int64_t j = 0; j < d.ny; ++j) edt_row_x(g, j, k);
+  // The y and z lines are made contiguous in the moves array (free until compute_moves, which
+  // runs after this), transformed there and copied back: strided lines missed the cache.
+  uint32_t* scratch = g->moves;
+  const int64_t plane = g->stride_z;
+  for (int64_t k = 0; k < d.nz; ++k) {  // y lines: plane k as [ny][nx] -> [nx][ny]
+    transpose_words(g->df + k * plane, scratch, d.ny, d.nx);
+    for (int64_t x = 0; x < d.nx; ++x) edt_in_place(g, scratch + x * d.ny, d.ny);
+    transpose_words(scratch, g->df + k * plane, d.nx, d.ny);
   }
-  const double res = d.res;
-  for (uint32_t v = 0; v < g->nvox; ++v) {
-    const uint32_t d2 = df_load(g->df, v);
-    float m = HUGE_VALF;
-    if (d2 == 0u) {
-      m = 0.0f;
-    } else if (d2 != kDfInfinite) {
-      // Round down: float conversion may round up, and one more ulp absorbs the double rounding.
-      const double exact = sqrt(static_cast<double>(d2)) * res;
-      m = static_cast<float>(exact);
-      m = nextafterf(m, 0.0f);
-      if (static_cast<double>(m) > exact) m = nextafterf(m, 0.0f);
-    }
-    g->df[v] = m;
-  }
+  transpose_words(g->df, scratch, d.nz, plane);  // z lines: [nz][plane] -> [plane][nz]
+  for (int64_t p = 0; p < plane; ++p) edt_in_place(g, scratch + p * d.nz, d.nz);
+  transpose_words(scratch, g->df, plane, d.nz);
+  for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = df_metres(df_load(g->df, v), d.res);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -528,10 +799,11 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   uint32_t blocked = 0;
   for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
   g->n_blocked = blocked;
-  compute_moves(g);
-  // Collision-query structures (collision.h): they change no blocked flag and no move.
+  // Collision-query structures (collision.h): they change no blocked flag and no move. The
+  // distance field borrows the moves array as scratch, so it comes first.
   if (g->n_cubes > 0) mark_surface(g);
   if (g->cap.boxes_only == 0u) build_distance_field(g);
+  compute_moves(g);
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;

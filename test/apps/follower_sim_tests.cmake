@@ -1,6 +1,6 @@
 # Tests of tdo-avoid and tdo-sim (included from CMakeLists.txt): their nodes in-process over
 # memq://, the whole chain planner + follower + simulator on Map6, and the programs themselves. The
-# simulator (tdo::sim_node, tdo-sim) reads map files, so it needs the tools (TDO_BUILD_TOOLS).
+# simulator (tdo::sim_node, tdo-sim) reads map files (mapio/, built with the apps).
 add_executable(tdo_avoid_node_tests test_avoid_node.cpp)
 target_link_libraries(tdo_avoid_node_tests PRIVATE tdo::avoid_node GTest::gtest_main)
 tdo_set_warnings(tdo_avoid_node_tests)

@@ -125,6 +125,30 @@ TEST(MapAdapter, NoRunsMeansEveryVoxelFree) {
   EXPECT_EQ(tdo_grid_blocked_count(p.grid()), 0u);
 }
 
+// A map larger than the configured memory is refused with the bytes a planner would need for it:
+// the footprint of the same capacities with room for its voxels, larger than the arena it has.
+TEST(MapAdapter, GivenAMapLargerThanTheCapacity_WhenChecked_ThenTheMessageGivesTheBytesNeeded) {
+  Planner p;
+  tdo::map_t m = valid_map();
+  m.size[0] = 100;
+  m.size[1] = 100;
+  m.size[2] = 100;
+  m.runs = {1000000};
+  m.n_runs = 1;
+  const Check c = tdo_lcm::map_check(m, p.cap(), -1.0);
+  EXPECT_EQ(c.reason, Reason::map_capacity);
+  tdo_planner_config need{};
+  need.cap = p.cap();
+  need.cap.max_voxels = 1000000;
+  const size_t bytes = tdo_planner_footprint(&need);
+  tdo_planner_config have{};
+  have.cap = p.cap();
+  EXPECT_GT(bytes, tdo_planner_footprint(&have));
+  EXPECT_EQ(c.detail, "100 x 100 x 100 = 1000000 voxels, more than the capacity of " +
+                          std::to_string(p.cap().max_voxels) + "; it needs an arena of at least " +
+                          std::to_string(bytes) + " bytes");
+}
+
 TEST(MapAdapter, EveryMalformedMapIsRefusedByName) {
   Planner p;
   const tdo_capacity cap = p.cap();

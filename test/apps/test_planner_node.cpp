@@ -552,7 +552,7 @@ TEST_F(PlannerNodeTest, GivenOnlyStartAndGoalWithUseDefaultsThenPlannedWithTheLi
 namespace {
 
 // An OctoMap-encoded map (the .bt bytes unchanged, 209 kB instead of 440 kB of run lengths at the
-// tree's resolution): rasterised by the node exactly as tools/io rasterises the file, and planned
+// tree's resolution): rasterised by the node exactly as mapio rasterises the file, and planned
 // on with the optimal length the maps/octomap README gives for query G2 (res 0.2 m, clearance 0.4).
 TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
   const std::string bt = TDO_MAPS_DIR "/octomap/geb079.bt";
@@ -563,7 +563,7 @@ TEST(PlannerNodeOctoMap, OctoMapEncodedMapIsRasterisedAndPlanned) {
   EXPECT_EQ(m.n_runs, 0);
   m.map_id = 79;
 
-  // Same occupancy as tools/io's reader of the file at the same resolution.
+  // Same occupancy as mapio's reader of the file at the same resolution.
   tdo::map_t rle{};
   ASSERT_TRUE(tdo_lcm::octomap_to_rle(m, 1u << 22, &rle).ok());
   tdo_io::LoadOptions opt;

@@ -30,7 +30,7 @@ constexpr int32_t kVehicle = 1;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
 const std::string kMap6 = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
 
-/** The `mover` lines of a .tdomap file, read here independently of tools/io. */
+/** The `mover` lines of a .tdomap file, read here independently of mapio. */
 struct FileMover {
   int id;
   double p[3], v[3], r;

@@ -1,4 +1,4 @@
-// libFuzzer target of the host map readers (tools/io): the input, up to 1 MB, as a map file of the
+// libFuzzer target of the map readers (mapio/): the input, up to 1 MB, as a map file of the
 // format TDO_FUZZ_EXT names (.tdomap, .3dmap, .bt; a .bt file with the .ot header is read as .ot).
 // load_map must return true or false with a one-line message; it must never crash, hang, leak or
 // allocate past the caps (LoadOptions: 1e6 voxels, the OcTree check's 1e6 nodes).

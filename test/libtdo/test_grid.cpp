@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include "../../libtdo/src/grid_internal.h"  // moves: the legal steps, checked against brute force
 #include "tdo/tdo.h"
 #include "test_util.h"
 
@@ -456,6 +457,86 @@ TEST_F(GridTest, GivenRandomBoxesCubesAndClearances_WhenFinished_ThenBlockedMatc
   EXPECT_GT(total_blocked, 3000u);
   EXPECT_GT(total_free, 3000u);
   EXPECT_GT(total_near, 1500u) << "too few voxels blocked by clearance alone";
+}
+
+// Random voxel maps in the shapes real maps have (runs along every axis, walls, solid blocks,
+// scattered voxels) on grids long enough for the word-at-a-time paths of tdo_grid_finish (runs of
+// cubes, 8 voxels per read), at real-map resolutions and random clearances: the blocked set and
+// every voxel's legal steps equal the brute force (distance to every cube; MovingAI rule).
+TEST(GridInflation,
+     GivenRandomVoxelMaps_WhenFinishedWithRandomClearance_ThenBlockedAndStepsMatchBruteForce) {
+  TestPlanner pl(tdo_test::make_cap(40 * 12 * 8, 16, 16, 1, 20000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  tdo_grid* grid = pl.grid();
+  const tdo_grid* gi = grid;  // its moves (grid_internal.h): the legal steps the search reads
+  Rng rng(19190719);
+  const double resolutions[] = {0.08, 0.1, 0.25, 0.3, 0.5, 1.0};
+  uint64_t near = 0, steps_checked = 0, partial = 0;
+  for (int round = 0; round < 300; ++round) {
+    const double res = resolutions[rng.below(6)];
+    VoxelMap m(rng.range(1, 40), rng.range(1, 12), rng.range(1, 8), res,
+               tdo_vec3{rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)});
+    std::set<std::tuple<int, int, int>> cubes;
+    const int n_shapes = rng.range(0, 6);
+    for (int s = 0; s < n_shapes; ++s) {
+      int32_t lo[3] = {rng.range(0, m.nx - 1), rng.range(0, m.ny - 1), rng.range(0, m.nz - 1)};
+      int32_t len[3] = {1, 1, 1};
+      const uint32_t kind = rng.below(4);  // 0 voxel, 1 run, 2 wall, 3 block
+      if (kind == 1) len[rng.below(3)] = rng.range(2, 30);
+      if (kind == 2) {
+        const uint32_t thin = rng.below(3);
+        for (int a = 0; a < 3; ++a) len[a] = a == static_cast<int>(thin) ? 1 : rng.range(2, 20);
+      }
+      if (kind == 3)
+        for (int a = 0; a < 3; ++a) len[a] = rng.range(2, 8);
+      for (int32_t k = lo[2]; k < lo[2] + len[2] && k < m.nz; ++k)
+        for (int32_t j = lo[1]; j < lo[1] + len[1] && j < m.ny; ++j)
+          for (int32_t i = lo[0]; i < lo[0] + len[0] && i < m.nx; ++i)
+            cubes.insert(std::make_tuple(i, j, k));
+    }
+    Obstacles obs;
+    for (const auto& c : cubes)
+      obs.cubes.push_back(tdo_voxel{std::get<0>(c), std::get<1>(c), std::get<2>(c)});
+    const double clearance = rng.uniform() < 0.2 ? 0.0 : rng.uniform(0.0, 5.0 * res);
+
+    ASSERT_EQ(tdo_test::load_obstacles(grid, m, obs, clearance), TDO_OK) << "round " << round;
+    const std::vector<uint8_t> blk = tdo_test::brute_blocked(m, obs, clearance);
+    m.blocked = blk;
+    uint32_t want = 0;
+    int reported = 0;
+    for (size_t n = 0; n < m.size(); ++n) {
+      const tdo_voxel v = m.voxel(n);
+      want += blk[n];
+      near += blk[n] != 0 && cubes.count(std::make_tuple(v.i, v.j, v.k)) == 0 ? 1u : 0u;
+      if (tdo_grid_is_blocked(grid, v) != blk[n] && reported++ < 5)
+        ADD_FAILURE() << "round " << round << " voxel " << tdo_test::str(v) << " res " << res
+                      << " clearance " << clearance << ": blocked " << tdo_grid_is_blocked(grid, v)
+                      << ", brute force " << int(blk[n]);
+      const uint32_t moves = gi->moves[n];
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int cell = (dz + 1) * 9 + (dy + 1) * 3 + (dx + 1);
+            if (cell == 13) continue;
+            const int d = cell < 13 ? cell : cell - 1;
+            const bool want_step =
+                m.is_free(v.i, v.j, v.k) &&
+                tdo_test::legal_step(m, v, tdo_voxel{v.i + dx, v.j + dy, v.k + dz});
+            const bool got_step = ((moves >> d) & 1u) != 0;
+            ++steps_checked;
+            if (want_step != got_step && reported++ < 5)
+              ADD_FAILURE() << "round " << round << " voxel " << tdo_test::str(v) << " step (" << dx
+                            << "," << dy << "," << dz << "): legal " << got_step << ", brute force "
+                            << want_step;
+          }
+      partial += m.is_free(v.i, v.j, v.k) && moves != (1u << 26) - 1u && moves != 0u ? 1u : 0u;
+    }
+    EXPECT_EQ(tdo_grid_blocked_count(grid), want) << "round " << round;
+  }
+  // The generator exercised clearance shells and voxels with some but not all steps legal.
+  EXPECT_GT(near, 20000u);
+  EXPECT_GT(partial, 5000u);
+  EXPECT_GT(steps_checked, 1000000u);
 }
 
 // A voxel cube and the box with the same extent are the same obstacle.

@@ -1,4 +1,4 @@
-// Tests of the tools' map and scenario readers (tools/io).
+// Tests of the map and scenario readers (mapio/).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>

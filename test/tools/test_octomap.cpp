@@ -1,4 +1,4 @@
-// Tests of the OctoMap input of tools/io: voxelization of .bt and .ot OcTrees checked against the
+// Tests of the OctoMap input of mapio: voxelization of .bt and .ot OcTrees checked against the
 // OctoMap API itself (node searches and leaf counts), the shipped trees, and the error messages.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -318,6 +318,12 @@ TEST_F(Octomap, GivenTooManyVoxelsOrBadResolutionThenError) {
   EXPECT_FALSE(tdo_io::load_map(file, cap, &m, &err));
   EXPECT_THAT(err, StartsWith(file + ": grid too large: 102 x 102 x 52 = 541008 voxels"));
   EXPECT_THAT(err, HasSubstr("cap of 100000"));
+  // The bytes it would need: the footprint of a planner holding just this grid.
+  tdo_planner_config grid_only{};
+  tdo_capacity_for_grid(&grid_only.cap, 102, 102, 52, 0.0, 1u, 1u);
+  EXPECT_THAT(err, EndsWith("; its grid alone needs an arena of " +
+                            std::to_string(tdo_planner_footprint(&grid_only)) + " bytes"));
+  EXPECT_GT(tdo_planner_footprint(&grid_only), 541008u * 9u);  // flags, moves, distance field
   tdo_io::LoadOptions tiny;
   tiny.resolution = 0.001;
   EXPECT_FALSE(tdo_io::load_map(file, tiny, &m, &err));

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "host_info.h"
+#include "scale_load.h"
 #include "scale_report.h"
 #include "scale_runner.h"
 #include "scale_workloads.h"
@@ -34,6 +35,7 @@ struct Options {
   uint64_t warmup = 3;                 // untimed queries per map before timing
   uint64_t seed = 1;                   // RRTConnect: query i of a workload has seed + i
   bool rrt_movingai = true;            // RRTConnect + simplify on MovingAI too
+  bool load = false;                   // --load: map loading only (scale_load.h)
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
 };
@@ -43,7 +45,7 @@ void usage(FILE* f) {
       f,
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
       "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
-      "                       [--maps-dir DIR]\n"
+      "                       [--maps-dir DIR] [--load]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
       "  --limit N        at most N queries per map (default: 1000 on MovingAI, all elsewhere)\n"
@@ -56,6 +58,10 @@ void usage(FILE* f) {
       "  --states S       tdo's search states: heading (the library's default) or voxel\n"
       "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
+      "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"
+      "                   .3dmap map against the OctoMap library's read / the .3dmap parse\n"
+      "                   (median of --repeat runs; default workloads geb079 simple complex\n"
+      "                   forest)\n"
       "Exit status: 0 done, 1 tdo missed a query A* solved or A*'s cost differs from the\n"
       "textbook A*'s, 2 bad arguments, missing files or a failed set-up.\n",
       TDO_BENCH_SCALE_MAPS_DIR);
@@ -81,6 +87,10 @@ int parse_args(int argc, char** argv, Options* o) {
     }
     if (a == "--no-rrt-movingai") {
       o->rrt_movingai = false;
+      continue;
+    }
+    if (a == "--load") {
+      o->load = true;
       continue;
     }
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
@@ -124,6 +134,7 @@ int parse_args(int argc, char** argv, Options* o) {
       return 2;
     }
   }
+  if (o->workloads.empty() && o->load) o->workloads = {"geb079", "simple", "complex", "forest"};
   if (o->workloads.empty()) o->workloads = tdo_bench::workload_names();
   return 0;
 }
@@ -198,6 +209,14 @@ int main(int argc, char** argv) {
       return 2;
     }
     workloads.push_back(w);
+  }
+  if (o.load) {
+    std::printf("tdo-bench-scale --load: repeat %llu\ncpu: %s; load average before %s\n",
+                static_cast<unsigned long long>(o.repeat), tdo_bench::cpu_model().c_str(),
+                tdo_bench::load_average().c_str());
+    const int st = tdo_bench::run_load_bench(workloads, o.repeat);
+    std::printf("load average after %s\n", tdo_bench::load_average().c_str());
+    return st;
   }
   const std::string load_before = tdo_bench::load_average();
   std::vector<tdo_bench::WorkloadRecord> records;

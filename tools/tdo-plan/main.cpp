@@ -197,6 +197,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
+  const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
   if (nvox > static_cast<double>(vcap) || cfg.cap.max_voxels > vcap) {
     // The map does not fit: configure the capacity anyway and let the library name the overflow.
@@ -230,7 +231,8 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
                    std::to_string(map.desc.nx) + " x " + std::to_string(map.desc.ny) + " x " +
                    std::to_string(map.desc.nz) + " = " + fmt(nvox, 15) +
                    " voxels, more than the capacity of " + std::to_string(cfg.cap.max_voxels) +
-                   " (--max-voxels)"};
+                   " (--max-voxels); planning on it needs an arena of " +
+                   std::to_string(fit_bytes) + " bytes"};
   }
   if (st == TDO_ERR_CLEARANCE_CAPACITY) {
     throw BadInput{std::string(tdo_status_str(st)) + ": clearance " + fmt(clearance) +

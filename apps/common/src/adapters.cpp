@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "tdo/config.h"
 #include "tdo/status.h"
 #include "tdo_lcm/rle.h"
 
@@ -191,6 +192,20 @@ double effective_clearance(const tdo::map_t& m, double requested) {
   return requested < 0.0 ? m.clearance : requested;  // NaN stays NaN and fails the checks
 }
 
+// "; it needs an arena of B bytes": the footprint of these capacities with room for n voxels
+// (the node pools and the other capacities stay as configured, so it is a lower bound when they
+// were sized from the voxels too).
+static std::string arena_needed(const tdo_capacity& cap, uint64_t n) {
+  if (n > 0xFFFFFFF0u) return "; more than 2^32 voxels: no planner arena can hold it";
+  tdo_planner_config cfg{};
+  cfg.cap = cap;
+  cfg.cap.max_voxels = static_cast<uint32_t>(n);
+  cfg.cap.max_axis = 0;
+  const std::size_t bytes = tdo_planner_footprint(&cfg);
+  return bytes == 0 ? std::string()
+                    : "; it needs an arena of at least " + std::to_string(bytes) + " bytes";
+}
+
 Check map_check(const tdo::map_t& m, const tdo_capacity& cap, double clearance) {
   Check c = check_counts(m);
   if (!c.ok()) return c;
@@ -213,7 +228,7 @@ Check map_check(const tdo::map_t& m, const tdo_capacity& cap, double clearance) 
     return fail(Reason::map_capacity, std::to_string(d.nx) + " x " + std::to_string(d.ny) + " x " +
                                           std::to_string(d.nz) + " = " + std::to_string(n) +
                                           " voxels, more than the capacity of " +
-                                          std::to_string(cap.max_voxels));
+                                          std::to_string(cap.max_voxels) + arena_needed(cap, n));
   if (m.boxes.size() > cap.max_boxes)
     return fail(Reason::map_capacity, std::to_string(m.boxes.size()) +
                                           " boxes, more than the capacity of " +

@@ -1,6 +1,6 @@
 /**
  * @file map_file.h
- * @brief A map file (.tdomap, MovingAI .3dmap, OctoMap .bt/.ot, read by tools/io) -> a map_t
+ * @brief A map file (.tdomap, MovingAI .3dmap, OctoMap .bt/.ot, read by mapio) -> a map_t
  *        message: the boxes of a .tdomap as boxes, the occupied voxels of the others run-length
  *        encoded. Host code for the apps that publish maps (tdo-publish-map, tdo-sim, the log
  *        generator).
@@ -21,7 +21,7 @@ struct Map;
 namespace tdo_lcm {
 
 /**
- * @brief A map read by tools/io -> a run-length map message: the occupied voxels (x fastest; the
+ * @brief A map read by mapio -> a run-length map message: the occupied voxels (x fastest; the
  *        ones outside the grid skipped) and the boxes (map_id, vehicle_id and utime left 0).
  * @param clearance m, the clearance hint sent with the map (>= 0)
  * @return map_from_occupancy's check.
@@ -48,7 +48,7 @@ bool map_msg_from_file(const std::string& path, double clearance, tdo::map_t* ou
 
 /**
  * @brief An OctoMap binary file (.bt) -> an ENCODING_OCTOMAP_BT message carrying the file's bytes
- *        unchanged, on the grid tools/io gives the tree (its bounds padded by one voxel).
+ *        unchanged, on the grid mapio gives the tree (its bounds padded by one voxel).
  * @param resolution m, grid voxel edge; 0 = the tree's
  * @return true on success; false with "FILE: message" (not a binary OcTree, unreadable, ...).
  */
@@ -57,7 +57,7 @@ bool octomap_msg_from_file(const std::string& path, double resolution, double cl
 
 /**
  * @brief Rasterise an ENCODING_OCTOMAP_BT message onto its own grid (resolution, origin, size):
- *        every occupied leaf marks every voxel its cube intersects (as tools/io does for files).
+ *        every occupied leaf marks every voxel its cube intersects (as mapio does for files).
  * @param max_voxels the receiver's capacity, checked before anything is allocated
  * @param[out] out the same map as ENCODING_RLE (ids, grid, clearance and boxes kept, no bytes)
  * The bytes are checked by tdo_io::check_octree (bounded, no recursion: depth, node count, tree

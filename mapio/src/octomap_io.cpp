@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -118,6 +119,19 @@ std::string number(double v) {
   return buf;
 }
 
+// "; its grid alone needs an arena of B bytes": the footprint of a planner holding only this
+// grid (one heading, one search state, no clearance stencil), a lower bound of any planner's.
+std::string grid_bytes_note(const int64_t n[3], double total) {
+  if (total > 4294967280.0 || n[0] > INT32_MAX || n[1] > INT32_MAX || n[2] > INT32_MAX)
+    return "; more than 2^32 voxels: no planner arena can hold it";
+  tdo_planner_config cfg{};
+  tdo_capacity_for_grid(&cfg.cap, static_cast<int32_t>(n[0]), static_cast<int32_t>(n[1]),
+                        static_cast<int32_t>(n[2]), 0.0, 1u, 1u);
+  const std::size_t bytes = tdo_planner_footprint(&cfg);
+  return bytes == 0 ? std::string()
+                    : "; its grid alone needs an arena of " + std::to_string(bytes) + " bytes";
+}
+
 }  // namespace
 
 bool load_octomap(const std::string& path, const LoadOptions& options, Map* out,
@@ -193,7 +207,7 @@ bool load_octomap(const std::string& path, const LoadOptions& options, Map* out,
                 "grid too large: " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
                     std::to_string(n[2]) + " = " + number(total) + " voxels at resolution " +
                     number(res) + " m exceeds the cap of " + std::to_string(options.max_voxels) +
-                    " (--max-voxels, or a coarser resolution)");
+                    " (--max-voxels, or a coarser resolution)" + grid_bytes_note(n, total));
   }
   out->desc.nx = static_cast<int32_t>(n[0]);
   out->desc.ny = static_cast<int32_t>(n[1]);
