@@ -532,6 +532,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   // Collision-query structures (collision.h): they change no blocked flag and no move.
   if (g->n_cubes > 0) mark_surface(g);
   if (g->cap.boxes_only == 0u) build_distance_field(g);
+  g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;
