@@ -1,12 +1,14 @@
 // tdo-avoid's node: decode -> adapter -> tdo_apf_run -> encode (avoid_node.h).
 #include "avoid_node.h"
 
+#include <algorithm>
 #include <cmath>
 #include <new>
 #include <utility>
 
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/compact.h"
+#include "tdo_lcm/map_update.h"
 #include "tdo_lcm/node_status.h"
 #include "tdo_lcm/vehicle.h"
 #include "tdo_lcm/wire.h"
@@ -90,6 +92,7 @@ bool AvoidNode::start(std::string* error) {
                   sub(cfg_.obstacles_channel, &AvoidNode::on_obstacles) &&
                   sub(cfg_.state_channel, &AvoidNode::on_state) &&
                   sub(cfg_.map_channel, &AvoidNode::on_map) &&
+                  sub(cfg_.map_update_channel, &AvoidNode::on_map_update) &&
                   sub(cfg_.request_channel, &AvoidNode::on_request) &&
                   sub(cfg_.feasibility_channel, &AvoidNode::on_feasibility);
   return ok ? true : fail_with("cannot subscribe");
@@ -149,6 +152,7 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
     return;
   }
   samples_ = std::move(samples);
+  near_idx_ = 0;
   request_id_ = m.request_id;
   have_task_ = true;
   task_ready_ = false;
@@ -156,6 +160,7 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
   task_t0_ = state_.t;
   if (task_t0_set_) reset_task();
   if (have_task_) ++counters_.trajectories;
+  check_blocked();
 }
 
 void AvoidNode::on_request(const void* data, std::size_t size) {
@@ -211,7 +216,8 @@ void AvoidNode::on_map(const void* data, std::size_t size) {
   Check c = decode(data, size, &m);
   if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
-  if (c.ok() && have_map_ && m.map_id == map_id_) return;  // the map in use, sent again
+  // The map in use, sent again (when stale: the whole map asked for, reloaded).
+  if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
   // Everything is checked before the grid is touched, so a bad map leaves the current one in place.
   if (c.ok()) c = map_check(m, grid_.capacity(), -1.0);
   if (!c.ok()) {
@@ -222,21 +228,107 @@ void AvoidNode::on_map(const void* data, std::size_t size) {
   if (!c.ok()) {  // the grid was reset: no static repulsion until the next good map
     have_map_ = false;
     map_id_ = -1;
+    updates_.clear();
     refuse("map", c);
   } else {
     have_map_ = true;
     map_id_ = m.map_id;
+    updates_.on_map(m.map_id);
     ++counters_.maps_loaded;
   }
   // The follower must not step on a grid that changed under it: restart the task on the new one.
   if (task_ready_) reset_task();
+  check_blocked();
 }
 
-void AvoidNode::publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id) {
+void AvoidNode::on_map_update(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::map_update_t u{};
+  Check c = decode(data, size, &u);
+  if (c.ok() && u.vehicle_id != -1 && u.vehicle_id != cfg_.vehicle_id)
+    c = fail(Reason::other_vehicle, "update for vehicle " + std::to_string(u.vehicle_id));
+  if (c.ok()) c = map_update_check(u);
+  const bool was_stale = updates_.stale();
+  if (c.ok()) c = updates_.order(u);
+  if (c.ok()) {
+    c = map_update_apply(u, grid_.grid(), nullptr);
+    if (c.ok()) {
+      updates_.applied(u.seq);
+      ++counters_.updates_applied;
+      if (task_ready_) reset_task();  // the follower's static repulsion sees the change
+      check_blocked();
+      return;
+    }
+    updates_.mark_stale();
+  }
+  refuse("update", c);
+  if (updates_.stale() && !was_stale)
+    request_map(c.reason == Reason::gap ? "gap" : std::string("update_") + reason_str(c.reason));
+}
+
+void AvoidNode::request_map(const std::string& why) {
+  tdo::map_request_t r{};
+  r.utime = wall_utime();
+  r.seq = map_request_seq_++;
+  r.program = "tdo-avoid";
+  r.vehicle_id = cfg_.vehicle_id;
+  r.map_id = map_id();
+  r.last_seq = updates_.last_seq();
+  r.reason = why;
+  bus_->publish(cfg_.map_request_channel, r);
+}
+
+// The part of the task's samples that crosses a known obstacle (at the vehicle radius): exact
+// segment queries between consecutive samples, bounded by the sample count.
+void AvoidNode::check_blocked() {
+  blocked_ = false;
+  if (!have_task_ || !have_map_ || samples_.size() < 2) return;
+  const tdo_grid* g = grid_.grid();
+  if (tdo_grid_clearance(g) < 0.0) return;  // no finished grid: nothing known
+  for (std::size_t k = 0; k + 1 < samples_.size(); ++k) {
+    if (tdo_collision_segment_clear(g, samples_[k].p, samples_[k + 1].p, cfg_.vehicle_radius))
+      continue;
+    blocked_ = true;
+    blocked_to_ = samples_[k + 1].t;
+  }
+}
+
+bool AvoidNode::path_blocked() const {
+  if (!blocked_ || !have_task_) return false;
+  // Ahead when the vehicle's place on the trajectory (the sample nearest to it) has not passed
+  // the blocked part: a vehicle held in front of it stays blocked however long it waits.
+  return near_idx_ >= samples_.size() || samples_[near_idx_].t <= blocked_to_;
+}
+
+// The sample nearest to the vehicle, searched nearest_window samples each way from the last one
+// (bounded; the vehicle moves less than that per step).
+void AvoidNode::track_nearest() {
+  if (!have_state_ || samples_.empty()) return;
+  const std::size_t n = samples_.size(), w = cfg_.nearest_window;
+  if (near_idx_ >= n) near_idx_ = 0;
+  const std::size_t lo = near_idx_ > w ? near_idx_ - w : 0, hi = std::min(n - 1, near_idx_ + w);
+  double best = HUGE_VAL;
+  for (std::size_t k = lo; k <= hi; ++k) {
+    const double dx = samples_[k].p.x - state_.p.x, dy = samples_[k].p.y - state_.p.y,
+                 dz = samples_[k].p.z - state_.p.z;
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 < best) {
+      best = d2;
+      near_idx_ = k;
+    }
+  }
+}
+
+void AvoidNode::publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id,
+                                 bool blocked) {
   yaw_ = heading_of(sp.v, yaw_);
   tdo::setpoint_t m{};
   const Check c =
       setpoint_to_msg(sp, state_utime_, cfg_.vehicle_id, setpoint_seq_, request_id, yaw_, st, &m);
+  if (blocked) {  // never "ok" while the trajectory ahead crosses a known obstacle
+    m.status_code = kStatusPathBlocked;
+    m.status = "path_blocked";
+  }
   if (!c.ok()) {  // the library promises finite setpoints; count it rather than send garbage
     ++counters_.reasons[std::string("setpoint.") + reason_str(c.reason)];
     ++counters_.rejected;
@@ -257,6 +349,11 @@ bool AvoidNode::tick() {
     reset_task();
   }
   const auto t0 = std::chrono::steady_clock::now();
+  track_nearest();
+  if (task_ready_ && path_blocked()) {
+    hold(true);
+    return true;
+  }
   if (task_ready_) {
     movers_now_ = movers_;
     if (utime_ref_set_)
@@ -283,19 +380,36 @@ bool AvoidNode::tick() {
     ++counters_.steps_failed;
     ++counters_.reasons[std::string("step.") + tdo_status_str(st)];
   }
-  // No task: brake to a hover with the library's motion rule.
-  const tdo_vec3 a_des{-params_.k_d * state_.v.x, -params_.k_d * state_.v.y,
-                       -params_.k_d * state_.v.z};
+  hold(false);
+  return true;
+}
+
+// Brake to a hover with the library's motion rule: without a task (ok), or because the task
+// ahead is blocked (path_blocked, a failed step).
+void AvoidNode::hold(bool blocked) {
+  // Blocked: the hardest braking the limits allow (a_max above kBrakeSpeed, then proportional
+  // down to rest); otherwise the follower's damping.
+  constexpr double kBrakeSpeed = 0.5;  // m/s
+  const double k = blocked ? params_.a_max / kBrakeSpeed : params_.k_d;
+  const tdo_vec3 a_des{-k * state_.v.x, -k * state_.v.y, -k * state_.v.z};
   tdo_setpoint sp{};
   tdo_motion_limit(&state_, a_des, params_.v_max, params_.a_max, params_.j_max, params_.dt, &sp);
+  if (blocked) {
+    ++counters_.blocked_holds;
+    ++counters_.steps_failed;
+    publish_setpoint(sp, TDO_OK, request_id_, true);
+    return;
+  }
   ++counters_.holds;
   publish_setpoint(sp, TDO_OK, -1);
-  return true;
 }
 
 tdo::status_t AvoidNode::status_message() const {
   tdo::status_t s{};
-  fill_status(&s, "tdo-avoid", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
+  std::map<std::string, int64_t> reasons = counters_.reasons;
+  if (updates_.stale()) reasons["state.map_stale"] = 1;  // outside the rejected + ignored sum
+  if (path_blocked()) reasons["state.path_blocked"] = 1;
+  fill_status(&s, "tdo-avoid", status_seq_, cfg_.vehicle_id, started_, reasons);
   s.map_id = map_id();
   s.received = counters_.received;
   s.maps_loaded = counters_.maps_loaded;

@@ -33,7 +33,16 @@
  * undecodable messages on them are left to the planner. A trajectory may carry samples or only
  * the compact form (compact.h), which is sampled at its dt for the follower.
  * A new map (new map_id) is loaded into the grid and the current task is restarted on it with its
- * original time origin; the same map_id again is only counted as received.
+ * original time origin; the same map_id again is only counted as received. Map updates
+ * (TDO_MAP_UPDATE, map_update.h) are applied to the grid the same way, in seq order; a gap or an
+ * update that cannot be applied is counted ("update.gap", ...), makes the map stale
+ * ("state.map_stale" in the heartbeat) and sends a map_request_t, as tdo-planner does.
+ * Safety: after every map, update and trajectory the rest of the trajectory followed is checked
+ * against the known obstacles (exact, tdo_collision_segment_clear at the vehicle radius; leaving
+ * the map's bounds counts as crossing). While
+ * the part still ahead crosses one, the follower does not follow it: it brakes to a hover and
+ * every setpoint says status "path_blocked" (status_code kStatusPathBlocked), counted as failed
+ * steps, with "state.path_blocked" in the heartbeat, until a trajectory that is clear arrives.
  * Time: the follower's clock is seconds since the first accepted state's utime; movers are moved
  * on from their message's utime to the state's (at most max_mover_shift_s).
  * Single-threaded: the handlers run inside Bus::handle_timeout. Declare the bus before the node.
@@ -54,20 +63,26 @@
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/check.h"
 #include "tdo_lcm/grid_host.h"
+#include "tdo_lcm/map_update.h"
 #include "tdo_lcm/types.h"
 
 namespace tdo_lcm {
 
+/** setpoint_t.status_code of a hover because the trajectory crosses a known obstacle. */
+constexpr int32_t kStatusPathBlocked = -2;
+
 /** Configuration of a follower node (tdo-avoid's command line). */
 struct AvoidConfig {
-  int32_t vehicle_id = 0;                              /**< vehicle served */
-  std::string trajectory_channel = kChannelTrajectory; /**< trajectories in */
-  std::string obstacles_channel = kChannelObstacles;   /**< moving obstacles in */
-  std::string state_channel = kChannelVehicleState;    /**< vehicle states in */
-  std::string map_channel = kChannelMap;               /**< static maps in */
-  std::string setpoint_channel = kChannelSetpoint;     /**< setpoints out */
-  std::string status_channel = kChannelStatus;         /**< heartbeats out */
-  std::string request_channel = kChannelPlanRequest;   /**< requests seen (promise a trajectory) */
+  int32_t vehicle_id = 0;                               /**< vehicle served */
+  std::string trajectory_channel = kChannelTrajectory;  /**< trajectories in */
+  std::string obstacles_channel = kChannelObstacles;    /**< moving obstacles in */
+  std::string state_channel = kChannelVehicleState;     /**< vehicle states in */
+  std::string map_channel = kChannelMap;                /**< static maps in */
+  std::string map_update_channel = kChannelMapUpdate;   /**< map updates in */
+  std::string map_request_channel = kChannelMapRequest; /**< requests for a whole map out */
+  std::string setpoint_channel = kChannelSetpoint;      /**< setpoints out */
+  std::string status_channel = kChannelStatus;          /**< heartbeats out */
+  std::string request_channel = kChannelPlanRequest;    /**< requests seen (promise a trajectory) */
   std::string feasibility_channel = kChannelFeasibility; /**< reports seen (promise one too) */
   double answer_timeout_s = 2.0; /**< s: a promised trajectory missing this long is reported */
   tdo_follower_kind kind = TDO_FOLLOWER_EAPF; /**< E-APF or classical APF */
@@ -92,19 +107,21 @@ struct AvoidConfig {
 
 /** Message counters, also sent in each heartbeat (status_t). */
 struct AvoidCounters {
-  int64_t received = 0;      /**< messages on the four input channels */
-  int64_t missing = 0;       /**< promised trajectories that did not arrive in time (rejected) */
-  int64_t maps_loaded = 0;   /**< maps loaded into the grid */
-  int64_t trajectories = 0;  /**< trajectories accepted (follower reset) */
-  int64_t setpoints = 0;     /**< setpoints published (heartbeat: answered) */
-  int64_t steps_ok = 0;      /**< follower steps with TDO_OK (heartbeat: succeeded) */
-  int64_t steps_failed = 0;  /**< follower steps with a failure, e.g. local_minimum (failed) */
-  int64_t holds = 0;         /**< hover setpoints without a task */
-  int64_t rejected = 0;      /**< messages refused by a check */
-  int64_t ignored = 0;       /**< messages not for this vehicle or without a plan */
-  int64_t goal_reached = 0;  /**< GOAL_REACHED events */
-  int64_t lm_detections = 0; /**< local minima detected (over every task) */
-  double last_step_ms = 0.0; /**< ms, wall time of the last follower call */
+  int64_t received = 0;        /**< messages on the four input channels */
+  int64_t missing = 0;         /**< promised trajectories that did not arrive in time (rejected) */
+  int64_t maps_loaded = 0;     /**< maps loaded into the grid */
+  int64_t trajectories = 0;    /**< trajectories accepted (follower reset) */
+  int64_t setpoints = 0;       /**< setpoints published (heartbeat: answered) */
+  int64_t steps_ok = 0;        /**< follower steps with TDO_OK (heartbeat: succeeded) */
+  int64_t steps_failed = 0;    /**< follower steps with a failure, e.g. local_minimum (failed) */
+  int64_t holds = 0;           /**< hover setpoints without a task */
+  int64_t blocked_holds = 0;   /**< hover setpoints because the trajectory crosses an obstacle */
+  int64_t updates_applied = 0; /**< map updates applied to the grid */
+  int64_t rejected = 0;        /**< messages refused by a check */
+  int64_t ignored = 0;         /**< messages not for this vehicle or without a plan */
+  int64_t goal_reached = 0;    /**< GOAL_REACHED events */
+  int64_t lm_detections = 0;   /**< local minima detected (over every task) */
+  double last_step_ms = 0.0;   /**< ms, wall time of the last follower call */
   std::map<std::string, int64_t> reasons; /**< "trajectory.<reason>", "state.<reason>", ... */
 };
 
@@ -139,6 +156,9 @@ class AvoidNode {
   /** @return the trajectory followed (request_id), -1 when holding. */
   int64_t following() const { return task_ready_ ? request_id_ : -1; }
   int64_t map_id() const { return have_map_ ? map_id_ : -1; }
+  /** @return true while the rest of the trajectory followed crosses a known obstacle. */
+  bool path_blocked() const;
+  bool map_stale() const { return updates_.stale(); }
   /** @return the last follower output (mode, terms, events). */
   const tdo_apf_output& last_output() const { return last_out_; }
   std::size_t arena_bytes() const { return arena_bytes_ + grid_.arena_bytes(); }
@@ -151,11 +171,17 @@ class AvoidNode {
   void on_map(const void* data, std::size_t size);
   void on_request(const void* data, std::size_t size);
   void on_feasibility(const void* data, std::size_t size);
+  void on_map_update(const void* data, std::size_t size);
 
  private:
+  void check_blocked();
+  void request_map(const std::string& why);
+  void hold(bool blocked);
+  void track_nearest();
   void refuse(const std::string& what, const Check& c);
   void reset_task();
-  void publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id);
+  void publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id,
+                        bool blocked = false);
 
   Bus* bus_;
   AvoidConfig cfg_;
@@ -168,6 +194,13 @@ class AvoidNode {
   // map
   bool have_map_ = false;
   int64_t map_id_ = -1;
+  MapUpdateSeq updates_;
+  int64_t map_request_seq_ = 0;
+  // the task crosses a known obstacle (blocked_), the last time it does: blocked_to_ (s, trajectory
+  // time of the end of the last blocked segment)
+  bool blocked_ = false;
+  double blocked_to_ = 0.0;
+  std::size_t near_idx_ = 0; /**< sample of the task nearest to the vehicle (track_nearest) */
   // task
   std::vector<tdo_sample> samples_;
   int64_t request_id_ = -1;

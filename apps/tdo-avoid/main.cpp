@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--state-channel", cfg.state_channel, "vehicle states in")->capture_default_str();
   app.add_option("--map-channel", cfg.map_channel, "static maps in")->capture_default_str();
+  app.add_option("--map-update-channel", cfg.map_update_channel, "map updates in")
+      ->capture_default_str();
+  app.add_option("--map-request-channel", cfg.map_request_channel,
+                 "requests for a whole map out (when the map is stale)")
+      ->capture_default_str();
   app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints out")
       ->capture_default_str();
   app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();

@@ -47,7 +47,9 @@ bool PlannerNode::start(std::string* error) {
       bus_->subscribe(cfg_.map_channel,
                       [this](const void* d, std::size_t n, const std::string&) { on_map(d, n); }) &&
       bus_->subscribe(cfg_.request_channel, [this](const void* d, std::size_t n,
-                                                   const std::string&) { on_request(d, n); });
+                                                   const std::string&) { on_request(d, n); }) &&
+      bus_->subscribe(cfg_.map_update_channel, [this](const void* d, std::size_t n,
+                                                      const std::string&) { on_map_update(d, n); });
   return ok ? true : fail_with("cannot subscribe");
 }
 
@@ -104,9 +106,12 @@ void PlannerNode::on_map(const void* data, std::size_t size) {
   if (!c.ok()) {  // the library refused after the reset: no map until the next good one
     have_map_ = false;
     map_id_ = -1;
+    updates_.clear();
     refuse("map", c);
     return;
   }
+  updates_.on_map(m.map_id);
+  stale_why_.clear();
   have_map_ = true;
   map_id_ = m.map_id;
   map_res_ = m.resolution;
@@ -127,6 +132,7 @@ bool PlannerNode::set_clearance(double clearance, Check* why) {
   if (previous < 0.0 || tdo_grid_finish(grid, previous) != TDO_OK) {
     have_map_ = false;
     map_id_ = -1;
+    updates_.clear();
   }
   return false;
 }
@@ -154,6 +160,9 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
     return;
   }
   if (c.ok() && !have_map_) c = fail(Reason::no_map, "no map received yet on " + cfg_.map_channel);
+  if (c.ok() && updates_.stale())
+    c = fail(Reason::map_stale, "map " + std::to_string(map_id_) + " is stale (" + stale_why_ +
+                                    "): waiting for the whole map on " + cfg_.map_channel);
   if (c.ok() && m.map_id >= 0 && m.map_id != map_id_)
     c = fail(Reason::unknown_map, "request for map " + std::to_string(m.map_id) +
                                       ", the planner has map " + std::to_string(map_id_));
@@ -195,9 +204,51 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
   answer(traj, feas);
 }
 
+void PlannerNode::on_map_update(const void* data, std::size_t size) {
+  ++counters_.received;
+  tdo::map_update_t u{};
+  Check c = decode(data, size, &u);
+  if (c.ok() && u.vehicle_id != -1 && u.vehicle_id != cfg_.vehicle_id)
+    c = fail(Reason::other_vehicle, "update for vehicle " + std::to_string(u.vehicle_id));
+  if (c.ok()) c = map_update_check(u);
+  if (c.ok()) c = updates_.order(u);  // a gap makes the map stale
+  if (c.ok()) {
+    // Applied at the clearance of the grid's last finish; a request with another clearance
+    // re-finishes the grid with every update in it.
+    c = map_update_apply(u, tdo_planner_grid(planner_), nullptr);
+    if (c.ok()) {
+      updates_.applied(u.seq);
+      ++counters_.updates_applied;
+      return;
+    }
+    updates_.mark_stale();  // the map lacks an update it was sent
+  }
+  refuse("update", c);
+  if (updates_.stale() && stale_why_.empty()) {
+    stale_why_ = c.reason == Reason::gap ? "gap" : std::string("update_") + reason_str(c.reason);
+    request_map(stale_why_.c_str());
+  }
+}
+
+void PlannerNode::request_map(const char* why) {
+  tdo::map_request_t r{};
+  r.utime = wall_utime();
+  r.seq = map_request_seq_++;
+  r.program = "tdo-planner";
+  r.vehicle_id = cfg_.vehicle_id;
+  r.map_id = map_id();
+  r.last_seq = updates_.last_seq();
+  r.reason = why;
+  bus_->publish(cfg_.map_request_channel, r);
+  ++counters_.map_requests;
+  next_map_request_ = std::chrono::steady_clock::now() + steady_seconds(1.0);
+}
+
 tdo::status_t PlannerNode::status_message() const {
   tdo::status_t s{};
-  fill_status(&s, "tdo-planner", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
+  std::map<std::string, int64_t> reasons = counters_.reasons;
+  if (updates_.stale()) reasons["state.map_stale"] = 1;  // outside the rejected + ignored sum
+  fill_status(&s, "tdo-planner", status_seq_, cfg_.vehicle_id, started_, reasons);
   s.map_id = map_id();
   s.received = counters_.received;
   s.maps_loaded = counters_.maps_loaded;
@@ -215,6 +266,7 @@ void PlannerNode::publish_status() {
 }
 
 void PlannerNode::poll(std::chrono::steady_clock::time_point now) {
+  if (updates_.stale() && !(now < next_map_request_)) request_map(stale_why_.c_str());
   if (!(cfg_.heartbeat_period_s > 0.0) || now < next_status_) return;
   publish_status();
   advance_deadline(&next_status_, now, steady_seconds(cfg_.heartbeat_period_s));

@@ -18,6 +18,13 @@
  *  - parameters whose use_defaults bit is set get libtdo's defaults (adapters.h); the answers
  *    carry the request's seq (request_seq); samples only for SAMPLES_ON, the compact form always
  *    for a usable trajectory (compact.h);
+ *  - a map update (TDO_MAP_UPDATE, map_update.h): applied to the grid when it is the next one of
+ *    the loaded map (time proportional to the update); refused by reason ("update.gap",
+ *    "update.stale_update", "update.other_map", "update.contradictory", "update.out_of_range",
+ *    ...). A gap, or an update that cannot be applied, makes the map stale: the node sends a
+ *    map_request_t on TDO_MAP_REQUEST (again every heartbeat period while stale), answers every
+ *    request with status "map_stale" instead of planning, and its heartbeat carries
+ *    "state.map_stale" (1; outside the rejected + ignored sum) until a whole map arrives;
  *  - a valid request: answered with the library's status (ok, no_path, infeasible, ...).
  * Single-threaded: the handlers run inside Bus::handle_timeout, like poll(). The node subscribes
  * on its bus in start(); the bus must not dispatch after the node is gone (declare the bus first).
@@ -37,6 +44,7 @@
 #include "tdo_lcm/adapters.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/check.h"
+#include "tdo_lcm/map_update.h"
 #include "tdo_lcm/types.h"
 
 namespace tdo_lcm {
@@ -45,6 +53,8 @@ namespace tdo_lcm {
 struct PlannerConfig {
   int32_t vehicle_id = 0;                                /**< vehicle served */
   std::string map_channel = kChannelMap;                 /**< maps in */
+  std::string map_update_channel = kChannelMapUpdate;    /**< map updates in */
+  std::string map_request_channel = kChannelMapRequest;  /**< requests for a whole map out */
   std::string request_channel = kChannelPlanRequest;     /**< requests in */
   std::string trajectory_channel = kChannelTrajectory;   /**< answers out */
   std::string feasibility_channel = kChannelFeasibility; /**< reports out */
@@ -60,14 +70,16 @@ struct PlannerConfig {
 
 /** Message counters, also sent in each heartbeat. */
 struct PlannerCounters {
-  int64_t received = 0;      /**< messages on the map and request channels */
-  int64_t maps_loaded = 0;   /**< maps loaded into the grid */
-  int64_t answered = 0;      /**< requests answered (also with an error status) */
-  int64_t succeeded = 0;     /**< answers with status ok */
-  int64_t failed = 0;        /**< answers with a libtdo failure status */
-  int64_t rejected = 0;      /**< messages refused by a check */
-  int64_t ignored = 0;       /**< messages for another vehicle */
-  double last_plan_ms = 0.0; /**< ms, wall time of the last library call */
+  int64_t received = 0;        /**< messages on the map and request channels */
+  int64_t maps_loaded = 0;     /**< maps loaded into the grid */
+  int64_t updates_applied = 0; /**< map updates applied to the grid */
+  int64_t map_requests = 0;    /**< map_request_t sent */
+  int64_t answered = 0;        /**< requests answered (also with an error status) */
+  int64_t succeeded = 0;       /**< answers with status ok */
+  int64_t failed = 0;          /**< answers with a libtdo failure status */
+  int64_t rejected = 0;        /**< messages refused by a check */
+  int64_t ignored = 0;         /**< messages for another vehicle */
+  double last_plan_ms = 0.0;   /**< ms, wall time of the last library call */
   std::map<std::string, int64_t>
       reasons; /**< "map.<reason>", "request.<reason>", "result.<reason>" */
 };
@@ -98,16 +110,20 @@ class PlannerNode {
   const tdo_capacity& capacity() const { return cfg_tdo_.cap; }
   std::size_t arena_bytes() const { return arena_bytes_; }
   int64_t map_id() const { return have_map_ ? map_id_ : -1; }
+  /** @return true while the map is known to be stale (a whole map was asked for). */
+  bool map_stale() const { return updates_.stale(); }
 
   /** Handlers of the raw bytes of one message (what start() subscribes). */
   void on_map(const void* data, std::size_t size);
   void on_request(const void* data, std::size_t size);
+  void on_map_update(const void* data, std::size_t size);
 
  private:
   void refuse(const std::string& what, const Check& c);
   void answer(const tdo::trajectory_t& traj, const tdo::feasibility_t& feas);
   void answer_error(const AnswerIds& ids, const std::string& what, const Check& c);
   bool set_clearance(double clearance, Check* why);
+  void request_map(const char* why);
 
   Bus* bus_;
   PlannerConfig cfg_;
@@ -120,6 +136,10 @@ class PlannerNode {
   int64_t map_id_ = -1;
   double map_res_ = 0.0;       /**< m, resolution of the loaded map */
   double map_clearance_ = 0.0; /**< m, clearance hint of the loaded map */
+  MapUpdateSeq updates_;       /**< the updates of the loaded map */
+  std::string stale_why_;      /**< why the map is stale (map_request_t.reason) */
+  int64_t map_request_seq_ = 0;
+  std::chrono::steady_clock::time_point next_map_request_;
 
   PlannerCounters counters_;
   int64_t status_seq_ = 0;

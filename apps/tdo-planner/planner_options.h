@@ -20,6 +20,11 @@ inline void add_planner_options(CLI::App& app, PlannerConfig& cfg, std::vector<i
   app.add_option("--vehicle-id", cfg.vehicle_id, "vehicle served; other requests are ignored")
       ->capture_default_str();
   app.add_option("--map-channel", cfg.map_channel, "maps in")->capture_default_str();
+  app.add_option("--map-update-channel", cfg.map_update_channel, "map updates in")
+      ->capture_default_str();
+  app.add_option("--map-request-channel", cfg.map_request_channel,
+                 "requests for a whole map out (when the map is stale)")
+      ->capture_default_str();
   app.add_option("--request-channel", cfg.request_channel, "plan requests in")
       ->capture_default_str();
   app.add_option("--trajectory-channel", cfg.trajectory_channel, "trajectories out")

@@ -390,6 +390,8 @@ int replay_log(const std::string& log_path, const ReplayOptions& options, Replay
     if (ev->channel == cfg.map_channel) {
       ++report->maps;
       node.on_map(ev->data, n);
+    } else if (ev->channel == cfg.map_update_channel) {
+      node.on_map_update(ev->data, n);  // in log order, like the maps
     } else if (ev->channel == cfg.request_channel) {
       ++report->requests;
       tdo::plan_request_t m{};

@@ -445,7 +445,8 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   const double dx = m[0] - c.x, dy = m[1] - c.y, dz = m[2] - c.z;
   const double off = sqrt(dx * dx + dy * dy + dz * dz);
   const double df = static_cast<double>(g->df[idx]);
-  pi.lb = df - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);
+  const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;  // map updates
+  pi.lb = df_lb - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);
   pi.ub = g->df_valid ? df + off + kHalfDiag * res : HUGE_VAL;
   return pi;
 }

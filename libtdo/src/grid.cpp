@@ -803,6 +803,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   // distance field borrows the moves array as scratch, so it comes first.
   if (g->n_cubes > 0) mark_surface(g);
   if (g->cap.boxes_only == 0u) build_distance_field(g);
+  g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
   compute_moves(g);
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;

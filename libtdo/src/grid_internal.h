@@ -14,6 +14,7 @@ constexpr uint8_t kFlagCube = 2u;      // voxel cube itself is an obstacle (voxe
 constexpr uint8_t kFlagBlocked = 4u;   // occupied, or centre closer than clearance to an obstacle
 constexpr uint8_t kFlagSurface = 8u;   // cube with a face neighbour that is not a cube (or outside
                                        // the grid): only these can hold the nearest obstacle point
+constexpr uint8_t kFlagMark = 16u;     // scratch of grid_update.cpp, 0 between calls
 
 struct GridCapacity {
   uint32_t max_voxels;
@@ -70,12 +71,15 @@ struct tdo_grid {
 
   // Distance field (tdo_grid_finish): per voxel, the exact Euclidean distance (m) from its centre
   // to the centre of the nearest occupied voxel, rounded down to float; +inf without any.
-  // df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is then 0, still a lower bound.
+  // df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is then 0, still a lower bound;
+  // also after a map update cleared a cube (grid_update.cpp): entries are lower bounds only.
   // Only the collision queries against voxel obstacles read it; boxes_only grids have none.
   float* df;       // m, max_voxels entries (nullptr when boxes_only)
   uint32_t* df_f;  // EDT line scratch: squared distances (voxel^2), df_line_capacity entries
   int32_t* df_v;   // EDT line scratch: parabola sites (voxel index), df_line_capacity entries
   int df_valid;    // 1 when df holds the exact field
+  double df_cap;   // m; > 0: read df as min(df, df_cap) for lower bounds (set by map updates,
+                   // which lower df only near new obstacles); 0: no cap (tdo_grid_finish)
 
   // Bucket index of the boxes over coarse cells of cell_vox^3 voxels, CSR: the boxes of cell
   // c = x + ncx * (y + ncy * z) are box_refs[cell_start[c] .. cell_start[c+1]). A box is listed in

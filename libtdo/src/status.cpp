@@ -48,6 +48,8 @@ extern "C" const char* tdo_status_str(tdo_status status) {
       return "not_configured";
     case TDO_ERR_OPEN_CAPACITY:
       return "open_capacity";
+    case TDO_ERR_UPDATE_CONTRADICTORY:
+      return "update_contradictory";
     case TDO_STATUS_COUNT:
       break;
   }

@@ -552,3 +552,94 @@ TEST(AvoidNodeConfig, KindRateAndCapacitiesAreChecked) {
 }
 
 }  // namespace
+
+namespace {
+
+/** 20 x 10 x 5 m at 0.5 m, free (boxes arrive by map updates). */
+tdo::map_t open_map(int64_t map_id) {
+  tdo::map_t m{};
+  EXPECT_TRUE(
+      tdo_lcm::map_from_occupancy(tdo_grid_desc{40, 20, 10, 0.5, {0, 0, 0}}, {}, {}, 0.25, &m)
+          .ok());
+  m.map_id = map_id;
+  m.vehicle_id = -1;
+  return m;
+}
+
+tdo::map_update_t wall_update(int64_t map_id, int64_t seq) {
+  tdo::map_update_t u{};
+  u.map_id = map_id;
+  u.seq = seq;
+  u.vehicle_id = -1;
+  u.boxes = {{9.0, -1.0, -1.0, 10.0, 11.0, 6.0}};  // across the whole map at x = 9..10 m
+  u.n_boxes = 1;
+  return u;
+}
+
+int64_t heartbeat_reason(const tdo::status_t& s, const std::string& key) {
+  for (int32_t k = 0; k < s.n_reasons; ++k)
+    if (s.reason[static_cast<std::size_t>(k)] == key)
+      return s.reason_count[static_cast<std::size_t>(k)];
+  return 0;
+}
+
+TEST_F(AvoidNodeTest, GivenAFollowedPlan_WhenAnUpdatePutsAWallAcrossIt_ThenBrakesAndNeverOk) {
+  std::vector<tdo::map_request_t> requests;
+  ASSERT_TRUE(bus_.subscribe(cfg_.map_request_channel, collect(&requests)));
+  send(cfg_.map_channel, open_map(5));
+  send(cfg_.trajectory_channel, straight(50, tdo_vec3{2, 5, 2}, 14.0, 7.0));  // through x = 9..10
+  int64_t t = kT0;
+  tdo_vec3 p{2, 5, 2}, v{0, 0, 0}, a{0, 0, 0};
+  // The vehicle does what it is told: the next state is the setpoint.
+  auto take = [&](const tdo::setpoint_t& s) {
+    p = tdo_vec3{s.position[0], s.position[1], s.position[2]};
+    v = tdo_vec3{s.velocity[0], s.velocity[1], s.velocity[2]};
+    a = tdo_vec3{s.acceleration[0], s.acceleration[1], s.acceleration[2]};
+  };
+  for (int k = 0; k < 120; ++k, t += kStepUs) {  // 2.4 s of following: ok
+    send(cfg_.state_channel, state_at(t, p, v, a));
+    ASSERT_EQ(setpoints_.back().status, "ok");
+    take(setpoints_.back());
+  }
+  EXPECT_FALSE(node_->path_blocked());
+  ASSERT_GT(v.x, 2.9) << p.x;  // at full speed, 3.5 m before the wall
+  const double x_update = p.x;
+
+  send(cfg_.map_update_channel, wall_update(5, 1));
+  EXPECT_EQ(node_->counters().updates_applied, 1);
+  EXPECT_TRUE(node_->path_blocked());
+  const int64_t failed_before = node_->counters().steps_failed;
+  for (int k = 0; k < 200; ++k, t += kStepUs) {  // 4 s: the vehicle stops, never told ok
+    send(cfg_.state_channel, state_at(t, p, v, a));
+    const tdo::setpoint_t& s = setpoints_.back();
+    ASSERT_EQ(s.status, "path_blocked");
+    ASSERT_EQ(s.status_code, tdo_lcm::kStatusPathBlocked);
+    take(s);
+  }
+  EXPECT_LT(p.x + 0.25, 9.0) << "stopped before the wall (vehicle radius 0.25 m)";
+  EXPECT_GT(p.x, x_update) << "braked from speed, not from rest";
+  EXPECT_LT(norm(v), 0.05);
+  EXPECT_EQ(node_->counters().steps_failed - failed_before, 200);
+  const tdo::status_t hb = node_->status_message();
+  EXPECT_EQ(heartbeat_reason(hb, "state.path_blocked"), 1);
+  EXPECT_GE(hb.failed, 200);
+
+  // A trajectory that stays clear of the wall is followed again (ok).
+  send(cfg_.trajectory_channel, straight(51, p, -3.0, 3.0));  // back, away from it
+  EXPECT_FALSE(node_->path_blocked());
+  send(cfg_.state_channel, state_at(t, p, v, a));
+  EXPECT_EQ(setpoints_.back().status, "ok");
+  EXPECT_EQ(setpoints_.back().request_id, 51);
+  EXPECT_EQ(heartbeat_reason(node_->status_message(), "state.path_blocked"), 0);
+
+  // A gap: counted, the map is stale and the whole map is asked for.
+  send(cfg_.map_update_channel, wall_update(5, 3));
+  EXPECT_TRUE(node_->map_stale());
+  EXPECT_EQ(heartbeat_reason(node_->status_message(), "update.gap"), 1);
+  EXPECT_EQ(heartbeat_reason(node_->status_message(), "state.map_stale"), 1);
+  ASSERT_EQ(requests.size(), 1u);
+  EXPECT_EQ(requests[0].program, "tdo-avoid");
+  EXPECT_EQ(requests[0].last_seq, 1);
+}
+
+}  // namespace

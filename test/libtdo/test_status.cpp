@@ -72,6 +72,7 @@ TEST(Status, GivenTheEnumIdentifiers_WhenNamed_ThenNameIsTheIdentifierWithoutPre
       {TDO_ERR_CLEARANCE_CAPACITY, "clearance_capacity"},
       {TDO_ERR_NOT_CONFIGURED, "not_configured"},
       {TDO_ERR_OPEN_CAPACITY, "open_capacity"},
+      {TDO_ERR_UPDATE_CONTRADICTORY, "update_contradictory"},
   };
   EXPECT_EQ(sizeof(table) / sizeof(table[0]), static_cast<size_t>(TDO_STATUS_COUNT))
       << "a status was added to status.h without a name in this table";

@@ -51,6 +51,16 @@ const char* reason_str(Reason reason) {
       return "over_capacity";
     case Reason::library_error:
       return "library_error";
+    case Reason::gap:
+      return "gap";
+    case Reason::stale_update:
+      return "stale_update";
+    case Reason::other_map:
+      return "other_map";
+    case Reason::contradictory:
+      return "contradictory";
+    case Reason::map_stale:
+      return "map_stale";
   }
   return "unknown_reason";
 }

@@ -35,7 +35,8 @@ typedef enum tdo_status {
       20,                      /**< clearance reaches further than the configured voxel radius */
   TDO_ERR_NOT_CONFIGURED = 21, /**< a pipeline stage was asked for but its capacities are zero */
   TDO_ERR_OPEN_CAPACITY = 22,  /**< search open list full (tdo_search_config.max_open) */
-  TDO_STATUS_COUNT = 23        /**< number of statuses (not a status) */
+  TDO_ERR_UPDATE_CONTRADICTORY = 23, /**< a map update sets and clears the same voxel */
+  TDO_STATUS_COUNT = 24              /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

@@ -11,6 +11,7 @@
 #include "tdo/config.h"
 #include "tdo/correct.h"
 #include "tdo/grid.h"
+#include "tdo/grid_update.h"
 #include "tdo/metrics.h"
 #include "tdo/path.h"
 #include "tdo/pipeline.h"

@@ -49,6 +49,12 @@ enum class Reason {
   no_plan,       /**< a trajectory answer without a plan to follow (error status, < 2 samples) */
   over_capacity, /**< more items than the program's configured capacity (movers, samples) */
   library_error, /**< the library refused the input (detail: the tdo_status name) */
+  // ---- map updates (map_update.h)
+  gap,           /**< an update's seq skips one: updates are missing, the map is stale */
+  stale_update,  /**< an update's seq is not after the last one applied (old or repeated) */
+  other_map,     /**< an update for a map_id other than the loaded map */
+  contradictory, /**< an update sets and clears the same voxel */
+  map_stale,     /**< a request while the map is known to be stale (a full map was asked for) */
 };
 
 /** @return the stable lower-case name of a reason, e.g. "non_finite". */

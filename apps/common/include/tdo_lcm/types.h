@@ -12,7 +12,9 @@
 #include <lcm/lcm_coretypes.h>
 
 #include "tdo/feasibility_t.hpp"
+#include "tdo/map_request_t.hpp"
 #include "tdo/map_t.hpp"
+#include "tdo/map_update_t.hpp"
 #include "tdo/obstacles_t.hpp"
 #include "tdo/plan_request_t.hpp"
 #include "tdo/setpoint_t.hpp"
@@ -20,7 +22,9 @@
 #include "tdo/trajectory_t.hpp"
 #include "tdo/vehicle_state_t.hpp"
 #include "tdo_feasibility_t.h"
+#include "tdo_map_request_t.h"
 #include "tdo_map_t.h"
+#include "tdo_map_update_t.h"
 #include "tdo_obstacles_t.h"
 #include "tdo_plan_request_t.h"
 #include "tdo_setpoint_t.h"
@@ -32,6 +36,8 @@ namespace tdo_lcm {
 
 /** Default channel names (docs/design.md s.11). Every app can rename them on its command line. */
 inline constexpr const char* kChannelMap = "TDO_MAP";
+inline constexpr const char* kChannelMapUpdate = "TDO_MAP_UPDATE";
+inline constexpr const char* kChannelMapRequest = "TDO_MAP_REQUEST";
 inline constexpr const char* kChannelObstacles = "TDO_OBSTACLES";
 inline constexpr const char* kChannelPlanRequest = "TDO_PLAN_REQUEST";
 inline constexpr const char* kChannelTrajectory = "TDO_TRAJECTORY";
@@ -61,6 +67,8 @@ TDO_LCM_TYPE_INFO(tdo::feasibility_t, tdo_feasibility_t);
 TDO_LCM_TYPE_INFO(tdo::vehicle_state_t, tdo_vehicle_state_t);
 TDO_LCM_TYPE_INFO(tdo::setpoint_t, tdo_setpoint_t);
 TDO_LCM_TYPE_INFO(tdo::status_t, tdo_status_t);
+TDO_LCM_TYPE_INFO(tdo::map_update_t, tdo_map_update_t);
+TDO_LCM_TYPE_INFO(tdo::map_request_t, tdo_map_request_t);
 #undef TDO_LCM_TYPE_INFO
 
 }  // namespace tdo_lcm
