@@ -614,6 +614,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       std::printf(
           "search_try       first (grid distances and the deviation term, --retry "
           "first-terms)\n");
+    if (res.search.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
+      std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
+                  res.search.guide == 1 ? "corridor" : "corridor empty, whole grid",
+                  res.search.guide_expansions);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
