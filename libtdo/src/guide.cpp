@@ -30,9 +30,10 @@ GridCapacity coarse_grid_cap(const GuideCapacity& cap) {
   return GridCapacity{cap.max_cells, 0u, 27u, 0u, 0u, 0u};
 }
 
+// The coarse search has no penalties: one state per cell, no retry tables.
 tdo_search_config coarse_search_cfg(const GuideCapacity& cap) {
   return tdo_search_config{
-      cap.max_cells, cap.max_nodes, cap.max_path, 2u * cap.max_nodes, 0u, 1u, 0u};
+      cap.max_cells, cap.max_nodes, cap.max_path, 2u * cap.max_nodes, 0u, 0u, 0u};
 }
 
 // The coarse grid of `fine`: a cell is an obstacle when every voxel of it that lies in the fine
@@ -162,7 +163,7 @@ GuideCapacity guide_capacity(uint32_t max_voxels, int32_t shift) {
   // 1) covers grids whose shortest axis has 2^(shift+1) voxels or more.
   const uint64_t cells = static_cast<uint64_t>(max_voxels) >> (2 * shift + 1);
   cap.max_cells = static_cast<uint32_t>(cells + 4096u);
-  cap.max_nodes = 4u * cap.max_cells;
+  cap.max_nodes = cap.max_cells;
   cap.max_path = 4096u;
   cap.shift = shift;
   return cap;

@@ -161,10 +161,6 @@ struct tdo_search {
   // first_sharp[h]: how many leading entries of by_angle[h] lie in cand[h] (no sharp step there)
   uint8_t first_sharp[tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
-  // corr_steps[a][n]: the steps from a voxel whose place in its coarse cell is class a (per axis
-  // 0 low face, 1 inside, 2 high face: a = ax + 3 ay + 9 az) that land in the coarse neighbour
-  // cell n (cell_of numbering). corridor_steps reads it (tdo_search_input.corridor).
-  uint32_t corr_steps[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
   double* hdist[2];
@@ -850,13 +846,32 @@ constexpr uint32_t kAllCells =
     (1u << kNumHeadings) - 1u;  // a corridor cell with every neighbour in
 
 // Class of a voxel's place along one axis of its coarse cell (m = cell edge - 1): 0 on the low
-// face, 2 on the high face, 1 inside (tdo_search.corr_steps).
+// face, 2 on the high face, 1 inside (kCorridorSteps).
 inline int axis_class(int32_t c, int32_t m) { return (c & m) == 0 ? 0 : ((c & m) == m ? 2 : 1); }
+
+// kCorridorSteps.m[a][n]: the steps from a voxel whose place in its coarse cell is class a (per
+// axis 0 low face, 1 inside, 2 high face: a = ax + 3 ay + 9 az) that land in the neighbour cell n
+// (cell_of numbering): a step leaves the cell on an axis where the voxel is on the low face and
+// the step goes down, or on the high face and it goes up. A constant table (read-only memory).
+struct CorridorSteps {
+  uint32_t m[kNumHeadings][kNumHeadings];
+};
+constexpr int corridor_cross(int c, int d) {
+  return c == 0 && d < 0 ? -1 : (c == 2 && d > 0 ? 1 : 0);
+}
+constexpr CorridorSteps make_corridor_steps() {
+  CorridorSteps t{};
+  for (int a = 0; a < kNumHeadings; ++a)
+    for (int d = 0; d < kNumDirs; ++d)
+      t.m[a][cell_of(corridor_cross(a % 3, dir_dx(d)), corridor_cross((a / 3) % 3, dir_dy(d)),
+                     corridor_cross(a / 9, dir_dz(d)))] |= 1u << d;
+  return t;
+}
+constexpr CorridorSteps kCorridorSteps = make_corridor_steps();
 
 // The steps from voxel (x,y,z) that stay in the corridor: those whose voxel's coarse cell is in it.
 // A voxel inside its cell, or in a cell whose 26 neighbours are all in, loses none.
-inline uint32_t corridor_steps(const tdo_search* ctx, const tdo_search_corridor* c, int32_t x,
-                               int32_t y, int32_t z) {
+inline uint32_t corridor_steps(const tdo_search_corridor* c, int32_t x, int32_t y, int32_t z) {
   const int32_t sh = c->shift;
   const uint32_t cell = static_cast<uint32_t>(
       (x >> sh) + c->cnx * ((y >> sh) + c->cny * static_cast<int64_t>(z >> sh)));
@@ -866,15 +881,15 @@ inline uint32_t corridor_steps(const tdo_search* ctx, const tdo_search_corridor*
   const int a = axis_class(x, m) + 3 * axis_class(y, m) + 9 * axis_class(z, m);
   uint32_t out = 0;  // steps into cells outside the corridor
   for (uint32_t b = ~in & kAllCells; b != 0; b &= b - 1u)
-    out |= ctx->corr_steps[a][__builtin_ctz(b)];
+    out |= kCorridorSteps.m[a][__builtin_ctz(b)];
   return kAllMoves & ~out;
 }
 
 // The legal steps of state u: the grid's, confined to the corridor when there is one.
-inline uint32_t legal_steps(const tdo_search* ctx, const Query& q, const Node& u) {
+inline uint32_t legal_steps(const Query& q, const Node& u) {
   const uint32_t moves = q.grid->moves[u.voxel];
   if (q.corridor == nullptr) return moves;
-  return moves & corridor_steps(ctx, q.corridor, u.x, u.y, u.z);
+  return moves & corridor_steps(q.corridor, u.x, u.y, u.z);
 }
 
 // Split the legal search-sense steps of state u into those expanded directly and the sharp ones
@@ -884,7 +899,7 @@ inline uint32_t legal_steps(const tdo_search* ctx, const Query& q, const Node& u
 template <bool kHeaded>
 inline void classify(const tdo_search* ctx, const Query& q, int back, const Node& u,
                      uint32_t* direct, uint32_t* sharp) {
-  const uint32_t moves = legal_steps(ctx, q, u);
+  const uint32_t moves = legal_steps(q, u);
   *direct = moves;
   *sharp = 0;
   if (!kHeaded || u.heading >= kNumDirs) return;
@@ -951,7 +966,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const tdo_grid* g = q.grid;
   const Node u = s.nodes[ui];
-  uint32_t mask = legal_steps(ctx, q, u);  // search-sense steps
+  uint32_t mask = legal_steps(q, u);  // search-sense steps
   if (u.parent != kNil && !q.voxel_turns) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
@@ -1635,26 +1650,6 @@ extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
          tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
 }
 
-namespace tdo_internal {
-namespace {
-
-// tdo_search.corr_steps: a step d from a voxel of axis class c moves to the neighbour cell -1 on
-// that axis when c is the low face and d goes down, +1 when c is the high face and d goes up.
-void init_corridor_steps(tdo_search* ctx) {
-  memset(ctx->corr_steps, 0, sizeof(ctx->corr_steps));
-  const auto cross = [](int c, int d) { return c == 0 && d < 0 ? -1 : (c == 2 && d > 0 ? 1 : 0); };
-  for (int a = 0; a < kNumHeadings; ++a) {
-    for (int d = 0; d < kNumDirs; ++d) {
-      const int n =
-          cell_of(cross(a % 3, dir_dx(d)), cross((a / 3) % 3, dir_dy(d)), cross(a / 9, dir_dz(d)));
-      ctx->corr_steps[a][n] |= 1u << d;
-    }
-  }
-}
-
-}  // namespace
-}  // namespace tdo_internal
-
 extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
                                       const tdo_search_config* cfg) {
   if (out == nullptr || arena == nullptr || cfg == nullptr || cfg->max_voxels == 0 ||
@@ -1688,7 +1683,6 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
       ctx->by_angle[a][j] = v;
     }
   }
-  init_corridor_steps(ctx);
   for (int k = 0; k < 2; ++k) {
     Side& s = ctx->side[k];
     s.slot = static_cast<Index*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(Index)));

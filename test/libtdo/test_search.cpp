@@ -1288,7 +1288,11 @@ struct TestCorridor {
 // map has none. Turn-penalised searches (heading and voxel states) keep to the corridor too.
 TEST(SearchCorridor,
      GivenARandomCorridor_WhenSearching_ThenThePathStaysInItAndIsFoundWhenOneExists) {
+#if defined(TDO_SEARCH_INDEX16)
+  TestPlanner pl(make_cap(2048, 0x7FFFu, 2049u, 4, 1000, 1u << 30));  // the 16-bit pool's limit
+#else
   TestPlanner pl(make_cap(2048, 27u * 2048u, 2049u, 4, 1000, 1u << 30));
+#endif
   ASSERT_EQ(pl.status(), TDO_OK);
   Rng rng(2718);
   int found = 0, restricted_only = 0;
@@ -1337,6 +1341,10 @@ TEST(SearchCorridor,
       in.states = states;
       in.corridor = corridor;
       const Result r = run(pl.search(), in);
+#if defined(TDO_SEARCH_INDEX16)
+      // 2^15 - 1 states per direction hold fewer than 27 headings of 2048 voxels.
+      if (states == TDO_STATES_HEADING && r.status == TDO_ERR_NODE_CAPACITY) continue;
+#endif
       if (inside < kInf) {
         ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
       }

@@ -78,7 +78,7 @@ typedef struct tdo_capacity {
                                  coarse cells of 2^guide_shift voxels per edge and search a
                                  corridor around that plan, the whole grid only when the corridor
                                  holds no path (docs/design.md s.1, "The coarse guide"; about
-                                 max_voxels / 2^(2 guide_shift + 1) cells of ~200 bytes).
+                                 max_voxels / 2^(2 guide_shift + 1) cells of ~120 bytes).
                                  tdo_capacity_for_grid sets 2 for 27 headings on grids of 2^20
                                  voxels or more, else 0 */
 } tdo_capacity;
