@@ -809,6 +809,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;
   g->ready = 1;
+  ++g->version;
   return TDO_OK;
 }
 

@@ -68,6 +68,8 @@ struct tdo_grid {
   uint32_t n_blocked;  // blocked voxels after finish
   double clearance;    // m, of the last finish; -1 when not finished
   int ready;           // 1 after a successful finish
+  uint32_t version;    // changes with every finish: whoever derives data from the grid (the
+                       // search's coarse guide, guide.cpp) rebuilds it when this moves on
 
   // Distance field (tdo_grid_finish): per voxel, the exact Euclidean distance (m) from its centre
   // to the centre of the nearest occupied voxel, rounded down to float; +inf without any.

@@ -246,7 +246,10 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.grid_first = p.grid_first;
   si.states = p.states;
   si.max_expansions = p.max_expansions;
-  out->status = tdo_search_run(pl->search, &si, &out->search);
+  GuideReport guide;
+  out->status = guide_search(pl->guide, pl->search, &si, &out->search, &guide);
+  out->search.guide = guide.used;
+  out->search.guide_expansions = guide.expansions;
   if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);
   if (out->status != TDO_OK) return out->status;
   world_path(pl, *req, out->search, clearance);

@@ -31,7 +31,10 @@ size_t planner_footprint(const tdo_planner_config* cfg) {
   const tdo_search_config sc = search_cfg(*cfg);
   // The arena start may be misaligned by up to TDO_ARENA_ALIGN - 1 bytes.
   return (TDO_ARENA_ALIGN - 1u) + tdo_arena_round(sizeof(tdo_planner)) +
-         grid_footprint(grid_cap(*cfg)) + tdo_search_footprint(&sc) + pipeline_footprint(cfg);
+         grid_footprint(grid_cap(*cfg)) + tdo_search_footprint(&sc) +
+         guide_footprint(
+             guide_capacity(cfg->cap.max_voxels, static_cast<int32_t>(cfg->cap.guide_shift))) +
+         pipeline_footprint(cfg);
 }
 
 }  // namespace tdo_internal
@@ -53,6 +56,9 @@ extern "C" tdo_status tdo_planner_init(tdo_planner** out, void* memory, size_t b
   if (st != TDO_OK) return st;
   const tdo_search_config sc = search_cfg(*cfg);
   st = tdo_search_init(&p->search, &arena, &sc);
+  if (st != TDO_OK) return st;
+  st = guide_init(&p->guide, &arena,
+                  guide_capacity(cfg->cap.max_voxels, static_cast<int32_t>(cfg->cap.guide_shift)));
   if (st != TDO_OK) return st;
   st = pipeline_init(p, &arena);
   if (st != TDO_OK) return st;

@@ -4,6 +4,7 @@
 
 #include <stddef.h>
 
+#include "guide.h"
 #include "tdo/arena.h"
 #include "tdo/config.h"
 #include "tdo/correct.h"
@@ -17,6 +18,7 @@ struct tdo_planner {
   tdo_arena arena;
   tdo_grid* grid;
   tdo_search* search;
+  tdo_internal::Guide* guide;  // nullptr without tdo_capacity.guide_shift
   tdo_correct* correct;
   tdo_smooth* smooth;
   tdo_traj* traj;

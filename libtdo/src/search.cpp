@@ -186,7 +186,8 @@ struct Query {
   int dev_terms;        // 1: f has the deviation term and the turn lower bound (0 in the retry)
   int exact_turns;      // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
   int voxel_turns;      // 1: voxel-state search with turn costs (tdo_search_input.states)
-  double inv_res;       // 1/voxel edge: metres to the voxel edges of voxel-state searches
+  const tdo_search_corridor* corridor;  // confines the steps, nullptr: the whole grid
+  double inv_res;  // 1/voxel edge: metres to the voxel edges of voxel-state searches
   uint32_t budget;
   // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
   uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
@@ -840,6 +841,57 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const 
   return TDO_OK;
 }
 
+constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
+constexpr uint32_t kAllCells =
+    (1u << kNumHeadings) - 1u;  // a corridor cell with every neighbour in
+
+// Class of a voxel's place along one axis of its coarse cell (m = cell edge - 1): 0 on the low
+// face, 2 on the high face, 1 inside (kCorridorSteps).
+inline int axis_class(int32_t c, int32_t m) { return (c & m) == 0 ? 0 : ((c & m) == m ? 2 : 1); }
+
+// kCorridorSteps.m[a][n]: the steps from a voxel whose place in its coarse cell is class a (per
+// axis 0 low face, 1 inside, 2 high face: a = ax + 3 ay + 9 az) that land in the neighbour cell n
+// (cell_of numbering): a step leaves the cell on an axis where the voxel is on the low face and
+// the step goes down, or on the high face and it goes up. A constant table (read-only memory).
+struct CorridorSteps {
+  uint32_t m[kNumHeadings][kNumHeadings];
+};
+constexpr int corridor_cross(int c, int d) {
+  return c == 0 && d < 0 ? -1 : (c == 2 && d > 0 ? 1 : 0);
+}
+constexpr CorridorSteps make_corridor_steps() {
+  CorridorSteps t{};
+  for (int a = 0; a < kNumHeadings; ++a)
+    for (int d = 0; d < kNumDirs; ++d)
+      t.m[a][cell_of(corridor_cross(a % 3, dir_dx(d)), corridor_cross((a / 3) % 3, dir_dy(d)),
+                     corridor_cross(a / 9, dir_dz(d)))] |= 1u << d;
+  return t;
+}
+constexpr CorridorSteps kCorridorSteps = make_corridor_steps();
+
+// The steps from voxel (x,y,z) that stay in the corridor: those whose voxel's coarse cell is in it.
+// A voxel inside its cell, or in a cell whose 26 neighbours are all in, loses none.
+inline uint32_t corridor_steps(const tdo_search_corridor* c, int32_t x, int32_t y, int32_t z) {
+  const int32_t sh = c->shift;
+  const uint32_t cell = static_cast<uint32_t>(
+      (x >> sh) + c->cnx * ((y >> sh) + c->cny * static_cast<int64_t>(z >> sh)));
+  const uint32_t in = c->cells[cell];
+  if (in == kAllCells) return kAllMoves;
+  const int32_t m = (1 << sh) - 1;
+  const int a = axis_class(x, m) + 3 * axis_class(y, m) + 9 * axis_class(z, m);
+  uint32_t out = 0;  // steps into cells outside the corridor
+  for (uint32_t b = ~in & kAllCells; b != 0; b &= b - 1u)
+    out |= kCorridorSteps.m[a][__builtin_ctz(b)];
+  return kAllMoves & ~out;
+}
+
+// The legal steps of state u: the grid's, confined to the corridor when there is one.
+inline uint32_t legal_steps(const Query& q, const Node& u) {
+  const uint32_t moves = q.grid->moves[u.voxel];
+  if (q.corridor == nullptr) return moves;
+  return moves & corridor_steps(q.corridor, u.x, u.y, u.z);
+}
+
 // Split the legal search-sense steps of state u into those expanded directly and the sharp ones
 // (beyond theta_max of the heading, or deviating more than D_th) reached only through a pivot.
 // Straight ahead is always direct, and a pivot state only goes straight on: so every turn of a path
@@ -847,7 +899,7 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const 
 template <bool kHeaded>
 inline void classify(const tdo_search* ctx, const Query& q, int back, const Node& u,
                      uint32_t* direct, uint32_t* sharp) {
-  const uint32_t moves = q.grid->moves[u.voxel];
+  const uint32_t moves = legal_steps(q, u);
   *direct = moves;
   *sharp = 0;
   if (!kHeaded || u.heading >= kNumDirs) return;
@@ -914,7 +966,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   Side& s = ctx->side[back];
   const tdo_grid* g = q.grid;
   const Node u = s.nodes[ui];
-  uint32_t mask = g->moves[u.voxel];  // search-sense steps
+  uint32_t mask = legal_steps(q, u);  // search-sense steps
   if (u.parent != kNil && !q.voxel_turns) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
@@ -942,8 +994,6 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   }
   return TDO_OK;
 }
-
-constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 
 // A child of a turn-penalised state that need not be offered: its state exists and is closed, or
 // costs no more.
@@ -1756,6 +1806,27 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
 }  // namespace
 }  // namespace tdo_internal
 
+namespace tdo_internal {
+namespace {
+
+// A corridor fits the grid, and the start and goal voxels lie in it.
+bool corridor_holds(const tdo_search_corridor* c, const tdo_grid* g, const tdo_voxel* ends) {
+  if (c->cells == nullptr || c->shift < 1 || c->shift > 7) return false;
+  const int32_t e = (1 << c->shift) - 1;
+  if (c->cnx != (g->desc.nx + e) >> c->shift || c->cny != (g->desc.ny + e) >> c->shift)
+    return false;
+  for (int k = 0; k < 2; ++k) {
+    const uint32_t cell = static_cast<uint32_t>(
+        (ends[k].i >> c->shift) +
+        c->cnx * ((ends[k].j >> c->shift) + c->cny * static_cast<int64_t>(ends[k].k >> c->shift)));
+    if ((c->cells[cell] & (1u << 13)) == 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+}  // namespace tdo_internal
+
 extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in,
                                      tdo_search_output* out) {
   if (ctx == nullptr || in == nullptr || out == nullptr || in->grid == nullptr)
@@ -1784,6 +1855,9 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     return TDO_ERR_START_EQUALS_GOAL;
   if (tdo_grid_is_blocked(g, q.v[0])) return TDO_ERR_START_BLOCKED;
   if (tdo_grid_is_blocked(g, q.v[1])) return TDO_ERR_GOAL_BLOCKED;
+  if (in->corridor != nullptr && !corridor_holds(in->corridor, g, q.v))
+    return TDO_ERR_INVALID_ARGUMENT;
+  q.corridor = in->corridor;
   for (int k = 0; k < 2; ++k)
     q.voxel[k] = static_cast<uint32_t>(q.v[k].i + q.v[k].j * g->stride_y + q.v[k].k * g->stride_z);
   if (q.voxel[0] == q.voxel[1]) {  // distinct points in one voxel: a one-voxel path
@@ -1829,7 +1903,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   // tried and not kept: rooted at the landmark, the backward side learns nothing about the
   // direction to the start (geb079 2.7 times the expansions; docs/performance.md).
   const uint32_t budget = q.budget;
-  const int retries = ctx->cfg.exact_heuristic ? kRetries : 0;  // no tables: no retry
+  // No tables: no retry. In a corridor neither: its caller falls back to the whole grid.
+  const int retries = ctx->cfg.exact_heuristic && q.corridor == nullptr ? kRetries : 0;
   const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
   q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
                        iabs(q.v[1].k - q.v[0].k), g->desc.res);

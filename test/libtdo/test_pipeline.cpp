@@ -336,4 +336,66 @@ TEST_F(Pipeline, GivenTheSameRequestTwiceWithAnotherInBetweenThenBitIdenticalRes
   EXPECT_GT(first.size(), 1000u);
 }
 
+// The coarse guide (tdo_capacity.guide_shift, docs/design.md s.1): on 32 x 16 x 4 maps crossed by
+// walls with one hole each, and random voxels, a guided planner plans whenever the reference
+// Dijkstra finds a path (TDO_ERR_NO_PATH otherwise), every path is legal, and both ends of the
+// design run: plans found in the corridor, and plans found on the whole grid after a coarse route
+// through a wall (clearance 0 keeps the cells on both sides of a one-voxel wall free) left the
+// corridor without a path. A planner without the guide reports none.
+TEST(PlannerGuide, GivenWallMaps_WhenPlanningWithTheGuide_ThenAPlanWheneverOneExists) {
+  constexpr int32_t nx = 32, ny = 16, nz = 4;
+  tdo_capacity cap{};
+  tdo_capacity_for_grid(&cap, nx, ny, nz, 0.0, 27u, 0u);
+  EXPECT_EQ(cap.guide_shift, 0u);  // below 2^20 voxels tdo_capacity_for_grid sets none
+  cap.guide_shift = 2u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  tdo_test::Rng rng(777);
+  int in_corridor = 0, whole_grid = 0, no_path = 0;
+  for (int round = 0; round < 60; ++round) {
+    tdo_test::VoxelMap m = tdo_test::random_voxel_map(rng, nx, ny, nz, 1.0, 0.05);
+    const int walls = rng.range(0, 3);
+    for (int w = 0; w < walls; ++w) {
+      const int32_t x = rng.range(4, nx - 5);
+      const int32_t hy = rng.range(0, ny - 1), hz = rng.range(0, nz - 1);
+      const bool sealed = rng.uniform() < 0.1;
+      for (int32_t k = 0; k < nz; ++k)
+        for (int32_t j = 0; j < ny; ++j) m.set(x, j, k, sealed || j != hy || k != hz);
+    }
+    const tdo_voxel s{rng.range(0, 3), rng.range(0, ny - 1), rng.range(0, nz - 1)};
+    const tdo_voxel g{rng.range(nx - 4, nx - 1), rng.range(0, ny - 1), rng.range(0, nz - 1)};
+    m.set(s.i, s.j, s.k, false);
+    m.set(g.i, g.j, g.k, false);
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+    tdo_plan_request r{};
+    r.start = m.center(s);
+    r.goal = m.center(g);
+    tdo_plan_params_default(&r.params);
+    r.params.depth = TDO_PLAN_SEARCH;
+    tdo_plan_result res{};
+    const tdo_status st = tdo_planner_plan(pl.planner(), &r, &res);
+    const double want = tdo_test::reference_cost(m, s, g);
+    SCOPED_TRACE(::testing::Message() << "round " << round);
+    if (!(want < kInfinity)) {
+      EXPECT_EQ(st, TDO_ERR_NO_PATH) << tdo_status_str(st);
+      ++no_path;
+      continue;
+    }
+    ASSERT_EQ(st, TDO_OK) << tdo_status_str(st);
+    EXPECT_TRUE(tdo_test::valid_path(m, res.search, s, g));
+    ASSERT_TRUE(res.search.guide == 1u || res.search.guide == 2u) << res.search.guide;
+    (res.search.guide == 1u ? in_corridor : whole_grid) += 1;
+  }
+  EXPECT_GT(in_corridor, 0);
+  EXPECT_GT(whole_grid, 0);
+  EXPECT_GT(no_path, 0);
+  TestPlanner plain(pipeline_cap(kClearance));
+  ASSERT_EQ(plain.status(), TDO_OK);
+  ASSERT_EQ(load_room(plain.grid(), kClearance), TDO_OK);
+  tdo_plan_request r = room_request();
+  tdo_plan_result res{};
+  ASSERT_EQ(tdo_planner_plan(plain.planner(), &r, &res), TDO_OK);
+  EXPECT_EQ(res.search.guide, 0u);
+}
+
 }  // namespace

@@ -1231,3 +1231,148 @@ TEST(SearchCapacity, GivenAGridLargerThanTheSearchContext_WhenSearching_ThenRefu
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Corridors (tdo_search_input.corridor): the search enters only the corridor's coarse cells.
+
+/** A corridor over cells of 2^shift voxels: the cells in `in` (1 = in), masks built here. */
+struct TestCorridor {
+  int32_t shift = 2, cnx = 1, cny = 1, cnz = 1;
+  std::vector<uint8_t> in;
+  std::vector<uint32_t> cells;
+  tdo_search_corridor c{};
+
+  TestCorridor(const VoxelMap& m, int32_t sh) : shift(sh) {
+    const int32_t e = (1 << sh) - 1;
+    cnx = (m.nx + e) >> sh;
+    cny = (m.ny + e) >> sh;
+    cnz = (m.nz + e) >> sh;
+    in.assign(static_cast<size_t>(cnx) * cny * cnz, 0u);
+  }
+  size_t cell(int32_t i, int32_t j, int32_t k) const {
+    return static_cast<size_t>(i + cnx * (j + cny * k));
+  }
+  size_t cell_of_voxel(const tdo_voxel& v) const {
+    return cell(v.i >> shift, v.j >> shift, v.k >> shift);
+  }
+  const tdo_search_corridor* finish() {
+    cells.assign(in.size(), 0u);
+    for (int32_t k = 0; k < cnz; ++k)
+      for (int32_t j = 0; j < cny; ++j)
+        for (int32_t i = 0; i < cnx; ++i) {
+          if (!in[cell(i, j, k)]) continue;
+          uint32_t mask = 0;
+          for (int32_t dz = -1; dz <= 1; ++dz)
+            for (int32_t dy = -1; dy <= 1; ++dy)
+              for (int32_t dx = -1; dx <= 1; ++dx) {
+                const int32_t x = i + dx, y = j + dy, z = k + dz;
+                if (x >= 0 && y >= 0 && z >= 0 && x < cnx && y < cny && z < cnz &&
+                    in[cell(x, y, z)])
+                  mask |= 1u << ((dz + 1) * 9 + (dy + 1) * 3 + (dx + 1));
+              }
+          cells[cell(i, j, k)] = mask;
+        }
+    c.cells = cells.data();
+    c.shift = shift;
+    c.cnx = cnx;
+    c.cny = cny;
+    return &c;
+  }
+};
+
+// Random maps of up to 16 x 16 x 8 voxels, random corridors of 4^3 cells holding the start and the
+// goal. Plain A* and bidir in the corridor: every voxel of the path lies in it, the path is legal
+// on the map, and its cost lies between the map's optimum and the optimum of the map with every
+// voxel outside the corridor blocked (which also forbids cutting past those voxels, so it may cost
+// more); a path exists whenever that restricted map has one, and none is found when even the whole
+// map has none. Turn-penalised searches (heading and voxel states) keep to the corridor too.
+TEST(SearchCorridor,
+     GivenARandomCorridor_WhenSearching_ThenThePathStaysInItAndIsFoundWhenOneExists) {
+#if defined(TDO_SEARCH_INDEX16)
+  TestPlanner pl(make_cap(2048, 0x7FFFu, 2049u, 4, 1000, 1u << 30));  // the 16-bit pool's limit
+#else
+  TestPlanner pl(make_cap(2048, 27u * 2048u, 2049u, 4, 1000, 1u << 30));
+#endif
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(2718);
+  int found = 0, restricted_only = 0;
+  for (int round = 0; round < 300; ++round) {
+    const Case c = random_case(rng, 16, 8);
+    TestCorridor tc(c.map, 2);
+    const double keep = rng.uniform(0.3, 0.9);
+    for (auto& b : tc.in) b = rng.uniform() < keep ? 1u : 0u;
+    tc.in[tc.cell_of_voxel(c.s)] = 1u;
+    tc.in[tc.cell_of_voxel(c.g)] = 1u;
+    const tdo_search_corridor* corridor = tc.finish();
+    VoxelMap restricted = c.map;
+    for (size_t n = 0; n < restricted.size(); ++n)
+      if (!tc.in[tc.cell_of_voxel(restricted.voxel(n))]) restricted.blocked[n] = 1u;
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+    const double best = tdo_test::reference_cost(c.map, c.s, c.g);
+    const double inside = tdo_test::reference_cost(restricted, c.s, c.g);
+    SCOPED_TRACE(::testing::Message() << "round " << round);
+    for (tdo_search_kind kind : kKinds) {
+      tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, kind);
+      in.corridor = corridor;
+      const Result r = run(pl.search(), in);
+      if (!(best < kInf)) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+        continue;
+      }
+      if (inside < kInf) {
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+      }
+      if (r.status != TDO_OK) {
+        EXPECT_EQ(r.status, TDO_ERR_NO_PATH) << tdo_status_str(r.status);
+        continue;
+      }
+      ++found;
+      restricted_only += inside < kInf ? 0 : 1;
+      EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+      for (const tdo_voxel& v : r.path) EXPECT_TRUE(tc.in[tc.cell_of_voxel(v)]) << tdo_test::str(v);
+      EXPECT_GE(r.out.cost, best - 1e-9);
+      if (inside < kInf) {
+        EXPECT_LE(r.out.cost, inside + 1e-9);
+      }
+    }
+    for (int states : {TDO_STATES_HEADING, TDO_STATES_VOXEL}) {
+      tdo_search_input in = make_input(pl.grid(), c.ps, c.pg, TDO_SEARCH_BIDIR, 50.0, 20.0);
+      in.theta_max = 0.25 * 3.14159265358979323846;
+      in.states = states;
+      in.corridor = corridor;
+      const Result r = run(pl.search(), in);
+#if defined(TDO_SEARCH_INDEX16)
+      // 2^15 - 1 states per direction hold fewer than 27 headings of 2048 voxels.
+      if (states == TDO_STATES_HEADING && r.status == TDO_ERR_NODE_CAPACITY) continue;
+#endif
+      if (inside < kInf) {
+        ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+      }
+      if (r.status != TDO_OK) continue;
+      EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+      for (const tdo_voxel& v : r.path) EXPECT_TRUE(tc.in[tc.cell_of_voxel(v)]) << tdo_test::str(v);
+    }
+  }
+  EXPECT_GT(found, 100);  // the rounds exercise the corridor, not just the no-path case
+}
+
+// A corridor that leaves out the start's or the goal's cell, or does not fit the grid, is refused.
+TEST(SearchCorridor, GivenACorridorWithoutTheEnds_WhenSearching_ThenInvalidArgument) {
+  TestPlanner pl(make_cap(1024, 1024, 1025, 4, 1000, 1u << 30));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  const VoxelMap m(16, 8, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+  TestCorridor tc(m, 2);
+  tc.in[tc.cell(0, 0, 0)] = 1u;  // the start's cell only
+  tdo_search_input in =
+      make_input(pl.grid(), m.center({1, 1, 1}), m.center({14, 6, 2}), TDO_SEARCH_BIDIR);
+  in.corridor = tc.finish();
+  EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_INVALID_ARGUMENT);
+  tc.in[tc.cell(3, 1, 0)] = 1u;  // the goal's cell too, but not the cells between: no path
+  in.corridor = tc.finish();
+  EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_NO_PATH);
+  tdo_search_corridor wrong = *tc.finish();
+  wrong.cnx = 5;  // not the grid's coarse width
+  in.corridor = &wrong;
+  EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_INVALID_ARGUMENT);
+}

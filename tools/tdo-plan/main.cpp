@@ -63,6 +63,7 @@ struct Options {
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
   std::string retry = "on";        /**< obstacle-aware retry of a flooding tdo search */
   std::string states = "heading";  /**< states of the tdo search: heading | voxel */
+  std::string guide = "on";        /**< coarse guide of turn-penalised searches on large grids */
   double d_th = 0.0;               /**< deviation threshold, 0 = off */
   double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
   double v_cruise = 0.0;           /**< m/s, 0 = v_max */
@@ -195,6 +196,9 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
+  // The coarse guide (docs/design.md s.1) on grids of 2^20 voxels or more, voxel states included.
+  cfg.cap.guide_shift =
+      penalised && o.guide == "on" && voxel_count(map.desc) >= 1048576.0 ? 2u : 0u;
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
@@ -616,6 +620,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       std::printf(
           "search_try       first (grid distances and the deviation term, --retry "
           "first-terms)\n");
+    if (res.search.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
+      std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
+                  res.search.guide == 1 ? "corridor" : "corridor empty, whole grid",
+                  res.search.guide_expansions);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
@@ -749,6 +757,12 @@ int run(int argc, char** argv) {
                  "heading: (voxel, heading) states of the tdo search | voxel: one state per voxel, "
                  "its heading the step it was reached by (plain A*'s memory)")
       ->check(CLI::IsMember({"heading", "voxel"}))
+      ->capture_default_str();
+  app.add_option("--guide", o.guide,
+                 "on: a turn-penalised search on a grid of 2^20 voxels or more first plans on "
+                 "4^3-voxel cells and searches a corridor around that plan (docs/design.md s.1) "
+                 "| off: the whole grid")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))

@@ -74,6 +74,13 @@ typedef struct tdo_capacity {
                                  waypoint, about 280 bytes per waypoint). 0 = max_path + 2, the
                                  most a correction can return. More: the smoothing stage returns
                                  TDO_ERR_PATH_CAPACITY. tdo_capacity_for_grid sets 0 */
+  uint32_t guide_shift;     /**< 0: no coarse guide. 1..7: turn-penalised searches first plan on
+                                 coarse cells of 2^guide_shift voxels per edge and search a
+                                 corridor around that plan, the whole grid only when the corridor
+                                 holds no path (docs/design.md s.1, "The coarse guide"; about
+                                 max_voxels / 2^(2 guide_shift + 1) cells of ~120 bytes).
+                                 tdo_capacity_for_grid sets 2 for 27 headings on grids of 2^20
+                                 voxels or more, else 0 */
 } tdo_capacity;
 
 /** Configuration of a whole planner. */

@@ -45,6 +45,17 @@ typedef enum tdo_state_space {
                                grid_first puts the grid distances in h as for heading states */
 } tdo_state_space;
 
+/** A corridor that confines a search to some coarse cells of the grid (tdo_search_input.corridor;
+ *  docs/design.md s.1, "The coarse guide"). A coarse cell is a block of 2^shift voxels per edge;
+ *  cell c of voxel (i,j,k) is (i>>shift) + cnx * ((j>>shift) + cny * (k>>shift)). */
+typedef struct tdo_search_corridor {
+  const uint32_t* cells; /**< per coarse cell: bit n = (dx+1) + 3*(dy+1) + 9*(dz+1) set when the
+                              cell at offset (dx,dy,dz), dx,dy,dz in -1..1, is in the corridor;
+                              0 for a cell outside it (bit 13 is the cell itself) */
+  int32_t shift;         /**< log2 of the coarse cell edge in voxels, 1..7 */
+  int32_t cnx;           /**< coarse cells along x */
+  int32_t cny;           /**< coarse cells along y */
+} tdo_search_corridor;
 /** Opaque search context; carved from an arena by tdo_search_init. */
 typedef struct tdo_search tdo_search;
 
@@ -98,6 +109,10 @@ typedef struct tdo_search_input {
                                 it */
   int states;              /**< turn-penalised searches: a tdo_state_space (0 = heading states);
                                 outside 0..1: TDO_ERR_INVALID_ARGUMENT */
+  const tdo_search_corridor* corridor; /**< NULL: the whole grid. Else steps enter only the
+                                corridor's cells (start and goal must lie in it, else
+                                TDO_ERR_INVALID_ARGUMENT), and a turn-penalised search makes one
+                                try (no retry): TDO_ERR_NO_PATH then says "not in this corridor" */
 } tdo_search_input;
 
 /**
@@ -127,6 +142,11 @@ typedef struct tdo_search_output {
                               half of them (first try only), or a full node pool; with
                               grid_first the octile try is skipped, so at least 1). expansions
                               counts every try */
+  uint32_t guide;        /**< set by the planner (tdo_capacity.guide_shift): 0 = no coarse guide,
+                              1 = found in the guide's corridor, 2 = the corridor held no path and
+                              the whole grid was searched (docs/design.md s.1) */
+  uint32_t guide_expansions; /**< the guide's coarse search and corridor search; expansions counts
+                              the search that returned */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */

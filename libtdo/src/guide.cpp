@@ -1,0 +1,246 @@
+// The coarse guide of the turn-penalised search (docs/design.md s.1, "The coarse guide").
+#include "guide.h"
+
+#include <string.h>
+
+#include "grid_internal.h"
+
+namespace tdo_internal {
+
+constexpr uint32_t kCorridorBit = 1u << 13;  // tdo_search_corridor: the cell itself is in
+
+struct Guide {
+  GuideCapacity cap;
+  tdo_grid* coarse;     // cell free when any of its voxels is free for the fine search
+  tdo_search* search;   // the coarse search
+  uint32_t* cells;      // max_cells corridor masks (tdo_search_corridor.cells), else 0
+  uint32_t* marked;     // cells whose mask is not 0
+  uint32_t max_marked;  // 27 per coarse path cell
+  uint32_t n_marked;
+  const tdo_grid* built_for;  // the fine grid the coarse grid was built from
+  uint32_t built_version;     // its tdo_grid.version then
+  tdo_search_corridor corridor;
+};
+
+namespace {
+
+GridCapacity coarse_grid_cap(const GuideCapacity& cap) {
+  // clearance 0: a 3^3 stencil; no boxes; voxel obstacles (the distance field exists but no query
+  // reads it).
+  return GridCapacity{cap.max_cells, 0u, 27u, 0u, 0u, 0u};
+}
+
+// The coarse search has no penalties: one state per cell, no retry tables.
+tdo_search_config coarse_search_cfg(const GuideCapacity& cap) {
+  return tdo_search_config{
+      cap.max_cells, cap.max_nodes, cap.max_path, 2u * cap.max_nodes, 0u, 0u, 0u};
+}
+
+// The coarse grid of `fine`: a cell is an obstacle when every voxel of it that lies in the fine
+// grid is blocked. Any path of the fine grid maps to a path of the coarse one (a voxel's cell is
+// free, and a step whose voxels do not cut a corner has cells that do not either), so the coarse
+// search fails only where the fine one would.
+tdo_status build_coarse(Guide* gd, const tdo_grid* fine) {
+  const int32_t sh = gd->cap.shift;
+  const int32_t e = (1 << sh) - 1;
+  tdo_grid_desc d = fine->desc;
+  d.nx = (d.nx + e) >> sh;
+  d.ny = (d.ny + e) >> sh;
+  d.nz = (d.nz + e) >> sh;
+  d.res = fine->desc.res * static_cast<double>(1 << sh);
+  tdo_status st = tdo_grid_reset(gd->coarse, &d);
+  if (st != TDO_OK) return st;
+  uint32_t* free_cell = gd->cells;  // scratch: 1 when a voxel of the cell is free
+  const uint32_t n =
+      static_cast<uint32_t>(d.nx) * static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(d.nz);
+  memset(free_cell, 0, n * sizeof(uint32_t));
+  const uint8_t* f = fine->flags;
+  const float* df = fine->df_valid ? fine->df : nullptr;
+  // "Deep" free voxels: one voxel edge more than the clearance from every obstacle voxel (the
+  // distance field; without one, every free voxel counts).
+  const float deep = df != nullptr ? static_cast<float>(fine->clearance + fine->desc.res) : 0.0f;
+  for (int32_t k = 0; k < fine->desc.nz; ++k) {
+    for (int32_t j = 0; j < fine->desc.ny; ++j) {
+      uint32_t* row =
+          free_cell + static_cast<uint32_t>(d.nx) *
+                          (static_cast<uint32_t>(j >> sh) +
+                           static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(k >> sh));
+      for (int32_t i = 0; i < fine->desc.nx; ++i, ++f)
+        if ((*f & kFlagBlocked) == 0 && (df == nullptr || df[f - fine->flags] >= deep))
+          row[i >> sh] = 1u;
+    }
+  }
+  uint32_t c = 0;
+  for (int32_t k = 0; k < d.nz; ++k)
+    for (int32_t j = 0; j < d.ny; ++j)
+      for (int32_t i = 0; i < d.nx; ++i, ++c)
+        if (free_cell[c] == 0u && (st = tdo_grid_add_voxel(gd->coarse, i, j, k)) != TDO_OK)
+          return st;
+  memset(free_cell, 0, n * sizeof(uint32_t));
+  st = tdo_grid_finish(gd->coarse, 0.0);
+  if (st != TDO_OK) return st;
+  gd->corridor.cells = gd->cells;
+  gd->corridor.shift = sh;
+  gd->corridor.cnx = d.nx;
+  gd->corridor.cny = d.ny;
+  gd->built_for = fine;
+  gd->built_version = fine->version;
+  return TDO_OK;
+}
+
+// Mark cell (i,j,k) as in the corridor (outside the coarse grid: nothing).
+void mark(Guide* gd, const tdo_grid_desc& d, int32_t i, int32_t j, int32_t k) {
+  if (i < 0 || j < 0 || k < 0 || i >= d.nx || j >= d.ny || k >= d.nz) return;
+  const uint32_t c =
+      static_cast<uint32_t>(i) +
+      static_cast<uint32_t>(d.nx) *
+          (static_cast<uint32_t>(j) + static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(k));
+  if (gd->cells[c] != 0u || gd->n_marked >= gd->max_marked) return;
+  gd->cells[c] = kCorridorBit;
+  gd->marked[gd->n_marked++] = c;
+}
+
+// The corridor: the cells of the coarse path and their 26 neighbours, each with the mask of its
+// neighbours in the corridor (tdo_search_corridor.cells).
+void build_corridor(Guide* gd, const tdo_voxel* path, uint32_t n_path) {
+  const tdo_grid_desc d = gd->coarse->desc;
+  gd->n_marked = 0;
+  for (uint32_t p = 0; p < n_path; ++p)
+    for (int32_t dz = -1; dz <= 1; ++dz)
+      for (int32_t dy = -1; dy <= 1; ++dy)
+        for (int32_t dx = -1; dx <= 1; ++dx)
+          mark(gd, d, path[p].i + dx, path[p].j + dy, path[p].k + dz);
+  const int64_t sy = d.nx;
+  const int64_t sz = static_cast<int64_t>(d.nx) * d.ny;
+  for (uint32_t m = 0; m < gd->n_marked; ++m) {
+    const uint32_t c = gd->marked[m];
+    const int32_t i = static_cast<int32_t>(c % static_cast<uint32_t>(d.nx));
+    const int32_t j =
+        static_cast<int32_t>((c / static_cast<uint32_t>(d.nx)) % static_cast<uint32_t>(d.ny));
+    const int32_t k = static_cast<int32_t>(c / static_cast<uint32_t>(sz));
+    uint32_t mask = 0;
+    for (int32_t dz = -1; dz <= 1; ++dz)
+      for (int32_t dy = -1; dy <= 1; ++dy)
+        for (int32_t dx = -1; dx <= 1; ++dx) {
+          const int32_t x = i + dx, y = j + dy, z = k + dz;
+          if (x < 0 || y < 0 || z < 0 || x >= d.nx || y >= d.ny || z >= d.nz) continue;
+          const uint32_t w =
+              static_cast<uint32_t>(static_cast<int64_t>(c) + dx + dy * sy + dz * sz);
+          if ((gd->cells[w] & kCorridorBit) != 0u)
+            mask |= 1u << ((dz + 1) * 9 + (dy + 1) * 3 + (dx + 1));
+        }
+    gd->cells[c] |= mask;
+  }
+}
+
+void clear_corridor(Guide* gd) {
+  for (uint32_t m = 0; m < gd->n_marked; ++m) gd->cells[gd->marked[m]] = 0u;
+  gd->n_marked = 0;
+}
+
+// The guide applies to turn-penalised searches whose coarse grid fits; plain A* and bidirectional
+// A* stay exact on the whole grid.
+bool applies(const Guide* gd, const tdo_search_input* in) {
+  const tdo_grid* g = in->grid;
+  if (gd == nullptr || g == nullptr || !g->ready) return false;
+  const bool headed = in->lambda > 0.0 || in->mu > 0.0 ||
+                      (in->theta_max > 0.0 && in->theta_max < 3.14159265358979323846) ||
+                      (in->d_th > 0.0 && in->d_th < 1.0);
+  if (!headed) return false;
+  const int32_t e = (1 << gd->cap.shift) - 1;
+  const uint64_t n = static_cast<uint64_t>((g->desc.nx + e) >> gd->cap.shift) *
+                     static_cast<uint64_t>((g->desc.ny + e) >> gd->cap.shift) *
+                     static_cast<uint64_t>((g->desc.nz + e) >> gd->cap.shift);
+  return n <= gd->cap.max_cells;
+}
+
+}  // namespace
+
+GuideCapacity guide_capacity(uint32_t max_voxels, int32_t shift) {
+  GuideCapacity cap{};
+  if (shift < 1 || shift > 7) return cap;
+  // A grid's cells: n / 8^shift plus the partial cells along its faces; max_voxels / 2^(2 shift +
+  // 1) covers grids whose shortest axis has 2^(shift+1) voxels or more.
+  const uint64_t cells = static_cast<uint64_t>(max_voxels) >> (2 * shift + 1);
+  cap.max_cells = static_cast<uint32_t>(cells + 4096u);
+  cap.max_nodes = cap.max_cells;
+  cap.max_path = 4096u;
+  cap.shift = shift;
+  return cap;
+}
+
+size_t guide_footprint(const GuideCapacity& cap) {
+  if (cap.max_cells == 0u) return 0u;
+  const tdo_search_config sc = coarse_search_cfg(cap);
+  return tdo_arena_round(sizeof(Guide)) + grid_footprint(coarse_grid_cap(cap)) +
+         tdo_search_footprint(&sc) + tdo_arena_round(cap.max_cells * sizeof(uint32_t)) +
+         tdo_arena_round(27u * cap.max_path * sizeof(uint32_t));
+}
+
+tdo_status guide_init(Guide** out, tdo_arena* arena, const GuideCapacity& cap) {
+  *out = nullptr;
+  if (cap.max_cells == 0u) return TDO_OK;  // no guide
+  Guide* gd = static_cast<Guide*>(tdo_arena_alloc(arena, sizeof(Guide)));
+  if (gd == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(static_cast<void*>(gd), 0, sizeof(*gd));
+  gd->cap = cap;
+  tdo_status st = grid_init(&gd->coarse, arena, coarse_grid_cap(cap));
+  if (st != TDO_OK) return st;
+  const tdo_search_config sc = coarse_search_cfg(cap);
+  st = tdo_search_init(&gd->search, arena, &sc);
+  if (st != TDO_OK) return st;
+  gd->max_marked = 27u * cap.max_path;
+  gd->cells = static_cast<uint32_t*>(tdo_arena_alloc(arena, cap.max_cells * sizeof(uint32_t)));
+  gd->marked = static_cast<uint32_t*>(tdo_arena_alloc(arena, gd->max_marked * sizeof(uint32_t)));
+  if (gd->cells == nullptr || gd->marked == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  memset(gd->cells, 0, cap.max_cells * sizeof(uint32_t));
+  *out = gd;
+  return TDO_OK;
+}
+
+tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
+                        tdo_search_output* out, GuideReport* report) {
+  memset(report, 0, sizeof(*report));
+  if (!applies(gd, in)) return tdo_search_run(fine, in, out);
+  if ((gd->built_for != in->grid || gd->built_version != in->grid->version) &&
+      build_coarse(gd, in->grid) != TDO_OK) {
+    gd->built_for = nullptr;
+    return tdo_search_run(fine, in, out);
+  }
+  tdo_search_input ci = *in;
+  ci.grid = gd->coarse;
+  ci.corridor = nullptr;
+  ci.max_expansions = 0;
+  // The coarse route is the shortest: turn-penalised coarse routes came out longer than plain A*'s
+  // grid paths on geb079 (docs/design.md s.1).
+  ci.kind = TDO_SEARCH_BIDIR;
+  ci.lambda = 0.0;
+  ci.mu = 0.0;
+  ci.theta_max = 0.0;
+  ci.d_th = 0.0;
+  ci.first_meet = 0;
+  tdo_search_output co;
+  if (tdo_search_run(gd->search, &ci, &co) == TDO_OK) {
+    report->expansions = co.expansions;
+    report->coarse_path = co.n_path;
+    build_corridor(gd, co.path, co.n_path);
+    report->corridor = gd->n_marked;
+    tdo_search_input fi = *in;
+    fi.corridor = &gd->corridor;
+    // Voxel states: (voxel, heading) states flood the corridor as they flood the grid (geb079
+    // G4 and G5: 0.55 and 1.1 million expansions in about 1,000 cells).
+    fi.states = TDO_STATES_VOXEL;
+    const tdo_status st = tdo_search_run(fine, &fi, out);
+    clear_corridor(gd);
+    if (st == TDO_OK) {
+      report->used = 1;
+      report->expansions += out->expansions;
+      return st;
+    }
+    report->expansions += out->expansions;
+  }
+  report->used = 2;
+  return tdo_search_run(fine, in, out);
+}
+
+}  // namespace tdo_internal
