@@ -501,5 +501,6 @@ extern "C" tdo_status tdo_grid_apply_update(tdo_grid* g, const tdo_grid_update* 
   for (uint32_t b = 0; b < u->n_boxes; ++b) add_box(&x, u->boxes[b]);
   for (uint32_t s = 0; s < u->n_clear; ++s) clear_cube(&x, u->clear[s]);
   for (uint32_t s = 0; s < u->n_set; ++s) set_cube(&x, u->set[s]);
+  ++g->version;  // data derived from the grid (the search's coarse guide) is rebuilt
   return TDO_OK;
 }
