@@ -96,11 +96,10 @@ typedef struct tdo_plan_result {
 
 /**
  * @brief Plan on the planner's finished grid (its clearance applies). Allocates nothing.
- * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, an unknown enum value, a negative
- *         or non-finite lambda, mu, theta_max or d_th (0 is valid: no penalty, no constraint,
- *         threshold off), h_weight below 1 or non-finite, and, for the stages `depth` runs, a
- *         negative or non-finite turn_threshold (correction), a zero, negative or non-finite k,
- *         v_max, a_max, j_max, a_lat_max, v_cruise or stop_angle (smoothing) or dt (trajectory);
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers or a parameter outside its valid
+ *         range in the table of params.h (tdo_plan_params_check: `depth`, then the rows of the
+ *         stages `depth` runs; 0 is valid for lambda, mu, theta_max and d_th: no penalty, no
+ *         constraint, threshold off);
  *         the search statuses; TDO_ERR_START_BLOCKED / TDO_ERR_GOAL_BLOCKED also when the start
  *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
  *         obstacle, at every depth (docs/design.md s.0: every point of the output keeps it);

@@ -12,6 +12,7 @@
 #include "tdo/correct.h"
 #include "tdo/grid.h"
 #include "tdo/metrics.h"
+#include "tdo/params.h"
 #include "tdo/path.h"
 #include "tdo/pipeline.h"
 #include "tdo/planner.h"
