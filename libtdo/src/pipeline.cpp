@@ -165,6 +165,20 @@ tdo_status pipeline_init(tdo_planner* pl, tdo_arena* arena) {
 
 using namespace tdo_internal;
 
+extern "C" void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in) {
+  if (p == nullptr || in == nullptr) return;
+  in->kind = p->search;
+  in->lambda = p->lambda;
+  in->mu = p->mu;
+  in->theta_max = p->theta_max;
+  in->d_th = p->d_th;
+  in->h_weight = p->h_weight;
+  in->first_meet = p->first_meet;
+  in->grid_first = p->grid_first;
+  in->states = p->states;
+  in->max_expansions = p->max_expansions;
+}
+
 extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* req,
                                        tdo_plan_result* out) {
   if (pl == nullptr || req == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
@@ -185,16 +199,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.grid = pl->grid;
   si.start = req->start;
   si.goal = req->goal;
-  si.kind = p.search;
-  si.lambda = p.lambda;
-  si.mu = p.mu;
-  si.theta_max = p.theta_max;
-  si.d_th = p.d_th;
-  si.h_weight = p.h_weight;
-  si.first_meet = p.first_meet;
-  si.grid_first = p.grid_first;
-  si.states = p.states;
-  si.max_expansions = p.max_expansions;
+  tdo_plan_search_input(&p, &si);
   out->status = tdo_search_run(pl->search, &si, &out->search);
   if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);
   if (out->status != TDO_OK) return out->status;

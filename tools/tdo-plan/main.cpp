@@ -521,16 +521,7 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
     in.grid = p.grid;
     in.start = q.start;
     in.goal = q.goal;
-    in.kind = kind;
-    in.lambda = pp.lambda;
-    in.mu = pp.mu;
-    in.theta_max = pp.theta_max;
-    in.d_th = pp.d_th;
-    in.h_weight = pp.h_weight;
-    in.first_meet = pp.first_meet;
-    in.grid_first = pp.grid_first;
-    in.states = pp.states;
-    in.max_expansions = pp.max_expansions;
+    tdo_plan_search_input(&pp, &in);  // pp.search is kind
     tdo_search_output out{};
     const auto t0 = std::chrono::steady_clock::now();
     const tdo_status st = tdo_search_run(p.search, &in, &out);

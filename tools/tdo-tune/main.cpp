@@ -178,7 +178,7 @@ struct Options {
   bool test = false;
 };
 
-/** "lambda, mu, k and theta_max": the tuned rows' names. */
+/** The tuned rows' names, comma-separated, `last_sep` before the last. */
 std::string names_text(const std::vector<Tuned>& params, const char* last_sep) {
   std::string s;
   for (std::size_t i = 0; i < params.size(); ++i)

@@ -65,6 +65,11 @@ typedef struct tdo_plan_params {
 /** Fill `p` with the defaults documented in tdo_plan_params. */
 void tdo_plan_params_default(tdo_plan_params* p);
 
+/** Fill the search fields of `in` from `p` as tdo_planner_plan does (kind, lambda, mu, theta_max,
+ *  d_th, h_weight, first_meet, grid_first, states, max_expansions); grid, start and goal are left
+ *  as they are. Nothing for NULL pointers. */
+void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in);
+
 /** One planning request. */
 typedef struct tdo_plan_request {
   tdo_vec3 start;         /**< m, world frame */
