@@ -123,7 +123,7 @@ class PipelinePlanner : public Planner {
       if (r.type != TDO_PARAM_REAL && r.type != TDO_PARAM_UINT) continue;
       const double v = r.default_of >= 0 ? tdo_param_get(&pp, static_cast<uint32_t>(r.default_of))
                        : r.type == TDO_PARAM_UINT ? std::round(p(key(r)))
-                                                   : p(key(r)) * (angle(r) ? kDeg : 1.0);
+                                                  : p(key(r)) * (angle(r) ? kDeg : 1.0);
       (void)tdo_param_set(&pp, i, v);  // in range: set_param checked it
     }
     pp.search = preset_.kind;

@@ -500,7 +500,6 @@ void load_cases(Ctx& x) {
       cases.push_back(std::move(c));
     }
   }
-
 }
 
 /** Every planner on every query, then the Table 3 grid; the progress bar counts the work. */
@@ -566,7 +565,6 @@ void plan_all(Ctx& x, Bench& bench) {
       }
     }
   }
-
 }
 
 /** Table 6/7: every planner on each paper map. */
@@ -578,8 +576,7 @@ void write_compare(const Ctx& x) {
   // ---- Table 6/7
   {
     std::string csv = "map,planner," + agg_csv_header() + "\n";
-    std::string md =
-        "### Table 6/7: planners on Map1-Map6 (static obstacles)\n\n" + x.cfg + "\n\n";
+    std::string md = "### Table 6/7: planners on Map1-Map6 (static obstacles)\n\n" + x.cfg + "\n\n";
     for (const std::string& m : paper_names) {
       md += "\n**" + m + "**\n\n" + agg_md_header("planner");
       for (const std::string& p : planners) {
@@ -591,7 +588,6 @@ void write_compare(const Ctx& x) {
     write_file(out / "table_compare.csv", csv);
     write_file(out / "table_compare.md", md);
   }
-
 }
 
 /** The random maps' table. */
@@ -626,7 +622,6 @@ void write_random(const Ctx& x) {
     write_file(out / "table_random.csv", csv);
     write_file(out / "table_random.md", md);
   }
-
 }
 
 /** Table 8: the ablation models. */
@@ -694,7 +689,6 @@ void write_ablation(const Ctx& x) {
     write_file(out / "table_ablation.csv", csv);
     write_file(out / "table_ablation.md", md + "\nPer map:\n" + per_map);
   }
-
 }
 
 /** Table 3: sensitivity to lambda and mu. */
@@ -729,7 +723,6 @@ void write_sensitivity(const Ctx& x) {
     write_file(out / "table_sensitivity.csv", csv);
     write_file(out / "table_sensitivity.md", md);
   }
-
 }
 
 /** The forest_gen table. */
@@ -780,7 +773,6 @@ void write_forest(const Ctx& x) {
     write_file(out / "table_forest.csv", csv);
     write_file(out / "table_forest.md", md);
   }
-
 }
 
 /** The goals of issue 6 in this run. */
@@ -881,7 +873,6 @@ void write_goals(const Ctx& x) {
     md += std::string(" -> ") + (g4n == 0 ? "not measured" : g4 ? "**met**" : "**not met**") + "\n";
     write_file(out / "goals.md", md);
   }
-
 }
 
 /** The claims page's ablation-order check (Table 8). */
@@ -969,9 +960,8 @@ std::string claims_sensitivity(const Ctx& x) {
             ".";
     }
     if (best_turns)
-      md += " Fewest turns: (" + fmt(best_turns->lambda, "%g") + ", " +
-            fmt(best_turns->mu, "%g") + ") with " +
-            fmt(tdo_bench::mean(best_turns->turns), "%.2f") + ".";
+      md += " Fewest turns: (" + fmt(best_turns->lambda, "%g") + ", " + fmt(best_turns->mu, "%g") +
+            ") with " + fmt(tdo_bench::mean(best_turns->turns), "%.2f") + ".";
     // "Smaller lambda: shorter paths but more turns": smallest against largest lambda, means
     // over every mu of that lambda.
     {
@@ -1053,7 +1043,6 @@ void write_claims(const Ctx& x) {
     md += claims_sensitivity(x);
     write_file(out / "claims.md", md);
   }
-
 }
 
 int run(int argc, char** argv) {
@@ -1070,7 +1059,6 @@ int run(int argc, char** argv) {
     for (const Run& r : x.runs) s += csv_run(r);
     write_file(x.out / "runs.csv", s);
   }
-
 
   std::ostringstream cfg;
   cfg << "clearance " << x.o.clearance << " m; stochastic planners: " << x.o.seeds << " seeds (0.."

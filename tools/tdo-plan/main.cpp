@@ -137,8 +137,8 @@ void validate(const Options& o) {
     const tdo_param_info& r = *tdo_param_at(i);
     if (!own_option(r) || !o.given[i]) continue;
     if (r.type == TDO_PARAM_REAL) check_row(r, o.real[i]);
-    if (r.type == TDO_PARAM_UINT && (static_cast<double>(o.whole[i]) < r.min ||
-                                     static_cast<double>(o.whole[i]) > r.max))
+    if (r.type == TDO_PARAM_UINT &&
+        (static_cast<double>(o.whole[i]) < r.min || static_cast<double>(o.whole[i]) > r.max))
       throw BadInput{option_name(r) + " must be in [" + fmt(r.min, 12) + ", " + fmt(r.max, 12) +
                      "], got " + std::to_string(o.whole[i])};
   }
@@ -209,8 +209,10 @@ void add_param_options(CLI::App& app, Options& o) {
     if (!own_option(r)) continue;
     const double v = tdo_param_get(&d, i);
     std::string help = r.help;
-    if (is_angle(r)) help = "deg, " + help;
-    else if (r.unit[0] != '\0') help = std::string(r.unit) + ", " + help;
+    if (is_angle(r))
+      help = "deg, " + help;
+    else if (r.unit[0] != '\0')
+      help = std::string(r.unit) + ", " + help;
     if (r.has_plain != 0)
       help += " (tdo: " + fmt(shown(r, v)) + ", other planners: " + fmt(shown(r, r.plain)) + ")";
     if (r.default_of >= 0) help += " (default: " + option_name(*tdo_param_at(r.default_of)) + ")";

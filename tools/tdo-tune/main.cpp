@@ -202,8 +202,7 @@ int parse_options(int argc, char** argv, Options* o) {
                  "training maps (tdo-mapgen --random, seeds 2000..)")
       ->capture_default_str();
   app.add_option("--random-size", o->size, "X Y Z of the training maps, m")->expected(3);
-  app.add_option("--random-columns", o->columns, "columns per training map")
-      ->capture_default_str();
+  app.add_option("--random-columns", o->columns, "columns per training map")->capture_default_str();
   app.add_option("--maxeval", o->maxeval, "evaluation budget of the optimiser")
       ->capture_default_str();
   app.add_option("--algorithm", o->algorithm, "sbplx | neldermead | bobyqa")

@@ -393,8 +393,9 @@ Check library_ranges(const tdo::plan_request_t& m) {
     if (row == nullptr || f.integer || m.depth < row->stage) continue;
     const double v = f.get(m);
     if (tdo_param_valid(static_cast<uint32_t>(f.param), v) == 0)
-      return fail_field(Reason::out_of_range, f.name,
-                        std::string(f.name) + " = " + exact_num(v) + ": must be " + range_text(*row));
+      return fail_field(
+          Reason::out_of_range, f.name,
+          std::string(f.name) + " = " + exact_num(v) + ": must be " + range_text(*row));
   }
   return {};
 }
@@ -431,7 +432,8 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
   for (const RequestField& f : request_fields()) {
     // Every value is one the field can hold (field_types); a value outside its range at a depth
     // that does not run its stage is carried as it is, as the library ignores it.
-    if (f.param >= 0 && tdo_param_set(&r.params, static_cast<uint32_t>(f.param), f.get(m)) != TDO_OK)
+    if (f.param >= 0 &&
+        tdo_param_set(&r.params, static_cast<uint32_t>(f.param), f.get(m)) != TDO_OK)
       return fail_field(Reason::out_of_range, f.name, std::string(f.name) + " cannot be held");
   }
   *out = r;

@@ -26,13 +26,13 @@ constexpr double type_hi() {
 
 // LCM_NAME: the member of plan_request_t; PARAM: the row's name in tdo/params.h ("" = none);
 // BIT: its use_defaults bit.
-#define TDO_REQUEST_FIELD(LCM_NAME, PARAM, BIT)                                         \
-  RequestField {                                                                                 \
-    #LCM_NAME, tdo_param_find(PARAM), R::BIT,                                                    \
+#define TDO_REQUEST_FIELD(LCM_NAME, PARAM, BIT)                                                \
+  RequestField {                                                                               \
+#LCM_NAME, tdo_param_find(PARAM), R::BIT,                                                    \
         !std::is_same<decltype(R::LCM_NAME), double>::value,                                     \
         type_lo<decltype(R::LCM_NAME)>(), type_hi<decltype(R::LCM_NAME)>(), -1.0,                \
         [](const R& m) { return static_cast<double>(m.LCM_NAME); },                              \
-        [](R& m, double v) { m.LCM_NAME = static_cast<decltype(R::LCM_NAME)>(v); }               \
+        [](R& m, double v) { m.LCM_NAME = static_cast<decltype(R::LCM_NAME)>(v); } \
   }
 
 std::vector<RequestField> make_fields() {
@@ -64,7 +64,8 @@ std::vector<RequestField> make_fields() {
       TDO_REQUEST_FIELD(corner_time, "corner_time", USE_DEFAULT_CORNER_TIME),
   };
   for (RequestField& x : f) {  // LCM booleans are int8_t on the wire; their values are 0 and 1
-    const tdo_param_info* row = x.param >= 0 ? tdo_param_at(static_cast<uint32_t>(x.param)) : nullptr;
+    const tdo_param_info* row =
+        x.param >= 0 ? tdo_param_at(static_cast<uint32_t>(x.param)) : nullptr;
     if (row != nullptr && row->type == TDO_PARAM_BOOL) {
       x.lo = 0.0;
       x.hi = 1.0;

@@ -32,24 +32,24 @@ typedef enum tdo_param_type {
 
 /** One row of the table. Angles are radians here (tools print and read them in degrees). */
 typedef struct tdo_param_info {
-  const char* name;      /**< field name in tdo_plan_params, e.g. "lambda" */
-  tdo_param_type type;   /**< storage and meaning of the value */
-  const char* unit;      /**< "m", "rad", "m/s", "m/s^2", "m/s^3", "s" or "" (a number) */
-  double def;            /**< default (tdo_plan_params_default) */
-  int32_t default_of;    /**< >= 0: index of the parameter whose value is this one's default when
-                              a caller leaves it to the defaults (a_lat_max follows a_max); -1 */
-  double min;            /**< smallest valid value (-HUGE_VAL: none) */
-  double max;            /**< largest valid value (HUGE_VAL: none) */
-  int min_open;          /**< 1: min itself is invalid (value > min) */
-  int max_open;          /**< 1: max itself is invalid (value < max) */
-  tdo_plan_depth stage;  /**< checked when tdo_plan_params.depth >= stage (the stage using it) */
+  const char* name;     /**< field name in tdo_plan_params, e.g. "lambda" */
+  tdo_param_type type;  /**< storage and meaning of the value */
+  const char* unit;     /**< "m", "rad", "m/s", "m/s^2", "m/s^3", "s" or "" (a number) */
+  double def;           /**< default (tdo_plan_params_default) */
+  int32_t default_of;   /**< >= 0: index of the parameter whose value is this one's default when
+                             a caller leaves it to the defaults (a_lat_max follows a_max); -1 */
+  double min;           /**< smallest valid value (-HUGE_VAL: none) */
+  double max;           /**< largest valid value (HUGE_VAL: none) */
+  int min_open;         /**< 1: min itself is invalid (value > min) */
+  int max_open;         /**< 1: max itself is invalid (value < max) */
+  tdo_plan_depth stage; /**< checked when tdo_plan_params.depth >= stage (the stage using it) */
   const char* const* values; /**< BOOL and ENUM: the name of each value 0 .. n_values - 1 */
   uint32_t n_values;         /**< BOOL: 2; ENUM: the count; else 0 */
-  int has_plain;         /**< 1: the plain search (no turn-deviation terms) sets it to `plain` */
-  double plain;          /**< its value in the plain search (tdo_plan_params_plain) */
-  double tune_min;       /**< tune_min < tune_max: the range a tuner searches (tdo-tune) */
+  int has_plain;   /**< 1: the plain search (no turn-deviation terms) sets it to `plain` */
+  double plain;    /**< its value in the plain search (tdo_plan_params_plain) */
+  double tune_min; /**< tune_min < tune_max: the range a tuner searches (tdo-tune) */
   double tune_max;
-  size_t offset; /**< offsetof(tdo_plan_params, field) */
+  size_t offset;    /**< offsetof(tdo_plan_params, field) */
   const char* help; /**< one line: what it does */
 } tdo_param_info;
 
