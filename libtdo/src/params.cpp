@@ -11,11 +11,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 constexpr double kInf = HUGE_VAL;
 
-// Enums and flags are stored as 4-byte integers (tdo_param_get/set copy them as int).
-static_assert(sizeof(tdo_plan_depth) == sizeof(int), "enum size");
-static_assert(sizeof(tdo_search_kind) == sizeof(int), "enum size");
-static_assert(sizeof(tdo_correct_mode) == sizeof(int), "enum size");
-static_assert(sizeof(tdo_smoothing) == sizeof(int), "enum size");
+// Enums may be 1 byte (arm-none-eabi's short enums) or 4: each row records its field's size.
 
 const char* const kDepth[] = {"search", "correct", "smooth", "trajectory"};
 const char* const kSearch[] = {"astar", "bidir"};
@@ -26,7 +22,7 @@ const char* const kSmoothing[] = {"g2", "arc", "none"};
 const char* const kGridFirst[] = {"off", "plain", "terms"};
 const char* const kStates[] = {"heading", "voxel"};
 
-#define TDO_OFF(field) offsetof(tdo_plan_params, field)
+#define TDO_OFF(field) offsetof(tdo_plan_params, field), sizeof(tdo_plan_params::field)
 #define TDO_N(a) static_cast<uint32_t>(sizeof(a) / sizeof((a)[0]))
 
 // Indices of the rows other rows refer to (default_of); checked below.
@@ -34,7 +30,7 @@ constexpr int32_t kAMax = 16;
 constexpr int32_t kVMax = 15;
 
 // name, type, unit, default, default_of, min, max, min_open, max_open, stage, values, n_values,
-// has_plain, plain, tune_min, tune_max, offset, help
+// has_plain, plain, tune_min, tune_max, offset, size, help
 const tdo_param_info kTable[] = {
     {"depth", TDO_PARAM_ENUM, "", TDO_PLAN_TRAJECTORY, -1, 0, 3, 0, 0, TDO_PLAN_SEARCH, kDepth,
      TDO_N(kDepth), 0, 0, 0, 0, TDO_OFF(depth),
@@ -110,8 +106,6 @@ bool whole(double v) { return !(trunc(v) < v) && !(trunc(v) > v); }
 // The table holds every field of the struct exactly once (checked by test_params.cpp too).
 static_assert(sizeof(kTable) / sizeof(kTable[0]) == 24, "one row per tdo_plan_params field");
 
-}  // namespace
-
 extern "C" uint32_t tdo_param_count(void) { return kCount; }
 
 extern "C" const tdo_param_info* tdo_param_at(uint32_t i) {
@@ -134,10 +128,52 @@ extern "C" int tdo_param_valid(uint32_t i, double v) {
   return 1;
 }
 
+// A BOOL or ENUM field: an int or an enum of 1, 2 or 4 bytes holding a small non-negative value.
+int64_t read_int(const unsigned char* at, size_t size) {
+  switch (size) {
+    case 1: {
+      int8_t v;
+      memcpy(&v, at, 1);
+      return v;
+    }
+    case 2: {
+      int16_t v;
+      memcpy(&v, at, 2);
+      return v;
+    }
+    default: {
+      int32_t v;
+      memcpy(&v, at, 4);
+      return v;
+    }
+  }
+}
+
+void write_int(unsigned char* at, size_t size, int32_t n) {
+  switch (size) {
+    case 1: {
+      const int8_t v = static_cast<int8_t>(n);
+      memcpy(at, &v, 1);
+      break;
+    }
+    case 2: {
+      const int16_t v = static_cast<int16_t>(n);
+      memcpy(at, &v, 2);
+      break;
+    }
+    default:
+      memcpy(at, &n, 4);
+      break;
+  }
+}
+
+}  // namespace
+
 extern "C" double tdo_param_get(const tdo_plan_params* p, uint32_t i) {
   if (p == nullptr || i >= kCount) return NAN;
-  const unsigned char* at = reinterpret_cast<const unsigned char*>(p) + kTable[i].offset;
-  switch (kTable[i].type) {
+  const tdo_param_info& r = kTable[i];
+  const unsigned char* at = reinterpret_cast<const unsigned char*>(p) + r.offset;
+  switch (r.type) {
     case TDO_PARAM_REAL: {
       double v;
       memcpy(&v, at, sizeof v);
@@ -149,19 +185,22 @@ extern "C" double tdo_param_get(const tdo_plan_params* p, uint32_t i) {
       return static_cast<double>(v);
     }
     case TDO_PARAM_BOOL:
-    case TDO_PARAM_ENUM: {
-      int v;
-      memcpy(&v, at, sizeof v);
-      return static_cast<double>(v);
-    }
+    case TDO_PARAM_ENUM:
+      return static_cast<double>(read_int(at, r.size));
   }
   return NAN;
 }
 
 extern "C" tdo_status tdo_param_set(tdo_plan_params* p, uint32_t i, double v) {
-  if (p == nullptr || tdo_param_valid(i, v) == 0) return TDO_ERR_INVALID_ARGUMENT;
-  unsigned char* at = reinterpret_cast<unsigned char*>(p) + kTable[i].offset;
-  switch (kTable[i].type) {
+  if (p == nullptr || i >= kCount) return TDO_ERR_INVALID_ARGUMENT;
+  const tdo_param_info& r = kTable[i];
+  // What the field can hold: any double; a whole uint32_t; an enum's or a flag's values.
+  if (r.type != TDO_PARAM_REAL) {
+    const double hi = r.type == TDO_PARAM_UINT ? 4294967295.0 : r.max;
+    if (!isfinite(v) || !whole(v) || v < r.min || v > hi) return TDO_ERR_INVALID_ARGUMENT;
+  }
+  unsigned char* at = reinterpret_cast<unsigned char*>(p) + r.offset;
+  switch (r.type) {
     case TDO_PARAM_REAL:
       memcpy(at, &v, sizeof v);
       break;
@@ -171,11 +210,9 @@ extern "C" tdo_status tdo_param_set(tdo_plan_params* p, uint32_t i, double v) {
       break;
     }
     case TDO_PARAM_BOOL:
-    case TDO_PARAM_ENUM: {
-      const int n = static_cast<int>(v);
-      memcpy(at, &n, sizeof n);
+    case TDO_PARAM_ENUM:
+      write_int(at, r.size, static_cast<int32_t>(v));
       break;
-    }
   }
   return TDO_OK;
 }

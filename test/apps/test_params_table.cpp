@@ -55,9 +55,10 @@ void write_raw(tdo_plan_params* p, uint32_t i, double v) {
   unsigned char* at = reinterpret_cast<unsigned char*>(p) + row(i).offset;
   if (row(i).type == TDO_PARAM_REAL) {
     std::memcpy(at, &v, sizeof v);
-  } else {
-    const int n = static_cast<int>(v);
-    std::memcpy(at, &n, sizeof n);
+  } else {  // enums and flags: little-endian, the low bytes of an int32 (1 byte: short enums)
+    const int32_t n = static_cast<int32_t>(v);
+    ASSERT_LE(row(i).size, sizeof n);
+    std::memcpy(at, &n, row(i).size);
   }
 }
 
@@ -96,8 +97,7 @@ TEST(ParamsTable, GivenTheTable_ThenEveryRowHasOneLcmFieldAndAValidDefault) {
   // The rows cover the struct: no field is left out of the table (their sizes add up, padding
   // aside; tdo_plan_params has no padding beyond 8 bytes).
   std::size_t bytes = 0;
-  for (uint32_t i = 0; i < tdo_param_count(); ++i)
-    bytes += row(i).type == TDO_PARAM_REAL ? sizeof(double) : sizeof(int);
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) bytes += row(i).size;
   EXPECT_LE(bytes, sizeof(tdo_plan_params));
   EXPECT_GT(bytes + 8u, sizeof(tdo_plan_params));
 }

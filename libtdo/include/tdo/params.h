@@ -50,6 +50,7 @@ typedef struct tdo_param_info {
   double tune_min; /**< tune_min < tune_max: the range a tuner searches (tdo-tune) */
   double tune_max;
   size_t offset;    /**< offsetof(tdo_plan_params, field) */
+  size_t size;      /**< sizeof the field (enums are 1 byte with short enums, e.g. arm-none-eabi) */
   const char* help; /**< one line: what it does */
 } tdo_param_info;
 
@@ -70,9 +71,11 @@ int tdo_param_valid(uint32_t i, double v);
 double tdo_param_get(const tdo_plan_params* p, uint32_t i);
 
 /**
- * @brief Set row `i` of `p` to `v`.
+ * @brief Store `v` in row `i` of `p` when the field can hold it: any double for REAL (also one
+ *        outside the valid range: tdo_plan_params_check judges it), a whole number in
+ *        [0, 2^32 - 1] for UINT, one of the values for BOOL and ENUM.
  * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT (p unchanged) for a NULL pointer, a bad index or a
- *         value tdo_param_valid refuses.
+ *         value the field cannot hold.
  */
 tdo_status tdo_param_set(tdo_plan_params* p, uint32_t i, double v);
 
