@@ -216,6 +216,9 @@ void add_param_options(CLI::App& app, Options& o) {
     if (r.has_plain != 0)
       help += " (tdo: " + fmt(shown(r, v)) + ", other planners: " + fmt(shown(r, r.plain)) + ")";
     if (r.default_of >= 0) help += " (default: " + option_name(*tdo_param_at(r.default_of)) + ")";
+    const std::string name = r.name;
+    if (name == "correction") help += " (msf-mtpo: greedy)";
+    if (name == "smoothing") help += " (msf-mtpo: arc)";
     if (r.type == TDO_PARAM_REAL) {
       o.real[i] = shown(r, v);
       auto* opt = app.add_option(option_name(r), o.real[i], help);
