@@ -13,71 +13,20 @@
 #include <utility>
 
 #include "tdo_lcm/bus.h"
+#include "tdo_lcm/request_fields.h"
 #include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
 
 namespace {
 
-using Setter = std::function<void(tdo::plan_request_t*, double)>;
+// A request field --override can set (request_fields.h). An integer field's setter casts the
+// value, and a cast of a number outside its type's range (or of a fraction) would be undefined or
+// silently truncated, so parse_override lets only whole numbers the LCM type holds through; values
+// outside the library's ranges go through, for the planner to refuse.
+using Field = tdo_lcm::RequestField;
 
-// A request field --override can set. An integer field's setter casts the value, and a cast of a
-// number outside its type's range (or of a fraction) would be undefined or silently truncated, so
-// parse_override lets only whole numbers in [lo, hi] through.
-struct Field {
-  std::string name;
-  Setter set;
-  bool integer;
-  double lo, hi;
-};
-
-Field real(const char* name, Setter set) { return {name, std::move(set), false, 0.0, 0.0}; }
-
-Field int8(const char* name, int8_t tdo::plan_request_t::*member) {
-  return {name, [member](tdo::plan_request_t* m, double v) { m->*member = static_cast<int8_t>(v); },
-          true, -128.0, 127.0};
-}
-
-const std::vector<Field>& fields() {
-  static const std::vector<Field> s = {
-      real("lambda", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }),
-      real("lambda_turn", [](tdo::plan_request_t* m, double v) { m->lambda_turn = v; }),
-      real("mu", [](tdo::plan_request_t* m, double v) { m->mu = v; }),
-      real("theta_max", [](tdo::plan_request_t* m, double v) { m->theta_max = v; }),
-      real("d_th", [](tdo::plan_request_t* m, double v) { m->d_th = v; }),
-      real("h_weight", [](tdo::plan_request_t* m, double v) { m->h_weight = v; }),
-      real("first_meet",
-           [](tdo::plan_request_t* m, double v) { m->first_meet = std::fabs(v) > 0.0; }),
-      int8("grid_first", &tdo::plan_request_t::grid_first),
-      int8("states", &tdo::plan_request_t::states),
-      real("shorten", [](tdo::plan_request_t* m, double v) { m->shorten = std::fabs(v) > 0.0; }),
-      {"max_expansions",
-       [](tdo::plan_request_t* m, double v) { m->max_expansions = static_cast<int32_t>(v); }, true,
-       -2147483648.0, 2147483647.0},
-      real("turn_threshold", [](tdo::plan_request_t* m, double v) { m->turn_threshold = v; }),
-      real("k", [](tdo::plan_request_t* m, double v) { m->k = v; }),
-      real("v_max", [](tdo::plan_request_t* m, double v) { m->v_max = v; }),
-      real("a_max", [](tdo::plan_request_t* m, double v) { m->a_max = v; }),
-      real("j_max", [](tdo::plan_request_t* m, double v) { m->j_max = v; }),
-      real("a_lat_max", [](tdo::plan_request_t* m, double v) { m->a_lat_max = v; }),
-      real("v_cruise", [](tdo::plan_request_t* m, double v) { m->v_cruise = v; }),
-      real("stop_angle", [](tdo::plan_request_t* m, double v) { m->stop_angle = v; }),
-      real("dt", [](tdo::plan_request_t* m, double v) { m->dt = v; }),
-      real("corner_time", [](tdo::plan_request_t* m, double v) { m->corner_time = v; }),
-      real("clearance", [](tdo::plan_request_t* m, double v) { m->clearance = v; }),
-      int8("depth", &tdo::plan_request_t::depth),
-      int8("search", &tdo::plan_request_t::search),
-      int8("correction", &tdo::plan_request_t::correction),
-      int8("smoothing", &tdo::plan_request_t::smoothing),
-  };
-  return s;
-}
-
-const Field* find_field(const std::string& name) {
-  for (const Field& f : fields())
-    if (f.name == name) return &f;
-  return nullptr;
-}
+const Field* find_field(const std::string& name) { return tdo_lcm::find_request_field(name); }
 
 std::string fmt(double v) {
   char buf[40];
@@ -256,7 +205,11 @@ struct Answers {
 
 std::string override_names() {
   std::string s;
-  for (const Field& f : fields()) s += (s.empty() ? "" : ", ") + f.name;
+  for (const Field& f : tdo_lcm::request_fields()) {
+    s += (s.empty() ? "" : ", ") + std::string(f.name);
+    const std::string lib = tdo_lcm::request_field_param_name(f);
+    if (lib != f.name) s += ", " + lib;
+  }
   return s;
 }
 
@@ -299,7 +252,7 @@ bool apply_overrides(const std::vector<Override>& overrides, tdo::plan_request_t
       *error = "unknown override field '" + o.name + "'";
       return false;
     }
-    f->set(m, o.value);
+    f->set(*m, o.value);
   }
   return true;
 }

@@ -1,72 +1,29 @@
 // tdo-request's core (request_cli.h).
 #include "request_cli.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <string>
+
+#include "tdo/params.h"
+#include "tdo_lcm/request_fields.h"
 
 namespace tdo_lcm {
 namespace {
 
 using R = tdo::plan_request_t;
 
-/** A --param: its use_defaults bit, how it is set, and for integer fields the allowed range. */
-struct Param {
-  const char* name;
-  int32_t bit;
-  std::function<void(R*, double)> set;
-  bool integer;
-  double lo, hi;
-};
-
-Param real(const char* name, int32_t bit, double R::*member) {
-  return {name, bit, [member](R* m, double v) { m->*member = v; }, false, 0.0, 0.0};
-}
-Param int8(const char* name, int32_t bit, int8_t R::*member, double lo, double hi) {
-  return {name, bit, [member](R* m, double v) { m->*member = static_cast<int8_t>(v); },
-          true, lo,  hi};
-}
-Param flag(const char* name, int32_t bit, int8_t R::*member) {  // LCM booleans are int8_t
-  return {name, bit, [member](R* m, double v) { m->*member = v > 0.5 ? 1 : 0; }, true, 0.0, 1.0};
-}
-
-const std::vector<Param>& params() {
-  static const std::vector<Param> p = {
-      int8("depth", R::USE_DEFAULT_DEPTH, &R::depth, R::DEPTH_SEARCH, R::DEPTH_TRAJECTORY),
-      int8("search", R::USE_DEFAULT_SEARCH, &R::search, R::SEARCH_ASTAR, R::SEARCH_BIDIR),
-      real("lambda", R::USE_DEFAULT_LAMBDA_TURN, &R::lambda_turn),
-      real("lambda_turn", R::USE_DEFAULT_LAMBDA_TURN, &R::lambda_turn),
-      real("mu", R::USE_DEFAULT_MU, &R::mu),
-      real("theta_max", R::USE_DEFAULT_THETA_MAX, &R::theta_max),
-      real("d_th", R::USE_DEFAULT_D_TH, &R::d_th),
-      real("h_weight", R::USE_DEFAULT_H_WEIGHT, &R::h_weight),
-      flag("first_meet", R::USE_DEFAULT_FIRST_MEET, &R::first_meet),
-      int8("grid_first", R::USE_DEFAULT_GRID_FIRST, &R::grid_first, R::GRID_FIRST_OFF,
-           R::GRID_FIRST_TERMS),
-      {"max_expansions", R::USE_DEFAULT_MAX_EXPANSIONS,
-       [](R* m, double v) { m->max_expansions = static_cast<int32_t>(v); }, true, 0.0,
-       2147483647.0},
-      int8("correction", R::USE_DEFAULT_CORRECTION, &R::correction, R::CORRECT_MULTISCALE,
-           R::CORRECT_NONE),
-      flag("shorten", R::USE_DEFAULT_SHORTEN, &R::shorten),
-      real("turn_threshold", R::USE_DEFAULT_TURN_THRESHOLD, &R::turn_threshold),
-      int8("smoothing", R::USE_DEFAULT_SMOOTHING, &R::smoothing, R::SMOOTHING_G2,
-           R::SMOOTHING_NONE),
-      real("k", R::USE_DEFAULT_K, &R::k),
-      real("v_max", R::USE_DEFAULT_V_MAX, &R::v_max),
-      real("a_max", R::USE_DEFAULT_A_MAX, &R::a_max),
-      real("j_max", R::USE_DEFAULT_J_MAX, &R::j_max),
-      real("a_lat_max", R::USE_DEFAULT_A_LAT_MAX, &R::a_lat_max),
-      real("v_cruise", R::USE_DEFAULT_V_CRUISE, &R::v_cruise),
-      real("stop_angle", R::USE_DEFAULT_STOP_ANGLE, &R::stop_angle),
-      real("dt", R::USE_DEFAULT_DT, &R::dt),
-      real("clearance", R::USE_DEFAULT_CLEARANCE, &R::clearance),
-      int8("states", R::USE_DEFAULT_STATES, &R::states, R::STATES_HEADING, R::STATES_VOXEL),
-      real("corner_time", R::USE_DEFAULT_CORNER_TIME, &R::corner_time),
-  };
-  return p;
+/** The values --param lets through for an integer field: what the LCM type holds and the
+ *  library's valid range of its row (an enum's values; max_expansions >= 0). */
+void integer_range(const RequestField& f, double* lo, double* hi) {
+  *lo = f.lo;
+  *hi = f.hi;
+  const tdo_param_info* row = f.param >= 0 ? tdo_param_at(static_cast<uint32_t>(f.param)) : nullptr;
+  if (row == nullptr) return;
+  *lo = std::max(*lo, row->min);
+  *hi = std::min(*hi, row->max);
 }
 
 std::string fmt(const char* f, double a) {
@@ -91,7 +48,11 @@ std::string vec(const double* v) {
 
 std::string request_param_names() {
   std::string s;
-  for (const Param& p : params()) s += (s.empty() ? "" : ", ") + std::string(p.name);
+  for (const RequestField& f : request_fields()) {
+    s += (s.empty() ? "" : ", ") + std::string(f.name);
+    const std::string lib = request_field_param_name(f);
+    if (lib != f.name) s += ", " + lib;
+  }
   return s;
 }
 
@@ -102,9 +63,7 @@ bool apply_request_param(const std::string& text, R* m, std::string* error) {
     *error = "--param '" + text + "': expected NAME=VALUE";
     return false;
   }
-  const Param* found = nullptr;
-  for (const Param& p : params())
-    if (name == p.name) found = &p;
+  const RequestField* found = find_request_field(name);
   if (found == nullptr) {
     *error = "--param '" + text + "': unknown parameter '" + name +
              "' (known: " + request_param_names() + ")";
@@ -118,13 +77,16 @@ bool apply_request_param(const std::string& text, R* m, std::string* error) {
     return false;
   }
   const bool whole = !(std::trunc(value) < value) && !(std::trunc(value) > value);
-  if (found->integer && (!whole || value < found->lo || value > found->hi)) {
-    *error = "--param '" + text + "': " + name + " takes a whole number in [" +
-             fmt("%.17g", found->lo) + ", " + fmt("%.17g", found->hi) + "]";
+  double lo = 0.0;
+  double hi = 0.0;
+  integer_range(*found, &lo, &hi);
+  if (found->integer && (!whole || value < lo || value > hi)) {
+    *error = "--param '" + text + "': " + name + " takes a whole number in [" + fmt("%.17g", lo) +
+             ", " + fmt("%.17g", hi) + "]";
     return false;
   }
-  found->set(m, value);
-  m->use_defaults &= ~found->bit;
+  found->set(*m, value);
+  m->use_defaults &= ~found->use_default_bit;
   return true;
 }
 

@@ -7,11 +7,11 @@
 #include "grid_internal.h"
 #include "planner_internal.h"
 #include "tdo/collision.h"
+#include "tdo/params.h"
 
 namespace tdo_internal {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // m: the geometric stages verify at clearance - kClearanceTol, the allowance the feasibility report
 // gives the clearance too (trajectory.h). Without it a grid path running exactly at the clearance
 // (voxel centres next to cube faces, e.g. 0.3 m at 0.2 m voxels) fails the correction's check of
@@ -21,29 +21,6 @@ constexpr double kClearanceTol = 1e-9;
 
 double verify_clearance(double clearance) {
   return clearance > kClearanceTol ? clearance - kClearanceTol : clearance;
-}
-
-bool positive(double v) { return isfinite(v) && v > 0.0; }
-bool non_negative(double v) { return isfinite(v) && v >= 0.0; }
-
-tdo_status check_params(const tdo_plan_params& p) {
-  if (p.depth < TDO_PLAN_SEARCH || p.depth > TDO_PLAN_TRAJECTORY) return TDO_ERR_INVALID_ARGUMENT;
-  if (p.search != TDO_SEARCH_ASTAR && p.search != TDO_SEARCH_BIDIR) return TDO_ERR_INVALID_ARGUMENT;
-  if (!non_negative(p.lambda) || !non_negative(p.mu) || !non_negative(p.theta_max) ||
-      !non_negative(p.d_th) || !(p.h_weight >= 1.0) || !isfinite(p.h_weight))
-    return TDO_ERR_INVALID_ARGUMENT;
-  if (p.depth >= TDO_PLAN_CORRECT &&
-      (!non_negative(p.turn_threshold) || p.correction < TDO_CORRECT_MULTISCALE ||
-       p.correction > TDO_CORRECT_NONE))
-    return TDO_ERR_INVALID_ARGUMENT;
-  if (p.depth >= TDO_PLAN_SMOOTH &&
-      (!positive(p.k) || !positive(p.v_max) || !positive(p.a_max) || !positive(p.j_max) ||
-       !positive(p.a_lat_max) || !positive(p.v_cruise) || !positive(p.stop_angle) ||
-       p.smoothing < TDO_SMOOTHING_G2 || p.smoothing > TDO_SMOOTHING_NONE ||
-       !(p.corner_time >= 0.0 && p.corner_time <= 1.0)))
-    return TDO_ERR_INVALID_ARGUMENT;
-  if (p.depth >= TDO_PLAN_TRAJECTORY && !positive(p.dt)) return TDO_ERR_INVALID_ARGUMENT;
-  return TDO_OK;
 }
 
 // Voxel centres of the search path, with the exact start and goal at the ends. An end point
@@ -188,32 +165,18 @@ tdo_status pipeline_init(tdo_planner* pl, tdo_arena* arena) {
 
 using namespace tdo_internal;
 
-extern "C" void tdo_plan_params_default(tdo_plan_params* p) {
-  if (p == nullptr) return;
-  memset(p, 0, sizeof(*p));
-  p->depth = TDO_PLAN_TRAJECTORY;
-  p->search = TDO_SEARCH_BIDIR;
-  p->lambda = 50.0;
-  p->mu = 20.0;
-  p->theta_max = 0.25 * kPi;
-  p->d_th = 0.0;
-  p->h_weight = 1.0;
-  p->first_meet = 1;
-  p->states = TDO_STATES_HEADING;
-  p->max_expansions = 0;
-  p->correction = TDO_CORRECT_MULTISCALE;
-  p->shorten = 1;
-  p->turn_threshold = 10.0 * kPi / 180.0;
-  p->smoothing = TDO_SMOOTHING_G2;
-  p->k = 1.0;
-  p->v_max = 3.0;
-  p->a_max = 3.0;
-  p->j_max = 10.0;
-  p->a_lat_max = 3.0;
-  p->v_cruise = 3.0;
-  p->stop_angle = 150.0 * kPi / 180.0;
-  p->dt = 0.01;
-  p->corner_time = 1.0;
+extern "C" void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in) {
+  if (p == nullptr || in == nullptr) return;
+  in->kind = p->search;
+  in->lambda = p->lambda;
+  in->mu = p->mu;
+  in->theta_max = p->theta_max;
+  in->d_th = p->d_th;
+  in->h_weight = p->h_weight;
+  in->first_meet = p->first_meet;
+  in->grid_first = p->grid_first;
+  in->states = p->states;
+  in->max_expansions = p->max_expansions;
 }
 
 extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* req,
@@ -222,7 +185,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   memset(out, 0, sizeof(*out));
   pl->have_samples = 0;
   const tdo_plan_params& p = req->params;
-  out->status = check_params(p);
+  out->status = tdo_plan_params_check(&p, nullptr);
   if (out->status != TDO_OK) return out->status;
   const double clearance = tdo_grid_clearance(pl->grid);
   if (clearance < 0.0) return out->status = TDO_ERR_MAP_NOT_READY;
@@ -236,16 +199,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.grid = pl->grid;
   si.start = req->start;
   si.goal = req->goal;
-  si.kind = p.search;
-  si.lambda = p.lambda;
-  si.mu = p.mu;
-  si.theta_max = p.theta_max;
-  si.d_th = p.d_th;
-  si.h_weight = p.h_weight;
-  si.first_meet = p.first_meet;
-  si.grid_first = p.grid_first;
-  si.states = p.states;
-  si.max_expansions = p.max_expansions;
+  tdo_plan_search_input(&p, &si);
   GuideReport guide;
   out->status = guide_search(pl->guide, pl->search, &si, &out->search, &guide);
   out->search.guide = guide.used;

@@ -3,7 +3,7 @@
 //
 // Ablation mapping (docs/results.md repeats it):
 //   model-a  bidirectional A*, no turn/deviation terms, raw grid path
-//   model-b  + turn-deviation cost (lambda 50, mu 20, theta_max 45 deg, first meeting), raw path
+//   model-b  + turn-deviation cost (the library's defaults, first meeting), raw path
 //   model-c  + multi-scale inflection correction (P2 polyline)
 //   model-d  + curvature-constrained adaptive-radius smoothing: the paper's circular arcs of eq. 8
 //            (smoothing = arc), time-parameterised once by stage 5 without any refinement
@@ -30,7 +30,7 @@ struct Preset {
   const char* name;
   const char* description;
   tdo_search_kind kind;
-  bool penalties;  // lambda 50, mu 20, theta_max 45 deg, first meeting (else all off, optimal)
+  bool penalties;  // the turn-deviation rows at their defaults (else tdo_plan_params_plain)
   tdo_correct_mode correction;
   tdo_smoothing smoothing;
   Stage stage;
@@ -86,18 +86,26 @@ std::vector<tdo_vec3> sample_path(const tdo_path& path, double step, std::size_t
   return out;
 }
 
+bool angle(const tdo_param_info& r) { return std::strcmp(r.unit, "rad") == 0; }
+
+/** A row's planner parameter name: the row's name, "_deg" appended for angles. */
+std::string key(const tdo_param_info& r) { return std::string(r.name) + (angle(r) ? "_deg" : ""); }
+
 class PipelinePlanner : public Planner {
  public:
+  // One planner parameter per real or integer row of tdo/params.h (angles in degrees, "_deg");
+  // a row with default_of follows its source (a_lat_max = a_max).
   explicit PipelinePlanner(const Preset& preset) : preset_(preset) {
-    const tdo_plan_params d = default_params();
-    add_param("lambda", preset.penalties ? d.lambda : 0.0, 0.0, 1e6);
-    add_param("mu", preset.penalties ? d.mu : 0.0, 0.0, 1e6);
-    add_param("theta_max_deg", preset.penalties ? d.theta_max / kDeg : 0.0, 0.0, 180.0);
-    add_param("k", d.k, 1e-3, 100.0);
-    add_param("v_max", d.v_max, 1e-3, 100.0);
-    add_param("a_max", d.a_max, 1e-3, 100.0);
-    add_param("j_max", d.j_max, 1e-3, 1000.0);
-    add_param("max_expansions", 0.0, 0.0, 4e9);
+    tdo_plan_params d = default_params();
+    if (!preset.penalties) tdo_plan_params_plain(&d);
+    for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+      const tdo_param_info& r = *tdo_param_at(i);
+      if ((r.type != TDO_PARAM_REAL && r.type != TDO_PARAM_UINT) || r.default_of >= 0) continue;
+      const double scale = angle(r) ? 1.0 / kDeg : 1.0;
+      const double lo = r.min_open ? std::nextafter(r.min, HUGE_VAL) : r.min;
+      const double hi = std::isinf(r.max) ? 1e300 : r.max_open ? std::nextafter(r.max, 0.0) : r.max;
+      add_param(key(r), tdo_param_get(&d, i) * scale, lo * scale, hi * scale);
+    }
   }
   std::string name() const override { return preset_.name; }
   std::string description() const override { return preset_.description; }
@@ -109,20 +117,18 @@ class PipelinePlanner : public Planner {
     req.goal = goal;
     tdo_plan_params& pp = req.params;
     pp = default_params();
+    if (!preset_.penalties) tdo_plan_params_plain(&pp);
+    for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+      const tdo_param_info& r = *tdo_param_at(i);
+      if (r.type != TDO_PARAM_REAL && r.type != TDO_PARAM_UINT) continue;
+      const double v = r.default_of >= 0 ? tdo_param_get(&pp, static_cast<uint32_t>(r.default_of))
+                       : r.type == TDO_PARAM_UINT ? std::round(p(key(r)))
+                                                  : p(key(r)) * (angle(r) ? kDeg : 1.0);
+      (void)tdo_param_set(&pp, i, v);  // in range: set_param checked it
+    }
     pp.search = preset_.kind;
-    pp.lambda = p("lambda");
-    pp.mu = p("mu");
-    pp.theta_max = p("theta_max_deg") * kDeg;
-    pp.first_meet = preset_.penalties ? 1 : 0;
     pp.correction = preset_.correction;
     pp.smoothing = preset_.smoothing;
-    pp.k = p("k");
-    pp.v_max = p("v_max");
-    pp.v_cruise = pp.v_max;
-    pp.a_max = p("a_max");
-    pp.a_lat_max = pp.a_max;
-    pp.j_max = p("j_max");
-    pp.max_expansions = static_cast<uint32_t>(std::llround(p("max_expansions")));
     switch (preset_.stage) {
       case Stage::Search:
         pp.depth = TDO_PLAN_SEARCH;

@@ -176,9 +176,7 @@ int main(int argc, char** argv) {
     tdo_plan_params_default(&req.params);
     req.params.depth = TDO_PLAN_SEARCH;
     req.params.search = TDO_SEARCH_ASTAR;
-    req.params.lambda = 0.0;
-    req.params.mu = 0.0;
-    req.params.theta_max = 0.0;
+    tdo_plan_params_plain(&req.params);  // no turn-deviation terms (first_meet: bidir only)
     const std::vector<double> t_astar = timed(pl, req, repeat, &res, &st);
     if (st != TDO_OK) {
       std::fprintf(stderr, "tdo-bench-pipeline: %s: astar: %s\n", name.c_str(), tdo_status_str(st));

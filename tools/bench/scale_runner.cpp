@@ -188,7 +188,7 @@ ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
   return o;
 }
 
-// Plain A*: the same one-call API, depth search, lambda = mu = 0, theta_max 0; its grid path is
+// Plain A*: the same one-call API, depth search, the plain search's parameters; its grid path is
 // measured and checked by tools/baselines' evaluate_polyline (as its "astar" planner).
 ScaleOutcome ScaleMapRun::run_astar(const ScaleQuery& q, uint64_t repeat) {
   tdo_plan_request req{};
@@ -197,9 +197,7 @@ ScaleOutcome ScaleMapRun::run_astar(const ScaleQuery& q, uint64_t repeat) {
   tdo_plan_params_default(&req.params);
   req.params.depth = TDO_PLAN_SEARCH;
   req.params.search = TDO_SEARCH_ASTAR;
-  req.params.lambda = 0.0;
-  req.params.mu = 0.0;
-  req.params.theta_max = 0.0;
+  tdo_plan_params_plain(&req.params);  // no turn-deviation terms (first_meet: bidir only)
   tdo_plan_result res{};
   ScaleOutcome o;
   const tdo_status st = plan_best_of(env_->planner(), req, repeat, &res, &o);

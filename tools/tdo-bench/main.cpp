@@ -337,8 +337,39 @@ std::string verdict(double ours, double paper) {
   return "does not reproduce";
 }
 
-int run(int argc, char** argv) {
+/** One Table 3 grid point: tdo with (lambda, mu) on every paper map. */
+struct SensRow {
+  double lambda, mu;
+  std::vector<double> len, turns, total_turn, time;
+  int ok = 0, n = 0;
+};
+
+/** Everything one bench run loads, plans and writes from. */
+struct Ctx {
   Options o;
+  std::vector<double> lambdas, mus;
+  std::vector<std::string> planners, rplanners, fplanners;
+  fs::path out;
+  std::vector<MapCase> cases;
+  std::vector<std::string> paper_names;
+  tdo_bench::RandomSpec spec;
+  bool sens = false;  // Table 3 runs
+  std::vector<Run> runs;
+  std::vector<SensRow> sens_rows;
+  std::string cfg;  // the run's configuration, one sentence for the tables
+};
+
+std::vector<std::string> names_in_set(const std::vector<MapCase>& cases, const char* set) {
+  std::vector<std::string> v;
+  for (const MapCase& c : cases)
+    if (c.set == set) v.push_back(c.name);
+  return v;
+}
+
+/** The command line (test mode's smaller defaults included); -1 to go on, else an exit status
+ *  (--help). */
+int parse_options(int argc, char** argv, Options* po) {
+  Options& o = *po;
   CLI::App app{
       "Benchmark the planners of tools/baselines on Map1-Map6, random maps and the "
       "forest_gen forests; write CSV and Markdown tables (docs/results.md).",
@@ -403,25 +434,34 @@ int run(int argc, char** argv) {
     throw BadInput{"--clearance must be >= 0"};
   if (o.seeds < 1 || o.repeat < 1) throw BadInput{"--seeds and --repeat must be >= 1"};
   if (o.random < 0 || o.forest_queries < 0) throw BadInput{"counts must be >= 0"};
-  const std::vector<double> lambdas = split_numbers(o.lambdas, "--lambdas");
-  const std::vector<double> mus = split_numbers(o.mus, "--mus");
+  return -1;
+}
 
-  Bench bench(o);
-  const std::vector<std::string> planners = split(o.planners);
-  const std::vector<std::string> rplanners = split(o.random_planners);
-  const std::vector<std::string> fplanners = split(o.forest_planners);
-  for (const auto* list : {&planners, &rplanners, &fplanners})
+/** The planner lists (every name and --param checked) and the output directories. */
+void setup(Ctx& x, Bench& bench) {
+  const Options& o = x.o;
+  x.lambdas = split_numbers(o.lambdas, "--lambdas");
+  x.mus = split_numbers(o.mus, "--mus");
+  x.planners = split(o.planners);
+  x.rplanners = split(o.random_planners);
+  x.fplanners = split(o.forest_planners);
+  for (const auto* list : {&x.planners, &x.rplanners, &x.fplanners})
     for (const std::string& n : *list) bench.planner(n);  // validates names and --param
   for (const std::string& n : kAblation) bench.planner(n);
-
   fs::create_directories(o.out);
-  const fs::path out(o.out);
-  fs::create_directories(out / "paths");
-  fs::create_directories(out / "maps");
+  x.out = fs::path(o.out);
+  fs::create_directories(x.out / "paths");
+  fs::create_directories(x.out / "maps");
+}
 
+/** Every map and query (bad input fails before any planning). */
+void load_cases(Ctx& x) {
+  const Options& o = x.o;
+  const fs::path& out = x.out;
+  std::vector<MapCase>& cases = x.cases;
+  std::vector<std::string>& paper_names = x.paper_names;
+  tdo_bench::RandomSpec& spec = x.spec;
   // Load everything first (bad input fails before any planning).
-  std::vector<MapCase> cases;
-  std::vector<std::string> paper_names;
   if (o.paper_maps != "none") {
     for (const std::string& m : split(o.paper_maps)) {
       MapCase c;
@@ -434,7 +474,6 @@ int run(int argc, char** argv) {
       cases.push_back(std::move(c));
     }
   }
-  tdo_bench::RandomSpec spec;
   for (int a = 0; a < 3; ++a) spec.size[a] = o.random_size[a];
   spec.columns = static_cast<uint32_t>(o.random_columns);
   for (int i = 0; i < o.random; ++i) {
@@ -461,7 +500,18 @@ int run(int argc, char** argv) {
       cases.push_back(std::move(c));
     }
   }
+}
 
+/** Every planner on every query, then the Table 3 grid; the progress bar counts the work. */
+void plan_all(Ctx& x, Bench& bench) {
+  const Options& o = x.o;
+  std::vector<MapCase>& cases = x.cases;
+  const std::vector<std::string>& paper_names = x.paper_names;
+  const std::vector<std::string>& planners = x.planners;
+  const std::vector<std::string>& rplanners = x.rplanners;
+  const std::vector<std::string>& fplanners = x.fplanners;
+  const std::vector<double>& lambdas = x.lambdas;
+  const std::vector<double>& mus = x.mus;
   // Count the work for the progress bar.
   std::size_t total = 0;
   auto list_for = [&](const MapCase& c) -> std::vector<std::string> {
@@ -477,22 +527,18 @@ int run(int argc, char** argv) {
   for (const MapCase& c : cases)
     for (const std::string& n : list_for(c))
       total += c.queries.size() * static_cast<std::size_t>(bench.runs_of(n));
-  const bool sens = o.sensitivity && !paper_names.empty();
+  x.sens = o.sensitivity && !paper_names.empty();
+  const bool sens = x.sens;
   if (sens) total += lambdas.size() * mus.size() * paper_names.size();
   Progress prog(total, !o.no_progress);
 
-  std::vector<Run> runs;
+  std::vector<Run>& runs = x.runs;
   for (MapCase& c : cases)
     for (const Query& q : c.queries)
       for (const std::string& n : list_for(c)) bench.run(c, q, n, prog, &runs);
 
   // Table 3 runs: tdo with each (lambda, mu), one run each (deterministic).
-  struct SensRow {
-    double lambda, mu;
-    std::vector<double> len, turns, total_turn, time;
-    int ok = 0, n = 0;
-  };
-  std::vector<SensRow> sens_rows;
+  std::vector<SensRow>& sens_rows = x.sens_rows;
   if (sens) {
     std::string err;
     auto tdo = tdo_baselines::make_planner("tdo", &err);
@@ -519,25 +565,18 @@ int run(int argc, char** argv) {
       }
     }
   }
+}
 
-  // ---- runs.csv
-  {
-    std::string s = csv_run_header();
-    for (const Run& r : runs) s += csv_run(r);
-    write_file(out / "runs.csv", s);
-  }
-
-  std::ostringstream cfg;
-  cfg << "clearance " << o.clearance << " m; stochastic planners: " << o.seeds << " seeds (0.."
-      << o.seeds - 1 << "), deterministic planners: " << o.repeat
-      << " runs (time medians); metric columns are medians over the successful runs; plan time is "
-         "the median over all runs.";
-
+/** Table 6/7: every planner on each paper map. */
+void write_compare(const Ctx& x) {
+  const fs::path& out = x.out;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& paper_names = x.paper_names;
+  const std::vector<std::string>& planners = x.planners;
   // ---- Table 6/7
   {
     std::string csv = "map,planner," + agg_csv_header() + "\n";
-    std::string md =
-        "### Table 6/7: planners on Map1-Map6 (static obstacles)\n\n" + cfg.str() + "\n\n";
+    std::string md = "### Table 6/7: planners on Map1-Map6 (static obstacles)\n\n" + x.cfg + "\n\n";
     for (const std::string& m : paper_names) {
       md += "\n**" + m + "**\n\n" + agg_md_header("planner");
       for (const std::string& p : planners) {
@@ -549,11 +588,17 @@ int run(int argc, char** argv) {
     write_file(out / "table_compare.csv", csv);
     write_file(out / "table_compare.md", md);
   }
+}
 
+/** The random maps' table. */
+void write_random(const Ctx& x) {
+  const fs::path& out = x.out;
+  const std::vector<MapCase>& cases = x.cases;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& rplanners = x.rplanners;
+  const tdo_bench::RandomSpec& spec = x.spec;
   // ---- random maps
-  std::vector<std::string> random_names;
-  for (const MapCase& c : cases)
-    if (c.set == "random") random_names.push_back(c.name);
+  const std::vector<std::string> random_names = names_in_set(cases, "random");
   {
     std::string csv = "planner,maps," + agg_csv_header() + "\n";
     std::string md = "### Random maps\n\n" + std::to_string(random_names.size()) + " maps of " +
@@ -577,7 +622,14 @@ int run(int argc, char** argv) {
     write_file(out / "table_random.csv", csv);
     write_file(out / "table_random.md", md);
   }
+}
 
+/** Table 8: the ablation models. */
+void write_ablation(const Ctx& x) {
+  const Options& o = x.o;
+  const fs::path& out = x.out;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& paper_names = x.paper_names;
   // ---- Table 8
   if (o.ablation && !paper_names.empty()) {
     const char* keys[] = {"length_m", "turns",      "avg_curvature",
@@ -637,7 +689,14 @@ int run(int argc, char** argv) {
     write_file(out / "table_ablation.csv", csv);
     write_file(out / "table_ablation.md", md + "\nPer map:\n" + per_map);
   }
+}
 
+/** Table 3: sensitivity to lambda and mu. */
+void write_sensitivity(const Ctx& x) {
+  const fs::path& out = x.out;
+  const std::vector<std::string>& paper_names = x.paper_names;
+  const bool sens = x.sens;
+  const std::vector<SensRow>& sens_rows = x.sens_rows;
   // ---- Table 3
   if (sens) {
     std::string csv =
@@ -664,11 +723,16 @@ int run(int argc, char** argv) {
     write_file(out / "table_sensitivity.csv", csv);
     write_file(out / "table_sensitivity.md", md);
   }
+}
 
+/** The forest_gen table. */
+void write_forest(const Ctx& x) {
+  const Options& o = x.o;
+  const fs::path& out = x.out;
+  const std::vector<MapCase>& cases = x.cases;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& fplanners = x.fplanners;
   // ---- forest
-  std::vector<std::string> forest_names;
-  for (const MapCase& c : cases)
-    if (c.set == "forest") forest_names.push_back(c.name);
   {
     std::string csv =
         "forest,planner,queries,runs,ok,success,median_length_m,mean_length_m,"
@@ -709,13 +773,16 @@ int run(int argc, char** argv) {
     write_file(out / "table_forest.csv", csv);
     write_file(out / "table_forest.md", md);
   }
+}
 
-  // ---- plots data: every paper and random map, first query of each forest
-  for (const MapCase& c : cases) {
-    if (c.queries.empty()) continue;
-    write_paths(out / "paths", c, c.queries.front(), runs, o.clearance);
-  }
-
+/** The goals of issue 6 in this run. */
+void write_goals(const Ctx& x) {
+  const Options& o = x.o;
+  const fs::path& out = x.out;
+  const std::vector<MapCase>& cases = x.cases;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& paper_names = x.paper_names;
+  const std::vector<std::string> forest_names = names_in_set(cases, "forest");
   // ---- goals
   {
     std::string md = "### Goals of issue 6, in this run\n\n";
@@ -806,7 +873,135 @@ int run(int argc, char** argv) {
     md += std::string(" -> ") + (g4n == 0 ? "not measured" : g4 ? "**met**" : "**not met**") + "\n";
     write_file(out / "goals.md", md);
   }
+}
 
+/** The claims page's ablation-order check (Table 8). */
+std::string claims_ablation(const Ctx& ctx) {
+  const Options& o = ctx.o;
+  const std::vector<Run>& runs = ctx.runs;
+  const std::vector<std::string>& paper_names = ctx.paper_names;
+  std::string md;
+  // Ablation order.
+  if (o.ablation && !paper_names.empty()) {
+    md +=
+        "\n**Ablation order (Table 8)**: each stage should improve turns, curvature, energy "
+        "and smoothness (means over the maps of the per-map medians). E is not a stage of the "
+        "static pipeline here (E = D by construction), so the check compares D with Full "
+        "directly; the paper's E row is not reproduced.\n\n"
+        "| metric | A | B | C | D | E | Full | improves at every step |\n"
+        "|---|---:|---:|---:|---:|---:|---:|---|\n";
+    const std::pair<const char*, bool> ms[] = {{"turns", false},
+                                               {"avg_curvature", false},
+                                               {"energy", false},
+                                               {"smoothness", true},
+                                               {"length_m", false}};
+    for (const auto& mk : ms) {
+      std::string row = std::string("| ") + mk.first + " |";
+      double prev = kNaN;
+      std::string fails;
+      for (const std::string& model : kAblation) {
+        if (model == "model-e") {  // = model-d: shown, not compared
+          std::vector<double> v;
+          for (const std::string& m : paper_names)
+            v.push_back(tdo_bench::aggregate(select(runs, m, model)).med.at(mk.first));
+          row += " " + fmt(tdo_bench::mean(v), "%.4g") + " |";
+          continue;
+        }
+        std::vector<double> v;
+        for (const std::string& m : paper_names)
+          v.push_back(tdo_bench::aggregate(select(runs, m, model)).med.at(mk.first));
+        const double x = tdo_bench::mean(v);
+        row += " " + fmt(x, "%.4g") + " |";
+        if (!std::isnan(prev) && !std::isnan(x)) {
+          const bool better = mk.second ? x > prev : x < prev;
+          if (!better) fails += (fails.empty() ? "" : ", ") + std::string("-> ") + model;
+        }
+        prev = x;
+      }
+      md += row + " " + (fails.empty() ? "yes" : "no (" + fails + ")") + " |\n";
+    }
+  }
+  return md;
+}
+
+/** The claims page's sensitivity check (Table 3). */
+std::string claims_sensitivity(const Ctx& x) {
+  const bool sens = x.sens;
+  const std::vector<SensRow>& sens_rows = x.sens_rows;
+  std::string md;
+  // Sensitivity.
+  if (sens && !sens_rows.empty()) {
+    const SensRow* ref = nullptr;
+    const SensRow* best_turns = nullptr;
+    const SensRow* best_len = nullptr;
+    for (const SensRow& r : sens_rows) {
+      if (std::fabs(r.lambda - 50.0) < 1e-9 && std::fabs(r.mu - 20.0) < 1e-9) ref = &r;
+      if (r.ok != r.n) continue;
+      if (!best_turns || tdo_bench::mean(r.turns) < tdo_bench::mean(best_turns->turns))
+        best_turns = &r;
+      if (!best_len || tdo_bench::mean(r.len) < tdo_bench::mean(best_len->len)) best_len = &r;
+    }
+    md +=
+        "\n**Sensitivity (Table 3)**: the paper finds lambda = 50, mu = 20 the best "
+        "compromise of length and turns.";
+    if (ref) {
+      int dominated_by = 0;
+      for (const SensRow& r : sens_rows) {
+        if (r.ok != r.n || &r == ref) continue;
+        const double l = tdo_bench::mean(r.len), t = tdo_bench::mean(r.turns);
+        const double l0 = tdo_bench::mean(ref->len), t0 = tdo_bench::mean(ref->turns);
+        if (l <= l0 && t <= t0 && (l < l0 || t < t0)) ++dominated_by;
+      }
+      md += " Here (50, 20) gives mean length " + fmt(tdo_bench::mean(ref->len), "%.2f") +
+            " m and " + fmt(tdo_bench::mean(ref->turns), "%.2f") + " turns; " +
+            std::to_string(dominated_by) + " grid points are better in both -> " +
+            (dominated_by == 0 ? "**reproduces** (on the Pareto front of length and turns)"
+                               : "**does not reproduce** (not on the Pareto front)") +
+            ".";
+    }
+    if (best_turns)
+      md += " Fewest turns: (" + fmt(best_turns->lambda, "%g") + ", " + fmt(best_turns->mu, "%g") +
+            ") with " + fmt(tdo_bench::mean(best_turns->turns), "%.2f") + ".";
+    // "Smaller lambda: shorter paths but more turns": smallest against largest lambda, means
+    // over every mu of that lambda.
+    {
+      const double lmin = sens_rows.front().lambda, lmax = sens_rows.back().lambda;
+      std::vector<double> len_lo, len_hi, tu_lo, tu_hi;
+      for (const SensRow& r : sens_rows) {
+        if (std::fabs(r.lambda - lmin) < 1e-12) {
+          len_lo.push_back(tdo_bench::mean(r.len));
+          tu_lo.push_back(tdo_bench::mean(r.turns));
+        }
+        if (std::fabs(r.lambda - lmax) < 1e-12) {
+          len_hi.push_back(tdo_bench::mean(r.len));
+          tu_hi.push_back(tdo_bench::mean(r.turns));
+        }
+      }
+      const double a = tdo_bench::mean(len_lo), b = tdo_bench::mean(len_hi);
+      const double c = tdo_bench::mean(tu_lo), d = tdo_bench::mean(tu_hi);
+      md += " The paper: smaller lambda gives shorter paths with more turns. Lambda " +
+            fmt(lmin, "%g") + " vs " + fmt(lmax, "%g") + " (means over mu): length " +
+            fmt(a, "%.2f") + " vs " + fmt(b, "%.2f") + " m, turns " + fmt(c, "%.2f") + " vs " +
+            fmt(d, "%.2f") + " -> " +
+            (a < b && c > d   ? "**reproduces**"
+             : a < b || c > d ? "**partly** (one of the two)"
+                              : "**does not reproduce**") +
+            ".";
+    }
+    if (best_len)
+      md += " Shortest: (" + fmt(best_len->lambda, "%g") + ", " + fmt(best_len->mu, "%g") +
+            ") with " + fmt(tdo_bench::mean(best_len->len), "%.2f") + " m.";
+    md += "\n";
+  }
+  return md;
+}
+
+/** The paper's claims against this run. */
+void write_claims(const Ctx& x) {
+  const fs::path& out = x.out;
+  const std::vector<Run>& runs = x.runs;
+  const std::vector<std::string>& paper_names = x.paper_names;
+  const std::vector<std::string>& planners = x.planners;
   // ---- claims
   {
     std::string md =
@@ -844,115 +1039,47 @@ int run(int argc, char** argv) {
               " | " + pct(red) + " | " + pct(paper) + " | " + verdict(red, paper) + " |\n";
       }
     }
-    // Ablation order.
-    if (o.ablation && !paper_names.empty()) {
-      md +=
-          "\n**Ablation order (Table 8)**: each stage should improve turns, curvature, energy "
-          "and smoothness (means over the maps of the per-map medians). E is not a stage of the "
-          "static pipeline here (E = D by construction), so the check compares D with Full "
-          "directly; the paper's E row is not reproduced.\n\n"
-          "| metric | A | B | C | D | E | Full | improves at every step |\n"
-          "|---|---:|---:|---:|---:|---:|---:|---|\n";
-      const std::pair<const char*, bool> ms[] = {{"turns", false},
-                                                 {"avg_curvature", false},
-                                                 {"energy", false},
-                                                 {"smoothness", true},
-                                                 {"length_m", false}};
-      for (const auto& mk : ms) {
-        std::string row = std::string("| ") + mk.first + " |";
-        double prev = kNaN;
-        std::string fails;
-        for (const std::string& model : kAblation) {
-          if (model == "model-e") {  // = model-d: shown, not compared
-            std::vector<double> v;
-            for (const std::string& m : paper_names)
-              v.push_back(tdo_bench::aggregate(select(runs, m, model)).med.at(mk.first));
-            row += " " + fmt(tdo_bench::mean(v), "%.4g") + " |";
-            continue;
-          }
-          std::vector<double> v;
-          for (const std::string& m : paper_names)
-            v.push_back(tdo_bench::aggregate(select(runs, m, model)).med.at(mk.first));
-          const double x = tdo_bench::mean(v);
-          row += " " + fmt(x, "%.4g") + " |";
-          if (!std::isnan(prev) && !std::isnan(x)) {
-            const bool better = mk.second ? x > prev : x < prev;
-            if (!better) fails += (fails.empty() ? "" : ", ") + std::string("-> ") + model;
-          }
-          prev = x;
-        }
-        md += row + " " + (fails.empty() ? "yes" : "no (" + fails + ")") + " |\n";
-      }
-    }
-    // Sensitivity.
-    if (sens && !sens_rows.empty()) {
-      const SensRow* ref = nullptr;
-      const SensRow* best_turns = nullptr;
-      const SensRow* best_len = nullptr;
-      for (const SensRow& r : sens_rows) {
-        if (std::fabs(r.lambda - 50.0) < 1e-9 && std::fabs(r.mu - 20.0) < 1e-9) ref = &r;
-        if (r.ok != r.n) continue;
-        if (!best_turns || tdo_bench::mean(r.turns) < tdo_bench::mean(best_turns->turns))
-          best_turns = &r;
-        if (!best_len || tdo_bench::mean(r.len) < tdo_bench::mean(best_len->len)) best_len = &r;
-      }
-      md +=
-          "\n**Sensitivity (Table 3)**: the paper finds lambda = 50, mu = 20 the best "
-          "compromise of length and turns.";
-      if (ref) {
-        int dominated_by = 0;
-        for (const SensRow& r : sens_rows) {
-          if (r.ok != r.n || &r == ref) continue;
-          const double l = tdo_bench::mean(r.len), t = tdo_bench::mean(r.turns);
-          const double l0 = tdo_bench::mean(ref->len), t0 = tdo_bench::mean(ref->turns);
-          if (l <= l0 && t <= t0 && (l < l0 || t < t0)) ++dominated_by;
-        }
-        md += " Here (50, 20) gives mean length " + fmt(tdo_bench::mean(ref->len), "%.2f") +
-              " m and " + fmt(tdo_bench::mean(ref->turns), "%.2f") + " turns; " +
-              std::to_string(dominated_by) + " grid points are better in both -> " +
-              (dominated_by == 0 ? "**reproduces** (on the Pareto front of length and turns)"
-                                 : "**does not reproduce** (not on the Pareto front)") +
-              ".";
-      }
-      if (best_turns)
-        md += " Fewest turns: (" + fmt(best_turns->lambda, "%g") + ", " +
-              fmt(best_turns->mu, "%g") + ") with " +
-              fmt(tdo_bench::mean(best_turns->turns), "%.2f") + ".";
-      // "Smaller lambda: shorter paths but more turns": smallest against largest lambda, means
-      // over every mu of that lambda.
-      {
-        const double lmin = sens_rows.front().lambda, lmax = sens_rows.back().lambda;
-        std::vector<double> len_lo, len_hi, tu_lo, tu_hi;
-        for (const SensRow& r : sens_rows) {
-          if (std::fabs(r.lambda - lmin) < 1e-12) {
-            len_lo.push_back(tdo_bench::mean(r.len));
-            tu_lo.push_back(tdo_bench::mean(r.turns));
-          }
-          if (std::fabs(r.lambda - lmax) < 1e-12) {
-            len_hi.push_back(tdo_bench::mean(r.len));
-            tu_hi.push_back(tdo_bench::mean(r.turns));
-          }
-        }
-        const double a = tdo_bench::mean(len_lo), b = tdo_bench::mean(len_hi);
-        const double c = tdo_bench::mean(tu_lo), d = tdo_bench::mean(tu_hi);
-        md += " The paper: smaller lambda gives shorter paths with more turns. Lambda " +
-              fmt(lmin, "%g") + " vs " + fmt(lmax, "%g") + " (means over mu): length " +
-              fmt(a, "%.2f") + " vs " + fmt(b, "%.2f") + " m, turns " + fmt(c, "%.2f") + " vs " +
-              fmt(d, "%.2f") + " -> " +
-              (a < b && c > d   ? "**reproduces**"
-               : a < b || c > d ? "**partly** (one of the two)"
-                                : "**does not reproduce**") +
-              ".";
-      }
-      if (best_len)
-        md += " Shortest: (" + fmt(best_len->lambda, "%g") + ", " + fmt(best_len->mu, "%g") +
-              ") with " + fmt(tdo_bench::mean(best_len->len), "%.2f") + " m.";
-      md += "\n";
-    }
+    md += claims_ablation(x);
+    md += claims_sensitivity(x);
     write_file(out / "claims.md", md);
   }
+}
 
-  std::printf("runs: %zu\nwrote %s\n", runs.size(), out.string().c_str());
+int run(int argc, char** argv) {
+  Ctx x;
+  const int parsed = parse_options(argc, argv, &x.o);
+  if (parsed >= 0) return parsed;
+  Bench bench(x.o);
+  setup(x, bench);
+  load_cases(x);
+  plan_all(x, bench);
+  // ---- runs.csv
+  {
+    std::string s = csv_run_header();
+    for (const Run& r : x.runs) s += csv_run(r);
+    write_file(x.out / "runs.csv", s);
+  }
+
+  std::ostringstream cfg;
+  cfg << "clearance " << x.o.clearance << " m; stochastic planners: " << x.o.seeds << " seeds (0.."
+      << x.o.seeds - 1 << "), deterministic planners: " << x.o.repeat
+      << " runs (time medians); metric columns are medians over the successful runs; plan time is "
+         "the median over all runs.";
+  x.cfg = cfg.str();
+
+  write_compare(x);
+  write_random(x);
+  write_ablation(x);
+  write_sensitivity(x);
+  write_forest(x);
+  // plots data: every paper and random map, first query of each forest
+  for (const MapCase& c : x.cases) {
+    if (c.queries.empty()) continue;
+    write_paths(x.out / "paths", c, c.queries.front(), x.runs, x.o.clearance);
+  }
+  write_goals(x);
+  write_claims(x);
+  std::printf("runs: %zu\nwrote %s\n", x.runs.size(), x.out.string().c_str());
   return 0;
 }
 

@@ -47,7 +47,7 @@ numbers come from other maps and MATLAB; only the relations between planners are
 
 | name | what |
 |---|---|
-| `tdo` | the full TDO-MSF pipeline: turn-deviation bidirectional A* (lambda 50, mu 20, theta_max 45 deg), multi-scale correction, G2 corners, time parameterisation with feasibility refinement |
+| `tdo` | the full TDO-MSF pipeline: turn-deviation bidirectional A* (the library's default parameters: `tdo-plan --list-params`), multi-scale correction, G2 corners, time parameterisation with feasibility refinement |
 | `msf-mtpo` | the paper's baseline as described: bidirectional A* without turn/deviation terms, single-scale greedy line-of-sight correction, arc corners (eq. 8 radius), same stage 5 |
 | `astar` | "Original A*": raw 26-connected grid path |
 | `rrtconnect`, `rrtconnect-simplify` | OMPL 1.5 RRTConnect in the map bounds, raw / after `PathSimplifier::simplifyMax`; state check = libtdo exact point clearance, motion check = libtdo exact segment clearance; at most 100000 iterations (stands in for "Improved RRT") |
@@ -70,7 +70,7 @@ its static obstacles (its movers are the E-APF's business).
 | model | configuration |
 |---|---|
 | A | bidirectional A*, lambda = mu = 0, no direction constraint, raw grid path |
-| B | A + turn-deviation cost: lambda 50, mu 20, theta_max 45 deg, first meeting; raw grid path |
+| B | A + turn-deviation cost at the library's defaults (`tdo-plan --list-params`), first meeting; raw grid path |
 | C | B + multi-scale inflection correction (polyline P2) |
 | D | C + curvature-constrained adaptive-radius smoothing with the paper's circular arcs (eq. 8 radius, `smoothing = arc`), time-parameterised once, no refinement |
 | E | D + trajectory-guided E-APF. The E-APF is the online tracker (`docs/design.md` s.4); it does not change a static plan, so E plans exactly like D. Not a reproduction of the paper's E row |

@@ -42,32 +42,20 @@ struct Options {
   bool json = false;
   bool optimum = false;   /**< print the v/a time optimum along the plan's own path */
   double clearance = 0.0; /**< m; default depends on the map kind */
-  long long max_expansions = 0;
   long long max_nodes = 4000000;
   long long max_open = 0; /**< open-list items per direction; 0 = max_nodes */
   std::string scen_path;
   long long limit = 0;
-  double lambda = 0.0;      /**< m of cost per (turn/pi)^2 */
-  double mu = 0.0;          /**< m of f per unit deviation */
-  double theta_max = 45.0;  /**< deg, direction constraint of the tdo search */
-  double v_max = 3.0;       /**< m/s */
-  double a_max = 3.0;       /**< m/s^2 */
-  double j_max = 10.0;      /**< m/s^3 */
-  double k = 1.0;           /**< corner radius scale */
-  double dt = 0.01;         /**< s, trajectory sample period */
-  double corner_time = 1.0; /**< G2 corner shapes for flight time (0 = Yang-Sukkarieh) */
-  std::string smoothing = "g2";
-  std::string correction = "multiscale";
-  std::string shorten = "on";
-  double h_weight = 1.0;           /**< heuristic weight of the turn-penalised search */
-  std::string stop = "first-meet"; /**< tdo bidirectional stopping rule */
+  std::string stop = "first-meet"; /**< tdo bidirectional stopping rule (first_meet) */
   std::string retry = "on";        /**< obstacle-aware retry of a flooding tdo search */
-  std::string states = "heading";  /**< states of the tdo search: heading | voxel */
   std::string guide = "on";        /**< coarse guide of turn-penalised searches on large grids */
-  double d_th = 0.0;               /**< deviation threshold, 0 = off */
-  double a_lat_max = 0.0;          /**< m/s^2, 0 = a_max */
-  double v_cruise = 0.0;           /**< m/s, 0 = v_max */
-  double stop_angle = 150.0;       /**< deg */
+  /** One option per row of tdo/params.h but depth, search, first_meet and grid_first (the
+   *  planner, --stop and --retry set those), indexed by row; angles in degrees. */
+  std::vector<double> real;
+  std::vector<long long> whole;
+  std::vector<std::string> named;
+  std::vector<bool> given;
+  tdo_plan_params params{}; /**< the parameters planned with (plan_params) */
   long long seed = 0;
   long long max_voxels = 100000000; /**< hidden: voxel capacity of the planner */
   long long arena_bytes = -1;       /**< hidden: arena size override (-1 = footprint) */
@@ -110,35 +98,53 @@ tdo_vec3 to_vec(const std::vector<double>& v, const char* name) {
   return tdo_vec3{v[0], v[1], v[2]};
 }
 
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+bool is_angle(const tdo_param_info& r) { return std::string(r.unit) == "rad"; }
+
+/** Rows tdo-plan sets through --planner, --stop and --retry, not by an option of their own. */
+bool own_option(const tdo_param_info& r) {
+  const std::string n = r.name;
+  return n != "depth" && n != "search" && n != "first_meet" && n != "grid_first";
+}
+
+std::string option_name(const tdo_param_info& r) {
+  std::string n = std::string("--") + r.name;
+  std::replace(n.begin(), n.end(), '_', '-');
+  return n;
+}
+
+/** A value of row r in tdo-plan's units (degrees for angles, 12 digits: 45, not 45.000000001). */
+double shown(const tdo_param_info& r, double v) {
+  return is_angle(r) ? std::stod(fmt(v / kDeg, 12)) : v;
+}
+
+/** Refuse a real option outside its row's range, in the option's units. */
+void check_row(const tdo_param_info& r, double v) {
+  const std::string name = option_name(r);
+  const double scale = is_angle(r) ? 1.0 / kDeg : 1.0;
+  check_finite(v, name.c_str());
+  const double lo = r.min * scale;
+  const double hi = r.max * scale;
+  if (r.min_open ? !(v > lo) : !(v >= lo))
+    throw BadInput{name + " must be " + (r.min_open ? "> " : ">= ") + fmt(lo) + ", got " + fmt(v)};
+  if (r.max_open ? !(v < hi) : !(v <= hi))
+    throw BadInput{name + " must be " + (r.max_open ? "below " : "at most ") + fmt(hi) +
+                   (is_angle(r) ? " degrees" : "") + ", got " + fmt(v)};
+}
+
 void validate(const Options& o) {
-  check_nonneg(o.lambda, "--lambda");
-  check_nonneg(o.mu, "--mu");
-  check_nonneg(o.theta_max, "--theta-max");  // 0 (or 180): unconstrained, as in the library
-  if (o.theta_max > 180.0)
-    throw BadInput{"--theta-max must be at most 180 degrees, got " + fmt(o.theta_max)};
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (!own_option(r) || !o.given[i]) continue;
+    if (r.type == TDO_PARAM_REAL) check_row(r, o.real[i]);
+    if (r.type == TDO_PARAM_UINT &&
+        (static_cast<double>(o.whole[i]) < r.min || static_cast<double>(o.whole[i]) > r.max))
+      throw BadInput{option_name(r) + " must be in [" + fmt(r.min, 12) + ", " + fmt(r.max, 12) +
+                     "], got " + std::to_string(o.whole[i])};
+  }
   if (o.clearance_given) check_nonneg(o.clearance, "--clearance");
   if (o.resolution_given) check_positive(o.resolution, "--resolution");
-  check_positive(o.v_max, "--v-max");
-  check_positive(o.a_max, "--a-max");
-  check_positive(o.j_max, "--j-max");
-  check_positive(o.k, "--k");
-  check_positive(o.dt, "--dt");
-  check_nonneg(o.corner_time, "--corner-time");
-  if (o.corner_time > 1.0)
-    throw BadInput{"--corner-time must be at most 1, got " + fmt(o.corner_time)};
-  check_finite(o.h_weight, "--h-weight");
-  if (o.h_weight < 1.0) throw BadInput{"--h-weight must be >= 1, got " + fmt(o.h_weight)};
-  check_nonneg(o.d_th, "--d-th");
-  if (o.d_th >= 1.0) throw BadInput{"--d-th must be below 1 (0 = off), got " + fmt(o.d_th)};
-  check_nonneg(o.a_lat_max, "--a-lat-max");
-  check_nonneg(o.v_cruise, "--v-cruise");
-  check_positive(o.stop_angle, "--stop-angle");
-  if (o.stop_angle > 180.0)
-    throw BadInput{"--stop-angle must be at most 180 degrees, got " + fmt(o.stop_angle)};
-  if (o.max_expansions < 0 || o.max_expansions > 0xFFFFFFFFLL) {
-    throw BadInput{"--max-expansions must be in [0, 4294967295], got " +
-                   std::to_string(o.max_expansions)};
-  }
   if (o.max_nodes <= 0 || o.max_nodes > 0xFFFFFFF0LL) {
     throw BadInput{"--max-nodes must be in [1, 4294967280], got " + std::to_string(o.max_nodes)};
   }
@@ -174,6 +180,84 @@ bool is_bad_input(tdo_status st) {
   }
 }
 
+/** True when a turn-deviation row (has_plain) is not at its plain value. */
+bool turn_terms_on(const tdo_plan_params& pp) {
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    const double v = tdo_param_get(&pp, i);
+    if (r.has_plain != 0 && (v < r.plain || v > r.plain)) return true;
+  }
+  return false;
+}
+
+std::string value_list(const tdo_param_info& r) {
+  std::string s;
+  for (uint32_t k = 0; k < r.n_values; ++k) s += (k ? " | " : "") + std::string(r.values[k]);
+  return s;
+}
+
+/** One option per table row tdo-plan does not set itself, in the row's units (degrees). */
+void add_param_options(CLI::App& app, Options& o) {
+  const uint32_t n = tdo_param_count();
+  o.real.assign(n, 0.0);
+  o.whole.assign(n, 0);
+  o.named.assign(n, std::string());
+  o.given.assign(n, false);
+  tdo_plan_params d;
+  tdo_plan_params_default(&d);
+  for (uint32_t i = 0; i < n; ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (!own_option(r)) continue;
+    const double v = tdo_param_get(&d, i);
+    std::string help = r.help;
+    if (is_angle(r))
+      help = "deg, " + help;
+    else if (r.unit[0] != '\0')
+      help = std::string(r.unit) + ", " + help;
+    if (r.has_plain != 0)
+      help += " (tdo: " + fmt(shown(r, v)) + ", other planners: " + fmt(shown(r, r.plain)) + ")";
+    if (r.default_of >= 0) help += " (default: " + option_name(*tdo_param_at(r.default_of)) + ")";
+    const std::string name = r.name;
+    if (name == "correction") help += " (msf-mtpo: greedy)";
+    if (name == "smoothing") help += " (msf-mtpo: arc)";
+    if (r.type == TDO_PARAM_REAL) {
+      o.real[i] = shown(r, v);
+      auto* opt = app.add_option(option_name(r), o.real[i], help);
+      if (r.has_plain == 0 && r.default_of < 0) opt->capture_default_str();
+    } else if (r.type == TDO_PARAM_UINT) {
+      o.whole[i] = static_cast<long long>(v);
+      app.add_option(option_name(r), o.whole[i], help)->capture_default_str();
+    } else {
+      o.named[i] = r.values[static_cast<uint32_t>(v)];
+      std::vector<std::string> values(r.values, r.values + r.n_values);
+      app.add_option(option_name(r), o.named[i], value_list(r) + ": " + help)
+          ->check(CLI::IsMember(values))
+          ->capture_default_str();
+    }
+  }
+}
+
+/** --list-params: the table of tdo/params.h, one row per line. */
+void print_params() {
+  std::printf("%-16s %-6s %-6s %-12s %-24s %-10s %s\n", "name", "type", "unit", "default", "valid",
+              "stage", "help");
+  static const char* const kType[] = {"real", "uint", "bool", "enum"};
+  static const char* const kStage[] = {"search", "correct", "smooth", "trajectory"};
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    std::string def = r.n_values > 0 ? r.values[static_cast<uint32_t>(r.def)] : fmt(r.def, 12);
+    if (r.default_of >= 0) def = tdo_param_at(r.default_of)->name;
+    std::string valid = r.n_values > 0 ? value_list(r)
+                                       : std::string(r.min_open ? "(" : "[") + fmt(r.min, 12) +
+                                             ", " + (std::isinf(r.max) ? "inf" : fmt(r.max, 12)) +
+                                             (r.max_open || std::isinf(r.max) ? ")" : "]");
+    std::printf("%-16s %-6s %-6s %-12s %-24s %-10s %s\n", r.name, kType[r.type],
+                r.unit[0] != '\0' ? r.unit : "-", def.c_str(), valid.c_str(), kStage[r.stage],
+                r.help);
+  }
+  std::fflush(stdout);
+}
+
 /** The planner and the arena it lives in. */
 struct Planner {
   std::unique_ptr<unsigned char[]> memory;
@@ -191,8 +275,8 @@ double voxel_count(const tdo_grid_desc& d) {
 /** Size, allocate and initialise the planner, then load the map. Throws BadInput. */
 void build_planner(const Options& o, const tdo_io::Map& map, double clearance, Planner* p) {
   // Voxel states need one state per voxel, as plain A* does (tdo_state_space).
-  const bool penalised = o.lambda > 0.0 || o.mu > 0.0 || o.planner == "tdo";
-  const uint32_t headings = penalised && o.states != "voxel" ? 27u : 1u;
+  const bool penalised = o.planner == "tdo" || turn_terms_on(o.params);
+  const uint32_t headings = penalised && o.params.states != TDO_STATES_VOXEL ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
@@ -317,70 +401,71 @@ const char* kind_name(tdo_io::MapKind k) {
   return "?";
 }
 
-nlohmann::json params_json(const Options& o, double clearance, long long max_expansions,
-                           double resolution) {
+/** Every option of a table row with the value planned with (angles in degrees). */
+nlohmann::json params_json(const Options& o, double clearance, double resolution) {
   nlohmann::json p;
   p["resolution"] = resolution;
-  p["lambda"] = o.lambda;
-  p["mu"] = o.mu;
-  p["theta_max_deg"] = o.theta_max;
-  p["h_weight"] = o.h_weight;
-  p["d_th"] = o.d_th;
   p["stop"] = o.stop;
-  p["correction"] = o.correction;
-  p["shorten"] = o.shorten;
   p["retry"] = o.retry;
-  p["states"] = o.states;
-  p["a_lat_max"] = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
-  p["v_cruise"] = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
-  p["stop_angle_deg"] = o.stop_angle;
   p["clearance"] = clearance;
-  p["v_max"] = o.v_max;
-  p["a_max"] = o.a_max;
-  p["j_max"] = o.j_max;
-  p["k"] = o.k;
-  p["dt"] = o.dt;
-  p["corner_time"] = o.corner_time;
-  p["smoothing"] = o.smoothing;
   p["seed"] = o.seed;
-  p["max_expansions"] = max_expansions;
   p["max_nodes"] = o.max_nodes;
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (!own_option(r)) continue;
+    const double v = tdo_param_get(&o.params, i);
+    const std::string key = std::string(r.name) + (is_angle(r) ? "_deg" : "");
+    if (r.type == TDO_PARAM_REAL)
+      p[key] = o.given[i] ? o.real[i] : shown(r, v);
+    else if (r.type == TDO_PARAM_UINT)
+      p[key] = static_cast<long long>(v);
+    else
+      p[key] = r.values[static_cast<uint32_t>(v)];
+  }
   return p;
 }
 
-/** The pipeline parameters of a planner preset, with the command line's values. */
+/** The turn-deviation rows (has_plain) with their values, e.g. "lambda 50, mu 20, ...". */
+std::string turn_terms_text(const tdo_plan_params& pp) {
+  std::string s;
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (r.has_plain == 0 || r.type != TDO_PARAM_REAL) continue;
+    s += (s.empty() ? "" : ", ") + std::string(r.name) + " " +
+         fmt(shown(r, tdo_param_get(&pp, i))) + (is_angle(r) ? " deg" : "");
+  }
+  return s;
+}
+
+/** The pipeline parameters of a planner preset, with the command line's values: the library's
+ *  defaults for tdo, the plain search (tdo_plan_params_plain) for the others, then every option
+ *  given; a row with default_of follows its source unless given. */
 tdo_plan_params plan_params(const Options& o, tdo_search_kind kind) {
   tdo_plan_params pp;
   tdo_plan_params_default(&pp);
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  const bool tdo = o.planner == "tdo";
+  if (!tdo) tdo_plan_params_plain(&pp);
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (!own_option(r)) continue;
+    double v = tdo_param_get(&pp, i);
+    if (r.type == TDO_PARAM_BOOL || r.type == TDO_PARAM_ENUM) {
+      for (uint32_t k = 0; k < r.n_values; ++k)
+        if (o.named[i] == r.values[k]) v = k;
+    } else if (o.given[i]) {
+      v = r.type == TDO_PARAM_UINT ? static_cast<double>(o.whole[i])
+                                   : o.real[i] * (is_angle(r) ? kDeg : 1.0);
+    } else if (r.default_of >= 0) {
+      v = tdo_param_get(&pp, static_cast<uint32_t>(r.default_of));
+    }
+    if (tdo_param_set(&pp, i, v) != TDO_OK)
+      throw BadInput{option_name(r) + ": " + fmt(v) + " cannot be held"};
+  }
   pp.search = kind;
-  pp.lambda = o.lambda;
-  pp.mu = o.mu;
-  pp.theta_max = o.planner == "tdo" ? o.theta_max * kDeg : 0.0;
-  pp.h_weight = o.h_weight;
-  pp.first_meet = o.planner == "tdo" ? (o.stop == "first-meet" ? 1 : 0) : 0;
+  pp.first_meet = tdo ? (o.stop == "first-meet" ? 1 : 0) : 0;
   pp.grid_first = o.retry == "first"         ? TDO_GRID_FIRST_PLAIN
                   : o.retry == "first-terms" ? TDO_GRID_FIRST_TERMS
                                              : TDO_GRID_FIRST_OFF;
-  pp.states = o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING;
-  pp.d_th = o.d_th;
-  pp.max_expansions = static_cast<uint32_t>(o.max_expansions);
-  pp.correction = o.correction == "greedy" ? TDO_CORRECT_GREEDY_LOS
-                  : o.correction == "none" ? TDO_CORRECT_NONE
-                                           : TDO_CORRECT_MULTISCALE;
-  pp.shorten = o.shorten == "on" ? 1 : 0;
-  pp.smoothing = o.smoothing == "arc"    ? TDO_SMOOTHING_ARC
-                 : o.smoothing == "none" ? TDO_SMOOTHING_NONE
-                                         : TDO_SMOOTHING_G2;
-  pp.k = o.k;
-  pp.v_max = o.v_max;
-  pp.a_max = o.a_max;
-  pp.j_max = o.j_max;
-  pp.a_lat_max = o.a_lat_max > 0.0 ? o.a_lat_max : o.a_max;
-  pp.v_cruise = o.v_cruise > 0.0 ? o.v_cruise : o.v_max;
-  pp.stop_angle = o.stop_angle * kDeg;
-  pp.dt = o.dt;
-  pp.corner_time = o.corner_time;
   pp.depth = (o.planner == "astar" || o.planner == "bidir") ? TDO_PLAN_SEARCH : TDO_PLAN_TRAJECTORY;
   return pp;
 }
@@ -447,16 +532,7 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
     in.grid = p.grid;
     in.start = q.start;
     in.goal = q.goal;
-    in.kind = kind;
-    in.lambda = pp.lambda;
-    in.mu = pp.mu;
-    in.theta_max = pp.theta_max;
-    in.d_th = pp.d_th;
-    in.h_weight = pp.h_weight;
-    in.first_meet = pp.first_meet;
-    in.grid_first = pp.grid_first;
-    in.states = pp.states;
-    in.max_expansions = static_cast<uint32_t>(o.max_expansions);
+    tdo_plan_search_input(&pp, &in);  // pp.search is kind
     tdo_search_output out{};
     const auto t0 = std::chrono::steady_clock::now();
     const tdo_status st = tdo_search_run(p.search, &in, &out);
@@ -493,7 +569,7 @@ tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) 
   std::vector<tdo_vec3> pts;
   pts.reserve(res.n_samples);
   for (uint32_t i = 0; i < res.n_samples; ++i) pts.push_back(res.samples[i].p);
-  return tdo_tools::va_optimum(pts, o.v_max, o.a_max);
+  return tdo_tools::va_optimum(pts, o.params.v_max, o.params.a_max);
 }
 
 /** One query: plan, print JSON or a summary. */
@@ -537,7 +613,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     nlohmann::json j;
     j["status"] = tdo_status_str(st);
     j["planner"] = o.planner;
-    j["params"] = params_json(o, clearance, o.max_expansions, map.desc.res);
+    j["params"] = params_json(o, clearance, map.desc.res);
     j["grid_path"] = points_json(res.grid_path, res.n_grid_path);
     if (res.reached >= TDO_PLAN_CORRECT)
       j["waypoints"] = points_json(res.waypoints, res.n_waypoints);
@@ -578,9 +654,8 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     const tdo_grid_desc& d = map.desc;
     std::printf("map              %s (%s, %d x %d x %d voxels, res %s m)\n", map.path.c_str(),
                 kind_name(map.kind), d.nx, d.ny, d.nz, fmt(d.res).c_str());
-    std::printf("planner          %s (lambda %s, mu %s, theta_max %s deg, clearance %s m)\n",
-                o.planner.c_str(), fmt(o.lambda).c_str(), fmt(o.mu).c_str(),
-                fmt(o.theta_max).c_str(), fmt(clearance).c_str());
+    std::printf("planner          %s (%s, clearance %s m)\n", o.planner.c_str(),
+                turn_terms_text(req.params).c_str(), fmt(clearance).c_str());
     std::printf("start -> goal    %s -> %s\n", fmt_vec(start).c_str(), fmt_vec(goal).c_str());
     std::printf("status           %s\n", tdo_status_str(st));
     if (planned) {
@@ -707,8 +782,11 @@ int run(int argc, char** argv) {
       "Plan a path on a voxel map with libtdo.\n"
       "Exit status: 0 planned, 1 no plan (status printed), 2 bad input.",
       "tdo-plan"};
-  app.add_option("--map", o.map_path, "map file: .tdomap, MovingAI .3dmap, OctoMap OcTree .bt/.ot")
-      ->required();
+  bool list_params = false;
+  app.add_option("--map", o.map_path,
+                 "map file: .tdomap, MovingAI .3dmap, OctoMap OcTree .bt/.ot (required)");
+  app.add_flag("--list-params", list_params,
+               "print the table of plan parameters (libtdo's tdo/params.h) and exit");
   app.add_option("--resolution", o.resolution,
                  "m, voxel edge an OcTree map (.bt/.ot) is voxelized at (default: the tree's)");
   app.add_option("--start", o.start, "start X Y Z in m (default: the map's 'start')")->expected(3);
@@ -726,9 +804,6 @@ int run(int argc, char** argv) {
   app.add_option(
       "--clearance", o.clearance,
       "m kept from obstacles (default 0.5 for .tdomap, 0 for .3dmap: MovingAI grid rules alone)");
-  app.add_option("--max-expansions", o.max_expansions,
-                 "expansion budget of one search (0 = the default, 2 x --max-nodes)")
-      ->capture_default_str();
   app.add_option("--max-nodes", o.max_nodes, "search states per direction (sizes the arena)")
       ->capture_default_str();
   app.add_option("--max-open", o.max_open,
@@ -739,25 +814,13 @@ int run(int argc, char** argv) {
                               "MovingAI .3dscen: plan its queries, compare costs (1e-4)");
   app.add_option("--limit", o.limit, "with --scen: only the first N queries (0 = all)")
       ->capture_default_str();
-  app.add_option("--lambda", o.lambda, "turn penalty, m of cost per (turn/pi)^2 (tdo: 50, else 0)");
-  app.add_option("--mu", o.mu, "deviation weight, m of f (tdo: 20, else 0)");
-  app.add_option("--theta-max", o.theta_max,
-                 "deg, direction constraint of the tdo search (0 or 180: unconstrained)")
-      ->capture_default_str();
-  app.add_option("--h-weight", o.h_weight,
-                 "heuristic weight (>= 1) of the turn-penalised search: speed for optimality")
-      ->capture_default_str();
+  add_param_options(app, o);
   app.add_option("--retry", o.retry,
                  "on: a tdo search whose octile-guided try floods restarts with grid distances "
                  "(24 bytes per voxel more; docs/performance.md) | first: it starts with them "
                  "(maps whose walls make the octile try flood) | first-terms: its first try "
                  "keeps the deviation term and the turn bound with grid distances in h | off")
       ->check(CLI::IsMember({"on", "off", "first", "first-terms"}));
-  app.add_option("--states", o.states,
-                 "heading: (voxel, heading) states of the tdo search | voxel: one state per voxel, "
-                 "its heading the step it was reached by (plain A*'s memory)")
-      ->check(CLI::IsMember({"heading", "voxel"}))
-      ->capture_default_str();
   app.add_option("--guide", o.guide,
                  "on: a turn-penalised search on a grid of 2^20 voxels or more first plans on "
                  "4^3-voxel cells and searches a corridor around that plan (docs/design.md s.1) "
@@ -766,31 +829,6 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))
-      ->capture_default_str();
-  app.add_option("--d-th", o.d_th, "deviation threshold in (0,1) of the tdo search (0 = off)")
-      ->capture_default_str();
-  app.add_option("--correction", o.correction, "multiscale | greedy | none (msf-mtpo: greedy)")
-      ->check(CLI::IsMember({"multiscale", "greedy", "none"}));
-  app.add_option(
-         "--shorten", o.shorten,
-         "on | off: partial shortcuts after the multiscale correction (docs/performance.md)")
-      ->check(CLI::IsMember({"on", "off"}))
-      ->capture_default_str();
-  app.add_option("--smoothing", o.smoothing, "g2 | arc | none (msf-mtpo: arc)")
-      ->check(CLI::IsMember({"g2", "arc", "none"}));
-  app.add_option("--k", o.k, "corner radius scale")->capture_default_str();
-  app.add_option("--v-max", o.v_max, "m/s")->capture_default_str();
-  app.add_option("--a-max", o.a_max, "m/s^2")->capture_default_str();
-  app.add_option("--j-max", o.j_max, "m/s^3")->capture_default_str();
-  app.add_option("--a-lat-max", o.a_lat_max, "m/s^2, lateral limit of corners (default a-max)");
-  app.add_option("--v-cruise", o.v_cruise,
-                 "m/s, sets R_min = v_cruise^2/a_lat_max (default v-max)");
-  app.add_option("--stop-angle", o.stop_angle, "deg, sharper corners become stop points")
-      ->capture_default_str();
-  app.add_option("--dt", o.dt, "s, trajectory sample period")->capture_default_str();
-  app.add_option("--corner-time", o.corner_time,
-                 "in [0, 1]: how far G2 corner shapes trade the Yang-Sukkarieh shape for flight "
-                 "time (0 = Yang-Sukkarieh)")
       ->capture_default_str();
   app.add_option("--seed", o.seed, "random seed (stochastic planners; unused by tdo)")
       ->capture_default_str();
@@ -810,19 +848,30 @@ int run(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     throw BadInput{e.what()};
   }
+
+  if (list_params) {
+    print_params();
+    return kExitOk;
+  }
+  if (o.map_path.empty()) throw BadInput{"--map is required"};
   o.clearance_given = app.count("--clearance") > 0;
   o.resolution_given = app.count("--resolution") > 0;
-
+  for (uint32_t i = 0; i < tdo_param_count(); ++i) {
+    const tdo_param_info& r = *tdo_param_at(i);
+    if (own_option(r)) o.given[i] = app.count(option_name(r)) > 0;
+  }
   // Planner presets; options given on the command line win.
-  const bool tdo = o.planner == "tdo";
-  if (app.count("--lambda") == 0) o.lambda = tdo ? 50.0 : 0.0;
-  if (app.count("--mu") == 0) o.mu = tdo ? 20.0 : 0.0;
   if (o.planner == "msf-mtpo") {
-    if (app.count("--correction") == 0) o.correction = "greedy";
-    if (app.count("--smoothing") == 0) o.smoothing = "arc";
+    const auto preset = [&o](const char* row, const char* value) {
+      const int32_t i = tdo_param_find(row);
+      if (i >= 0 && !o.given[static_cast<uint32_t>(i)]) o.named[static_cast<uint32_t>(i)] = value;
+    };
+    preset("correction", "greedy");
+    preset("smoothing", "arc");
   }
   validate(o);
   const tdo_search_kind kind = o.planner == "astar" ? TDO_SEARCH_ASTAR : TDO_SEARCH_BIDIR;
+  o.params = plan_params(o, kind);
 
   tdo_io::Map map;
   std::string err;

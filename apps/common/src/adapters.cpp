@@ -1,12 +1,15 @@
 // Messages <-> libtdo structs, with every check named (adapters.h).
 #include "tdo_lcm/adapters.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
 #include "tdo/config.h"
+#include "tdo/params.h"
 #include "tdo/status.h"
+#include "tdo_lcm/request_fields.h"
 #include "tdo_lcm/rle.h"
 
 namespace tdo_lcm {
@@ -35,12 +38,6 @@ static_assert(tdo::feasibility_t::QUANTITY_ACCELERATION == TDO_QUANTITY_ACCELERA
 static_assert(tdo::feasibility_t::QUANTITY_JERK == TDO_QUANTITY_JERK, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_TURN_RADIUS == TDO_QUANTITY_TURN_RADIUS, "quantity");
 static_assert(tdo::feasibility_t::QUANTITY_CLEARANCE == TDO_QUANTITY_CLEARANCE, "quantity");
-
-// plan_request_t carries every field of tdo_plan_params. When this fails, the library's parameters
-// changed: add the field to lcmtypes/tdo_plan_request_t.lcm, to plan_request_from_msg and
-// plan_request_to_msg and to the tests, then update the size here. (A field that fits in padding
-// does not change the size: shorten and grid_first did not. Check the field list by hand too.)
-static_assert(sizeof(tdo_plan_params) == 160, "tdo_plan_params changed: update plan_request_t");
 
 constexpr uint64_t kMaxCount = static_cast<uint64_t>(std::numeric_limits<int32_t>::max());
 
@@ -348,79 +345,73 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid) {
 
 namespace {
 
-/** `m` with libtdo's default in every field whose use_defaults bit is set (pipeline.h). */
+const tdo_param_info* row_of(const RequestField& f) {
+  return f.param >= 0 ? tdo_param_at(static_cast<uint32_t>(f.param)) : nullptr;
+}
+
+/** `m` with libtdo's default in every field whose use_defaults bit is set (tdo/params.h: a row
+ *  with default_of takes the request's value of that row, once resolved: a_lat_max <- a_max). */
 tdo::plan_request_t with_defaults(const tdo::plan_request_t& in) {
-  using R = tdo::plan_request_t;
   tdo::plan_request_t m = in;
-  const int32_t u = in.use_defaults;
-  if (u == 0) return m;
+  if (in.use_defaults == 0) return m;
   tdo_plan_params d{};
   tdo_plan_params_default(&d);
-  const auto on = [u](int32_t bit) { return (u & bit) != 0; };
-  if (on(R::USE_DEFAULT_DEPTH)) m.depth = static_cast<int8_t>(d.depth);
-  if (on(R::USE_DEFAULT_SEARCH)) m.search = static_cast<int8_t>(d.search);
-  if (on(R::USE_DEFAULT_LAMBDA_TURN)) m.lambda_turn = d.lambda;
-  if (on(R::USE_DEFAULT_MU)) m.mu = d.mu;
-  if (on(R::USE_DEFAULT_THETA_MAX)) m.theta_max = d.theta_max;
-  if (on(R::USE_DEFAULT_D_TH)) m.d_th = d.d_th;
-  if (on(R::USE_DEFAULT_H_WEIGHT)) m.h_weight = d.h_weight;
-  if (on(R::USE_DEFAULT_FIRST_MEET)) m.first_meet = d.first_meet != 0;
-  if (on(R::USE_DEFAULT_GRID_FIRST)) m.grid_first = static_cast<int8_t>(d.grid_first);
-  if (on(R::USE_DEFAULT_MAX_EXPANSIONS)) m.max_expansions = static_cast<int32_t>(d.max_expansions);
-  if (on(R::USE_DEFAULT_CORRECTION)) m.correction = static_cast<int8_t>(d.correction);
-  if (on(R::USE_DEFAULT_SHORTEN)) m.shorten = d.shorten != 0;
-  if (on(R::USE_DEFAULT_TURN_THRESHOLD)) m.turn_threshold = d.turn_threshold;
-  if (on(R::USE_DEFAULT_SMOOTHING)) m.smoothing = static_cast<int8_t>(d.smoothing);
-  if (on(R::USE_DEFAULT_K)) m.k = d.k;
-  if (on(R::USE_DEFAULT_V_MAX)) m.v_max = d.v_max;
-  if (on(R::USE_DEFAULT_A_MAX)) m.a_max = d.a_max;
-  if (on(R::USE_DEFAULT_J_MAX)) m.j_max = d.j_max;
-  // pipeline.h: a_lat_max defaults to a_max, v_cruise to v_max (the request's, once resolved).
-  if (on(R::USE_DEFAULT_A_LAT_MAX)) m.a_lat_max = m.a_max;
-  if (on(R::USE_DEFAULT_V_CRUISE)) m.v_cruise = m.v_max;
-  if (on(R::USE_DEFAULT_STOP_ANGLE)) m.stop_angle = d.stop_angle;
-  if (on(R::USE_DEFAULT_DT)) m.dt = d.dt;
-  if (on(R::USE_DEFAULT_CLEARANCE)) m.clearance = -1.0;  // the map's hint
-  if (on(R::USE_DEFAULT_STATES)) m.states = static_cast<int8_t>(d.states);
-  if (on(R::USE_DEFAULT_CORNER_TIME)) m.corner_time = d.corner_time;
+  for (const RequestField& f : request_fields()) {  // a default_of source comes first
+    if ((in.use_defaults & f.use_default_bit) == 0) continue;
+    const tdo_param_info* row = row_of(f);
+    if (row == nullptr) {
+      f.set(m, f.own_default);
+      continue;
+    }
+    double v = tdo_param_get(&d, static_cast<uint32_t>(f.param));
+    if (row->default_of >= 0) {
+      for (const RequestField& src : request_fields())
+        if (src.param == row->default_of) v = src.get(m);
+    }
+    f.set(m, v);
+  }
   return m;
 }
 
-/** The library's documented ranges (tdo_planner_plan) of the stages the request's depth runs,
- *  checked here so that a refusal names the field. */
-Check library_ranges(const tdo::plan_request_t& m) {
-  using R = tdo::plan_request_t;
-  const struct {
-    const char* name;
-    double value;
-    double min;
-    bool strict;   // value must be > min (else >= min)
-    int8_t depth;  // checked when the request runs this stage
-  } ranges[] = {{"lambda_turn", m.lambda_turn, 0.0, false, R::DEPTH_SEARCH},
-                {"mu", m.mu, 0.0, false, R::DEPTH_SEARCH},
-                {"theta_max", m.theta_max, 0.0, false, R::DEPTH_SEARCH},
-                {"d_th", m.d_th, 0.0, false, R::DEPTH_SEARCH},
-                {"h_weight", m.h_weight, 1.0, false, R::DEPTH_SEARCH},
-                {"turn_threshold", m.turn_threshold, 0.0, false, R::DEPTH_CORRECT},
-                {"k", m.k, 0.0, true, R::DEPTH_SMOOTH},
-                {"v_max", m.v_max, 0.0, true, R::DEPTH_SMOOTH},
-                {"a_max", m.a_max, 0.0, true, R::DEPTH_SMOOTH},
-                {"j_max", m.j_max, 0.0, true, R::DEPTH_SMOOTH},
-                {"a_lat_max", m.a_lat_max, 0.0, true, R::DEPTH_SMOOTH},
-                {"v_cruise", m.v_cruise, 0.0, true, R::DEPTH_SMOOTH},
-                {"stop_angle", m.stop_angle, 0.0, true, R::DEPTH_SMOOTH},
-                {"dt", m.dt, 0.0, true, R::DEPTH_TRAJECTORY}};
-  for (const auto& r : ranges) {
-    if (m.depth < r.depth) continue;
-    const bool in = r.strict ? r.value > r.min : r.value >= r.min;
-    if (!in)
-      return fail_field(Reason::out_of_range, r.name,
-                        std::string(r.name) + " = " + exact_num(r.value) + ": must be " +
-                            (r.strict ? "> " : ">= ") + exact_num(r.min));
+std::string range_text(const tdo_param_info& r) {
+  if (std::isinf(r.max)) return std::string(r.min_open ? "> " : ">= ") + exact_num(r.min);
+  return std::string(r.min_open ? "(" : "[") + exact_num(r.min) + ", " + exact_num(r.max) +
+         (r.max_open ? ")" : "]");
+}
+
+/** Finite numbers; integer fields inside their row's values (ENUM, BOOL: bad_enum; UINT:
+ *  out_of_range), whatever the depth. */
+Check field_types(const tdo::plan_request_t& m) {
+  for (const RequestField& f : request_fields()) {
+    if (f.integer) continue;
+    const Check c = need_finite(f.name, f.get(m));
+    if (!c.ok()) return c;
   }
-  if (m.depth >= R::DEPTH_SMOOTH && !(m.corner_time >= 0.0 && m.corner_time <= 1.0))
-    return fail_field(Reason::out_of_range, "corner_time",
-                      "corner_time = " + exact_num(m.corner_time) + ": must be in [0, 1]");
+  for (const RequestField& f : request_fields()) {
+    const tdo_param_info* row = row_of(f);
+    if (!f.integer || row == nullptr) continue;
+    const double v = f.get(m);
+    if (tdo_param_valid(static_cast<uint32_t>(f.param), v) != 0) continue;
+    if (row->type == TDO_PARAM_UINT)
+      return fail_field(Reason::out_of_range, f.name,
+                        std::string(f.name) + " " + exact_num(v) + " < " + exact_num(row->min));
+    return fail_field(Reason::bad_enum, f.name, std::string(f.name) + " " + exact_num(v));
+  }
+  return {};
+}
+
+/** The library's ranges (tdo/params.h) of the stages the request's depth runs, checked here so
+ *  that a refusal names the field. */
+Check library_ranges(const tdo::plan_request_t& m) {
+  for (const RequestField& f : request_fields()) {
+    const tdo_param_info* row = row_of(f);
+    if (row == nullptr || f.integer || m.depth < row->stage) continue;
+    const double v = f.get(m);
+    if (tdo_param_valid(static_cast<uint32_t>(f.param), v) == 0)
+      return fail_field(
+          Reason::out_of_range, f.name,
+          std::string(f.name) + " = " + exact_num(v) + ": must be " + range_text(*row));
+  }
   return {};
 }
 
@@ -442,51 +433,8 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
                       "map_id " + std::to_string(m.map_id) + " < -1");
   Check c = need_finite3("start", m.start);
   if (c.ok()) c = need_finite3("goal", m.goal);
+  if (c.ok()) c = field_types(m);
   if (!c.ok()) return c;
-  const struct {
-    const char* name;
-    double value;
-  } scalars[] = {{"clearance", m.clearance},
-                 {"lambda_turn", m.lambda_turn},
-                 {"mu", m.mu},
-                 {"theta_max", m.theta_max},
-                 {"d_th", m.d_th},
-                 {"h_weight", m.h_weight},
-                 {"turn_threshold", m.turn_threshold},
-                 {"k", m.k},
-                 {"v_max", m.v_max},
-                 {"a_max", m.a_max},
-                 {"j_max", m.j_max},
-                 {"a_lat_max", m.a_lat_max},
-                 {"v_cruise", m.v_cruise},
-                 {"stop_angle", m.stop_angle},
-                 {"dt", m.dt},
-                 {"corner_time", m.corner_time}};
-  for (const auto& s : scalars) {
-    c = need_finite(s.name, s.value);
-    if (!c.ok()) return c;
-  }
-  if (m.depth < tdo::plan_request_t::DEPTH_SEARCH ||
-      m.depth > tdo::plan_request_t::DEPTH_TRAJECTORY)
-    return fail_field(Reason::bad_enum, "depth", "depth " + std::to_string(m.depth));
-  if (m.search != tdo::plan_request_t::SEARCH_ASTAR &&
-      m.search != tdo::plan_request_t::SEARCH_BIDIR)
-    return fail_field(Reason::bad_enum, "search", "search " + std::to_string(m.search));
-  if (m.correction < tdo::plan_request_t::CORRECT_MULTISCALE ||
-      m.correction > tdo::plan_request_t::CORRECT_NONE)
-    return fail_field(Reason::bad_enum, "correction", "correction " + std::to_string(m.correction));
-  if (m.smoothing < tdo::plan_request_t::SMOOTHING_G2 ||
-      m.smoothing > tdo::plan_request_t::SMOOTHING_NONE)
-    return fail_field(Reason::bad_enum, "smoothing", "smoothing " + std::to_string(m.smoothing));
-  if (m.grid_first < tdo::plan_request_t::GRID_FIRST_OFF ||
-      m.grid_first > tdo::plan_request_t::GRID_FIRST_TERMS)
-    return fail_field(Reason::bad_enum, "grid_first", "grid_first " + std::to_string(m.grid_first));
-  if (m.states < tdo::plan_request_t::STATES_HEADING ||
-      m.states > tdo::plan_request_t::STATES_VOXEL)
-    return fail_field(Reason::bad_enum, "states", "states " + std::to_string(m.states));
-  if (m.max_expansions < 0)
-    return fail_field(Reason::out_of_range, "max_expansions",
-                      "max_expansions " + std::to_string(m.max_expansions) + " < 0");
   if (m.samples != tdo::plan_request_t::SAMPLES_OFF && m.samples != tdo::plan_request_t::SAMPLES_ON)
     return fail_field(Reason::bad_enum, "samples", "samples " + std::to_string(m.samples));
   c = library_ranges(m);
@@ -495,31 +443,14 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
   tdo_plan_request r{};
   r.start = tdo_vec3{m.start[0], m.start[1], m.start[2]};
   r.goal = tdo_vec3{m.goal[0], m.goal[1], m.goal[2]};
-  tdo_plan_params& p = r.params;
-  p.depth = static_cast<tdo_plan_depth>(m.depth);
-  p.search = static_cast<tdo_search_kind>(m.search);
-  p.lambda = m.lambda_turn;
-  p.mu = m.mu;
-  p.theta_max = m.theta_max;
-  p.d_th = m.d_th;
-  p.h_weight = m.h_weight;
-  p.first_meet = m.first_meet ? 1 : 0;
-  p.grid_first = m.grid_first;
-  p.states = m.states;
-  p.max_expansions = static_cast<uint32_t>(m.max_expansions);
-  p.correction = static_cast<tdo_correct_mode>(m.correction);
-  p.shorten = m.shorten ? 1 : 0;
-  p.turn_threshold = m.turn_threshold;
-  p.smoothing = static_cast<tdo_smoothing>(m.smoothing);
-  p.k = m.k;
-  p.v_max = m.v_max;
-  p.a_max = m.a_max;
-  p.j_max = m.j_max;
-  p.a_lat_max = m.a_lat_max;
-  p.v_cruise = m.v_cruise;
-  p.stop_angle = m.stop_angle;
-  p.dt = m.dt;
-  p.corner_time = m.corner_time;
+  tdo_plan_params_default(&r.params);
+  for (const RequestField& f : request_fields()) {
+    // Every value is one the field can hold (field_types); a value outside its range at a depth
+    // that does not run its stage is carried as it is, as the library ignores it.
+    if (f.param >= 0 &&
+        tdo_param_set(&r.params, static_cast<uint32_t>(f.param), f.get(m)) != TDO_OK)
+      return fail_field(Reason::out_of_range, f.name, std::string(f.name) + " cannot be held");
+  }
   *out = r;
   if (clearance != nullptr) *clearance = m.clearance;
   return {};
@@ -533,32 +464,12 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->goal[1] = req.goal.y;
   out->goal[2] = req.goal.z;
   out->clearance = clearance;
-  const tdo_plan_params& p = req.params;
-  out->depth = static_cast<int8_t>(p.depth);
-  out->search = static_cast<int8_t>(p.search);
-  out->lambda_turn = p.lambda;
-  out->mu = p.mu;
-  out->theta_max = p.theta_max;
-  out->d_th = p.d_th;
-  out->h_weight = p.h_weight;
-  out->first_meet = p.first_meet != 0;
-  out->grid_first = static_cast<int8_t>(p.grid_first);
-  out->states = static_cast<int8_t>(p.states);
-  out->max_expansions = p.max_expansions > kMaxCount ? std::numeric_limits<int32_t>::max()
-                                                     : static_cast<int32_t>(p.max_expansions);
-  out->correction = static_cast<int8_t>(p.correction);
-  out->shorten = p.shorten != 0;
-  out->turn_threshold = p.turn_threshold;
-  out->smoothing = static_cast<int8_t>(p.smoothing);
-  out->k = p.k;
-  out->v_max = p.v_max;
-  out->a_max = p.a_max;
-  out->j_max = p.j_max;
-  out->a_lat_max = p.a_lat_max;
-  out->v_cruise = p.v_cruise;
-  out->stop_angle = p.stop_angle;
-  out->dt = p.dt;
-  out->corner_time = p.corner_time;
+  for (const RequestField& f : request_fields()) {
+    if (f.param < 0) continue;
+    double v = tdo_param_get(&req.params, static_cast<uint32_t>(f.param));
+    if (f.integer) v = std::min(f.hi, std::max(f.lo, v));  // max_expansions above INT32_MAX
+    f.set(*out, v);
+  }
 }
 
 // ---- answers ---------------------------------------------------------------------------------

@@ -30,40 +30,46 @@ typedef enum tdo_plan_depth {
   TDO_PLAN_TRAJECTORY = 3 /**< plus time parameterisation and feasibility (default) */
 } tdo_plan_depth;
 
-/** Every parameter of the pipeline (names as in docs/design.md). */
+/** Every parameter of the pipeline (names as in docs/design.md). Defaults, valid ranges and the
+ *  stage that reads each: the table of params.h (`tdo-plan --list-params`, docs/design.md s.12). */
 typedef struct tdo_plan_params {
   tdo_plan_depth depth;        /**< stages to run */
-  tdo_search_kind search;      /**< bidirectional (default) or A* */
-  double lambda;               /**< m, turn penalty weight (default 50) */
-  double mu;                   /**< m, deviation weight (default 20) */
-  double theta_max;            /**< rad, direction constraint (default pi/4); 0 = off */
-  double d_th;                 /**< deviation threshold in (0,1); 0 = off (default) */
+  tdo_search_kind search;      /**< bidirectional or A* */
+  double lambda;               /**< m, turn penalty weight */
+  double mu;                   /**< m, deviation weight */
+  double theta_max;            /**< rad, direction constraint; 0 = off */
+  double d_th;                 /**< deviation threshold in (0,1); 0 = off */
   double h_weight;             /**< heuristic weight >= 1 of the turn-penalised search */
-  int first_meet;              /**< bidirectional: stop at the first meeting (paper, default 1) */
+  int first_meet;              /**< bidirectional: stop at the first meeting (the paper) */
   uint32_t max_expansions;     /**< search budget; 0 = the configured default */
-  tdo_correct_mode correction; /**< multi-scale (default), greedy line of sight, none */
-  int shorten; /**< multi-scale: 1 = partial shortcuts after the scales (default, see correct.h
-                    and docs/performance.md); 0 = the paper's correction alone */
-  double turn_threshold;   /**< rad, "straight" turns for the correction windows (default 10 deg) */
-  tdo_smoothing smoothing; /**< g2 (default), arc, none */
-  int grid_first;          /**< a tdo_grid_first: what the search starts with (default OFF, the
-                                octile try; tdo_search_input.grid_first; needs cap.exact_heuristic) */
-  double k;                /**< radius scale (default 1) */
-  double v_max;            /**< m/s (default 3) */
-  double a_max;            /**< m/s^2 (default 3) */
-  double j_max;            /**< m/s^3 (default 10) */
-  double a_lat_max;        /**< m/s^2, lateral limit for corner radii (default = a_max) */
-  double v_cruise;    /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max (default = v_max) */
-  double stop_angle;  /**< rad, corners sharper than this stop (default 150 deg) */
-  double dt;          /**< s, trajectory sample period (default 0.01) */
-  int states;         /**< a tdo_state_space: the turn-penalised search's states (default
-                           TDO_STATES_HEADING; tdo_search_input.states) */
+  tdo_correct_mode correction; /**< multi-scale, greedy line of sight, none */
+  int shorten;           /**< multi-scale: 1 = partial shortcuts after the scales (see correct.h and
+                              docs/performance.md); 0 = the paper's correction alone */
+  double turn_threshold; /**< rad, "straight" turns for the correction windows */
+  tdo_smoothing smoothing; /**< g2, arc, none */
+  int grid_first;   /**< a tdo_grid_first: what the search starts with (tdo_search_input.grid_first;
+                         PLAIN and TERMS need cap.exact_heuristic) */
+  double k;         /**< radius scale */
+  double v_max;     /**< m/s */
+  double a_max;     /**< m/s^2 */
+  double j_max;     /**< m/s^3 */
+  double a_lat_max; /**< m/s^2, lateral limit for corner radii */
+  double v_cruise;  /**< m/s, speed that sets R_min = v_cruise^2 / a_lat_max */
+  double stop_angle;  /**< rad, corners sharper than this stop */
+  double dt;          /**< s, trajectory sample period */
+  int states;         /**< a tdo_state_space: the turn-penalised search's states
+                           (tdo_search_input.states) */
   double corner_time; /**< in [0, 1]: how far G2 corner shapes trade length for flight time
-                           (tdo_smooth_input.corner_time; default 1; 0 = Yang-Sukkarieh corners) */
+                           (tdo_smooth_input.corner_time; 0 = Yang-Sukkarieh corners) */
 } tdo_plan_params;
 
 /** Fill `p` with the defaults documented in tdo_plan_params. */
 void tdo_plan_params_default(tdo_plan_params* p);
+
+/** Fill the search fields of `in` from `p` as tdo_planner_plan does (kind, lambda, mu, theta_max,
+ *  d_th, h_weight, first_meet, grid_first, states, max_expansions); grid, start and goal are left
+ *  as they are. Nothing for NULL pointers. */
+void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in);
 
 /** One planning request. */
 typedef struct tdo_plan_request {
@@ -96,11 +102,10 @@ typedef struct tdo_plan_result {
 
 /**
  * @brief Plan on the planner's finished grid (its clearance applies). Allocates nothing.
- * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, an unknown enum value, a negative
- *         or non-finite lambda, mu, theta_max or d_th (0 is valid: no penalty, no constraint,
- *         threshold off), h_weight below 1 or non-finite, and, for the stages `depth` runs, a
- *         negative or non-finite turn_threshold (correction), a zero, negative or non-finite k,
- *         v_max, a_max, j_max, a_lat_max, v_cruise or stop_angle (smoothing) or dt (trajectory);
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers or a parameter outside its valid
+ *         range in the table of params.h (tdo_plan_params_check: `depth`, then the rows of the
+ *         stages `depth` runs; 0 is valid for lambda, mu, theta_max and d_th: no penalty, no
+ *         constraint, threshold off);
  *         the search statuses; TDO_ERR_START_BLOCKED / TDO_ERR_GOAL_BLOCKED also when the start
  *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
  *         obstacle, at every depth (docs/design.md s.0: every point of the output keeps it);

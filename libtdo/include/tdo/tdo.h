@@ -13,6 +13,7 @@
 #include "tdo/grid.h"
 #include "tdo/grid_update.h"
 #include "tdo/metrics.h"
+#include "tdo/params.h"
 #include "tdo/path.h"
 #include "tdo/pipeline.h"
 #include "tdo/planner.h"

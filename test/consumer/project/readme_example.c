@@ -23,7 +23,7 @@ int main(void) {
 
   /* One call: search, correction, smoothing, time parameterisation, feasibility, metrics. */
   tdo_plan_request req;
-  tdo_plan_params_default(&req.params); /* lambda 50, mu 20, theta_max 45 deg, v/a/j 3, 3, 10 */
+  tdo_plan_params_default(&req.params); /* the table of tdo/params.h: tdo-plan --list-params */
   req.start = (tdo_vec3){1.0, 1.0, 1.5};
   req.goal = (tdo_vec3){9.0, 1.0, 1.5};
   tdo_plan_result res;

@@ -79,13 +79,13 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid);
  * @param[out] out start, goal and every parameter
  * @param[out] clearance m, the requested clearance (< 0: use the map's hint)
  *        Fields whose bit is set in use_defaults get libtdo's defaults first
- *        (tdo_plan_params_default; a_lat_max = a_max and v_cruise = v_max as pipeline.h says;
+ *        (tdo_plan_params_default; a_lat_max = a_max and v_cruise = v_max as tdo/params.h says;
  *        clearance -1, the map's hint); their values in `m` are ignored.
  * @return ok; out_of_range (use_defaults bits beyond USE_DEFAULT_ALL); other_vehicle; non_finite;
- *         out_of_range (negative max_expansions, map_id < -1, or a parameter outside the range
- *         tdo_planner_plan documents for the stages `depth` runs: v_max > 0, h_weight >= 1, ...);
- *         bad_enum (depth, search, correction, smoothing, grid_first, samples). Every refusal
- *         but other_vehicle names the field in Check::field.
+ *         out_of_range (negative max_expansions, map_id < -1, or a parameter outside its valid
+ *         range in tdo/params.h, for the stages `depth` runs); bad_enum (an enum or boolean field
+ *         outside its values, whatever the depth; samples). Every refusal but other_vehicle names
+ *         the field (its LCM name, request_fields.h) in Check::field.
  */
 Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, tdo_plan_request* out,
                             double* clearance);
