@@ -32,10 +32,18 @@ typedef enum tdo_status {
   TDO_ERR_OBSTACLE_CAPACITY = 18,  /**< more moving obstacles than the configured capacity */
   TDO_ERR_SAMPLE_CAPACITY = 19,    /**< more trajectory samples than the configured capacity */
   TDO_ERR_CLEARANCE_CAPACITY =
-      20,                      /**< clearance reaches further than the configured voxel radius */
-  TDO_ERR_NOT_CONFIGURED = 21, /**< a pipeline stage was asked for but its capacities are zero */
-  TDO_ERR_OPEN_CAPACITY = 22,  /**< search open list full (tdo_search_config.max_open) */
-  TDO_STATUS_COUNT = 23        /**< number of statuses (not a status) */
+      20,                        /**< clearance reaches further than the configured voxel radius */
+  TDO_ERR_NOT_CONFIGURED = 21,   /**< a pipeline stage was asked for but its capacities are zero */
+  TDO_ERR_OPEN_CAPACITY = 22,    /**< search open list full (tdo_search_config.max_open) */
+  TDO_ERR_STATE_NOT_FINITE = 23, /**< start velocity or acceleration has a NaN or infinity */
+  TDO_ERR_STATE_TOO_FAST = 24,   /**< start speed above v_max */
+  TDO_ERR_STATE_OVER_LIMITS =
+      25, /**< start acceleration above a_max, or the jerk-limited removal of the acceleration
+               would take the speed above v_max (docs/design.md s.5, moving start) */
+  TDO_ERR_STATE_CANNOT_STOP =
+      26, /**< an obstacle or the map bound lies within the stopping distance along the start
+               velocity: no braking or curving in keeps the clearance (docs/design.md s.5) */
+  TDO_STATUS_COUNT = 27 /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

@@ -84,14 +84,16 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid);
  * @return ok; out_of_range (use_defaults bits beyond USE_DEFAULT_ALL); other_vehicle; non_finite;
  *         out_of_range (negative max_expansions, map_id < -1, or a parameter outside the range
  *         tdo_planner_plan documents for the stages `depth` runs: v_max > 0, h_weight >= 1, ...);
- *         bad_enum (depth, search, correction, smoothing, grid_first, samples). Every refusal
+ *         bad_enum (depth, search, correction, smoothing, grid_first, samples); for the moving
+ *         start (start_vel, start_acc -> out->state): non_finite, out_of_range (speed above v_max,
+ *         acceleration above a_max, a non-zero state below DEPTH_TRAJECTORY). Every refusal
  *         but other_vehicle names the field in Check::field.
  */
 Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, tdo_plan_request* out,
                             double* clearance);
 
-/** Fill start, goal, clearance and every parameter of `out` from `req` (ids and utime untouched).
- */
+/** Fill start, goal, the start state, clearance and every parameter of `out` from `req` (ids and
+ *  utime untouched). */
 void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::plan_request_t* out);
 
 // ---- answers ---------------------------------------------------------------------------------
