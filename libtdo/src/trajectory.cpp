@@ -84,6 +84,10 @@ constexpr double kRampJerk = 0.95;    // of j_max: the ramp that brings the star
 constexpr double kBrakeRel = 1e-6;    // relative margin on the braking line's length
 constexpr double kBrakeAbs = 1e-9;    // m, absolute margin on it
 constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave along the velocity
+// Relative rounding allowance on |v| <= v_max and |a| <= a_max of a start state: a state sampled
+// from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
+// exactly v_max).
+constexpr double kStateSlack = 1e-9;
 
 struct V3 {
   double x, y, z;
@@ -1124,15 +1128,19 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
   memset(out, 0, sizeof(*out));
   if (!finite3(s->v) || !finite3(s->a)) return TDO_ERR_STATE_NOT_FINITE;
   const V3 v0 = mk(s->v), a0 = mk(s->a);
-  if (norm(v0) > v_max) return TDO_ERR_STATE_TOO_FAST;
+  if (norm(v0) > v_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_TOO_FAST;
   const double acc = norm(a0);
-  if (acc > a_max) return TDO_ERR_STATE_OVER_LIMITS;
+  if (acc > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
   // Ramp: a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its
   // norm never exceeds the larger end (the norm is convex).
   const double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
-  const V3 v1 = add(v0, mul(a0, 0.5 * ramp));
-  const double speed = norm(v1);
-  if (!(speed <= v_max)) return TDO_ERR_STATE_OVER_LIMITS;
+  V3 v1 = add(v0, mul(a0, 0.5 * ramp));
+  double speed = norm(v1);
+  if (!(speed <= v_max * (1.0 + kStateSlack))) return TDO_ERR_STATE_OVER_LIMITS;
+  if (speed > v_max) {  // rounding only (kStateSlack): the path starts at exactly v_max
+    v1 = mul(v1, v_max / speed);
+    speed = v_max;
+  }
   out->ramp = ramp;
   out->jerk = ramp > 0.0 ? tv(mul(a0, -1.0 / ramp)) : tdo_vec3{0.0, 0.0, 0.0};
   out->p = tv(add(mk(p0), add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0))));

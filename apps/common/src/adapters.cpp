@@ -425,10 +425,10 @@ Check start_state_check(const tdo::plan_request_t& m) {
                       "a moving start needs depth " +
                           std::to_string(tdo::plan_request_t::DEPTH_TRAJECTORY) + ", not " +
                           std::to_string(m.depth));
-  if (speed > m.v_max)
+  if (speed > m.v_max * (1.0 + 1e-9))  // the library's rounding allowance (trajectory.h)
     return fail_field(Reason::out_of_range, "start_vel",
                       "start speed " + exact_num(speed) + " m/s above v_max " + exact_num(m.v_max));
-  if (acc > m.a_max)
+  if (acc > m.a_max * (1.0 + 1e-9))
     return fail_field(
         Reason::out_of_range, "start_acc",
         "start acceleration " + exact_num(acc) + " m/s^2 above a_max " + exact_num(m.a_max));

@@ -119,7 +119,8 @@ typedef struct tdo_traj_entry {
  * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, non-finite p0 or limits not > 0;
  *         TDO_ERR_STATE_NOT_FINITE (a NaN or infinity in s); TDO_ERR_STATE_TOO_FAST (|v| above
  *         v_max); TDO_ERR_STATE_OVER_LIMITS (|a| above a_max, or the speed at the end of the ramp,
- *         the highest speed on it, above v_max).
+ *         the highest speed on it, above v_max). Each limit allows 1e-9
+ *         relative for rounding (a state sampled at v_max); the entry's speed is then v_max.
  */
 tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max, double a_max,
                                double j_max, tdo_traj_entry* out);
