@@ -22,7 +22,8 @@ int main(void) {
   if (st == TDO_OK) st = tdo_grid_finish(grid, 0.5); /* keep 0.5 m from every obstacle */
 
   /* One call: search, correction, smoothing, time parameterisation, feasibility, metrics. */
-  tdo_plan_request req = {0};           /* zero state: the vehicle starts at rest */
+  /* Zero-initialised: the vehicle starts at rest (req.state, docs/design.md s.5). */
+  tdo_plan_request req = {0};
   tdo_plan_params_default(&req.params); /* lambda 50, mu 20, theta_max 45 deg, v/a/j 3, 3, 10 */
   req.start = (tdo_vec3){1.0, 1.0, 1.5};
   req.goal = (tdo_vec3){9.0, 1.0, 1.5};
