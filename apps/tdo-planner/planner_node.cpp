@@ -186,12 +186,17 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
   tdo::trajectory_t traj{};
   tdo::feasibility_t feas{};
   ids.utime = wall_utime();
-  const bool with_samples = m.samples == tdo::plan_request_t::SAMPLES_ON;
-  c = trajectory_to_msg(result, req, ids, plan_ms, &traj, with_samples);
-  // A usable trajectory also travels in its compact form (compact.h).
+  // A usable trajectory also travels in its compact form (compact.h), unless it begins with a
+  // moving start's acceleration ramp, which is not a piece on the path (its first piece starts
+  // after it): that one travels as samples.
   const tdo_traj* traj_ctx = tdo_planner_trajectory(planner_);
-  if (c.ok() && st == TDO_OK && traj_ctx != nullptr)
-    c = compact_to_msg(result.path, traj_ctx, &traj);
+  tdo_traj_piece first{};
+  const bool compact = st == TDO_OK && traj_ctx != nullptr &&
+                       tdo_traj_piece_at(traj_ctx, 0u, &first) == TDO_OK && !(first.t0 > 0.0);
+  const bool with_samples =
+      m.samples == tdo::plan_request_t::SAMPLES_ON || (st == TDO_OK && !compact);
+  c = trajectory_to_msg(result, req, ids, plan_ms, &traj, with_samples);
+  if (c.ok() && compact) c = compact_to_msg(result.path, traj_ctx, &traj);
   if (c.ok()) c = feasibility_to_msg(result, req, clearance, ids, &feas);
   if (!c.ok()) {
     answer_error(ids, "result", c);

@@ -8,8 +8,10 @@
 #include "planner_internal.h"
 #include "tdo/collision.h"
 #include "tdo/params.h"
+#include "vec3.h"
 
 namespace tdo_internal {
+uint32_t max_waypoints(const tdo_capacity& c);
 namespace {
 
 // m: the geometric stages verify at clearance - kClearanceTol, the allowance the feasibility report
@@ -70,6 +72,96 @@ tdo_status check_end_points(const tdo_grid* grid, const tdo_plan_request& req, d
   return TDO_OK;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Moving start (docs/design.md s.5, "Moving start").
+
+bool at_rest(const tdo_start_state& s) { return zero3(s.v) && zero3(s.a); }
+bool finite_state(const tdo_start_state& s) { return finite3(s.v) && finite3(s.a); }
+bool voxel_free(const tdo_grid* g, tdo_vec3 p) {
+  tdo_voxel v;
+  return tdo_grid_world_to_voxel(g, p, &v) && !tdo_grid_is_blocked(g, v);
+}
+tdo_vec3 along(tdo_vec3 p, tdo_vec3 d, double len) {
+  return tdo_vec3{p.x + d.x * len, p.y + d.y * len, p.z + d.z * len};
+}
+
+/** The entry of a moving start: the ramp, the braking line, the points before the search start. */
+struct Entry {
+  tdo_traj_entry e;
+  tdo_vec3 prefix[2];  // waypoints before the search start (the ramp's end, the braking line's)
+  uint32_t n_prefix;
+  tdo_vec3 search_start;  // where the search starts: the end of the braking line or its extension
+};
+
+constexpr int kExtensionTries = 4;      // extension lengths tried (halved each time)
+constexpr double kBrakeStretch = 1e-9;  // relative: the braking line's point lies this far beyond
+
+/** Plans the entry of req's moving start: the start point in bounds and clear, the ramp (a cubic
+ *  Bezier) and the braking line along the velocity clear, then an extension of the line, as long
+ *  as a voxel edge or the braking distance, halved until clear (room for the corner that curves
+ *  the vehicle into the path). */
+tdo_status plan_entry(const tdo_grid* g, const tdo_plan_request& req, double clearance,
+                      Entry* out) {
+  const tdo_plan_params& p = req.params;
+  tdo_status st = tdo_traj_entry_plan(req.start, &req.state, p.v_max, p.a_max, p.j_max, &out->e);
+  if (st != TDO_OK) return st;
+  tdo_voxel v;
+  if (!tdo_grid_world_to_voxel(g, req.start, &v)) return TDO_ERR_START_OUT_OF_BOUNDS;
+  const double c = verify_clearance(clearance);
+  if (tdo_collision_point_distance(g, req.start, clearance) < c) return TDO_ERR_START_BLOCKED;
+  const tdo_traj_entry& e = out->e;
+  if (e.ramp > 0.0) {  // p0 + v0 t + a0 t^2 / 2 + j t^3 / 6 on [0, ramp] as a cubic Bezier
+    const double t = e.ramp;
+    const tdo_vec3 p0 = req.start, v0 = req.state.v, a0 = req.state.a;
+    const tdo_vec3 b[4] = {p0, along(p0, v0, t / 3.0),
+                           tdo_vec3{p0.x + (2.0 * v0.x * t + 0.5 * a0.x * t * t) / 3.0,
+                                    p0.y + (2.0 * v0.y * t + 0.5 * a0.y * t * t) / 3.0,
+                                    p0.z + (2.0 * v0.z * t + 0.5 * a0.z * t * t) / 3.0},
+                           e.p};
+    if (!tdo_collision_bezier_clear(g, b, c, 0.0)) return TDO_ERR_STATE_CANNOT_STOP;
+  }
+  out->n_prefix = 0;
+  out->prefix[out->n_prefix++] = e.p;
+  out->search_start = e.p;
+  if (!(e.speed > 0.0)) {  // the ramp ends at rest: the path starts there
+    out->n_prefix = 0;
+    return voxel_free(g, e.p) ? TDO_OK : TDO_ERR_STATE_CANNOT_STOP;
+  }
+  const tdo_vec3 d{e.v.x / e.speed, e.v.y / e.speed, e.v.z / e.speed};
+  const tdo_vec3 stop = along(e.p, d, e.brake * (1.0 + kBrakeStretch));
+  if (!tdo_collision_segment_clear(g, e.p, stop, c)) return TDO_ERR_STATE_CANNOT_STOP;
+  const double res = tdo_grid_get_desc(g).res;
+  double ext = e.brake > res ? e.brake : res;
+  for (int k = 0; k < kExtensionTries; ++k, ext *= 0.5) {
+    const tdo_vec3 end = along(stop, d, ext);
+    if (tdo_collision_segment_clear(g, stop, end, c) && voxel_free(g, end)) {
+      out->prefix[out->n_prefix++] = stop;
+      out->search_start = end;
+      return TDO_OK;
+    }
+  }
+  out->search_start = stop;
+  return voxel_free(g, stop) ? TDO_OK : TDO_ERR_STATE_CANNOT_STOP;
+}
+
+/** The entry's points, then the corrected path from the search start, into pl->waypoints. */
+tdo_status entry_waypoints(tdo_planner* pl, const Entry& en, tdo_plan_result* out) {
+  const uint32_t n = en.n_prefix + out->n_waypoints;
+  if (n > max_waypoints(pl->cfg.cap)) return TDO_ERR_PATH_CAPACITY;
+  for (uint32_t i = 0; i < en.n_prefix; ++i) pl->waypoints[i] = en.prefix[i];
+  for (uint32_t i = 0; i < out->n_waypoints; ++i)
+    pl->waypoints[en.n_prefix + i] = out->waypoints[i];
+  out->waypoints = pl->waypoints;
+  out->n_waypoints = n;
+  return TDO_OK;
+}
+
+/** Whether the smoothed path still begins with the whole braking line (a corner may take it). */
+bool keeps_braking_line(const tdo_path& path, const Entry& en) {
+  if (!(en.e.speed > 0.0)) return true;
+  return path.n > 0 && path.seg[0].kind == TDO_SEGMENT_LINE && path.seg[0].length >= en.e.brake;
+}
+
 // `traj`: the trajectory stage's output when samples were streamed (not stored): the energy and
 // flight time come from its streaming pass (the same sums over the same samples).
 void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const tdo_plan_params& p,
@@ -128,6 +220,7 @@ size_t pipeline_footprint(const tdo_planner_config* cfg) {
   const tdo_capacity& c = cfg->cap;
   size_t bytes = tdo_arena_round(static_cast<size_t>(c.max_path + 2u) * sizeof(tdo_vec3));
   if (has_geometry(c)) {
+    bytes += tdo_arena_round(static_cast<size_t>(max_waypoints(c)) * sizeof(tdo_vec3));
     const tdo_correct_config cc = correct_cfg(c);
     const tdo_smooth_config sc = smooth_cfg(c);
     bytes += tdo_correct_footprint(&cc) + tdo_smooth_footprint(&sc);
@@ -147,8 +240,12 @@ tdo_status pipeline_init(tdo_planner* pl, tdo_arena* arena) {
   pl->correct = nullptr;
   pl->smooth = nullptr;
   pl->traj = nullptr;
+  pl->waypoints = nullptr;
   tdo_status st = TDO_OK;
   if (has_geometry(c)) {
+    pl->waypoints =
+        static_cast<tdo_vec3*>(tdo_arena_alloc(arena, max_waypoints(c) * sizeof(tdo_vec3)));
+    if (pl->waypoints == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     const tdo_correct_config cc = correct_cfg(c);
     const tdo_smooth_config sc = smooth_cfg(c);
     st = tdo_correct_init(&pl->correct, arena, &cc);
@@ -193,20 +290,33 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
       (p.depth >= TDO_PLAN_TRAJECTORY && pl->traj == nullptr))
     return out->status = TDO_ERR_NOT_CONFIGURED;
 
+  // A moving start: the entry first; the search starts where it ends (docs/design.md s.5).
+  const bool moving = !at_rest(req->state);
+  if (!finite_state(req->state)) return out->status = TDO_ERR_STATE_NOT_FINITE;
+  if (moving && p.depth != TDO_PLAN_TRAJECTORY) return out->status = TDO_ERR_INVALID_ARGUMENT;
+  Entry entry;
+  memset(&entry, 0, sizeof(entry));
+  tdo_plan_request sreq = *req;
+  if (moving) {
+    out->status = plan_entry(pl->grid, *req, clearance, &entry);
+    if (out->status != TDO_OK) return out->status;
+    sreq.start = entry.search_start;
+  }
+
   // Stage 1: search.
   tdo_search_input si;
   memset(&si, 0, sizeof(si));
   si.grid = pl->grid;
-  si.start = req->start;
+  si.start = sreq.start;
   si.goal = req->goal;
   tdo_plan_search_input(&p, &si);
   GuideReport guide;
   out->status = guide_search(pl->guide, pl->search, &si, &out->search, &guide);
   out->search.guide = guide.used;
   out->search.guide_expansions = guide.expansions;
-  if (out->status == TDO_OK) out->status = check_end_points(pl->grid, *req, clearance);
+  if (out->status == TDO_OK) out->status = check_end_points(pl->grid, sreq, clearance);
   if (out->status != TDO_OK) return out->status;
-  world_path(pl, *req, out->search, clearance);
+  world_path(pl, sreq, out->search, clearance);
   out->grid_path = pl->grid_path;
   out->n_grid_path = pl->n_grid_path;
   out->reached = TDO_PLAN_SEARCH;
@@ -231,6 +341,10 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   out->waypoints = co.waypoints;
   out->n_waypoints = co.n_waypoints;
   out->n_safety_critical = co.n_safety_critical;
+  if (moving) {
+    out->status = entry_waypoints(pl, entry, out);
+    if (out->status != TDO_OK) return out->status;
+  }
   out->reached = TDO_PLAN_CORRECT;
   if (p.depth == TDO_PLAN_CORRECT) {
     metrics_of(pl, out, nullptr, p);
@@ -260,6 +374,12 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   for (uint32_t round = 0; round < rounds; ++round) {
     tdo_smooth_output so;
     out->status = tdo_smooth_run(pl->smooth, &mi, &so);
+    // A corner that took part of a moving start's braking line: the polyline with a stop at
+    // every corner instead (lines only), on which the vehicle can always brake.
+    if (out->status == TDO_OK && moving && !keeps_braking_line(so.path, entry)) {
+      mi.mode = TDO_SMOOTHING_NONE;
+      out->status = tdo_smooth_run(pl->smooth, &mi, &so);
+    }
     if (out->status != TDO_OK) return out->status;
     out->path = so.path;
     out->reached = TDO_PLAN_SMOOTH;
@@ -274,6 +394,8 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
     ti.j_max = p.j_max;
     ti.a_lat_max = p.a_lat_max;
     ti.dt = p.dt;
+    ti.start_p = req->start;
+    ti.start = req->state;
     out->status = tdo_traj_run(pl->traj, &ti, &to);
     out->feasibility = to.report;
     out->refinements += to.refinements;

@@ -24,7 +24,8 @@ struct tdo_planner {
   tdo_traj* traj;
   tdo_vec3* grid_path;  // max_path + 2 world points of the last plan
   uint32_t n_grid_path;
-  int have_samples;  // 1 when the last plan returned a trajectory (tdo_planner_each_sample)
+  tdo_vec3* waypoints;  // max_waypoints: a moving start's entry points + the correction's output
+  int have_samples;     // 1 when the last plan returned a trajectory (tdo_planner_each_sample)
 };
 
 namespace tdo_internal {

@@ -50,6 +50,14 @@ extern "C" const char* tdo_status_str(tdo_status status) {
       return "open_capacity";
     case TDO_ERR_UPDATE_CONTRADICTORY:
       return "update_contradictory";
+    case TDO_ERR_STATE_NOT_FINITE:
+      return "state_not_finite";
+    case TDO_ERR_STATE_TOO_FAST:
+      return "state_too_fast";
+    case TDO_ERR_STATE_OVER_LIMITS:
+      return "state_over_limits";
+    case TDO_ERR_STATE_CANNOT_STOP:
+      return "state_cannot_stop";
     case TDO_STATUS_COUNT:
       break;
   }

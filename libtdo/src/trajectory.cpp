@@ -79,6 +79,15 @@ constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
+// Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
+constexpr double kRampJerk = 0.95;    // of j_max: the ramp that brings the start acceleration to 0
+constexpr double kBrakeRel = 1e-6;    // relative margin on the braking line's length
+constexpr double kBrakeAbs = 1e-9;    // m, absolute margin on it
+constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave along the velocity
+// Relative rounding allowance on |v| <= v_max and |a| <= a_max of a start state: a state sampled
+// from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
+// exactly v_max).
+constexpr double kStateSlack = 1e-9;
 
 struct V3 {
   double x, y, z;
@@ -148,6 +157,11 @@ struct tdo_traj {
   uint32_t n_plateaus;
   uint32_t n_phases;
   double total;  // m, path length
+  // Moving start of the current run (tdo_traj_input.start non-zero): the state and its entry.
+  int moving;
+  tdo_vec3 start_p;
+  tdo_start_state start;
+  tdo_traj_entry entry;
   // The samples of the last run (tdo_traj_each_sample): their number (0: none), path and dt.
   uint32_t n_last;
   const tdo_path_segment* last_segs;
@@ -484,6 +498,27 @@ tdo_status validate(const tdo_traj* ctx, const tdo_traj_input* in) {
   return TDO_OK;
 }
 
+/** A moving start (docs/design.md s.5): its entry, and a path that begins where the ramp ends
+ *  with a line along the velocity at least the braking length long. */
+tdo_status validate_start(tdo_traj* ctx, const tdo_traj_input* in) {
+  const tdo_start_state& st = in->start;
+  ctx->moving = !(zero3(st.v) && zero3(st.a));  // a NaN is not zero: tdo_traj_entry_plan names it
+  if (!ctx->moving) return TDO_OK;
+  const tdo_status s =
+      tdo_traj_entry_plan(in->start_p, &st, in->v_max, in->a_max, in->j_max, &ctx->entry);
+  if (s != TDO_OK) return s;
+  ctx->start_p = in->start_p;
+  ctx->start = st;
+  const tdo_path_segment& first = in->path.seg[0];
+  if (norm(sub(mk(first.p[0]), mk(ctx->entry.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
+  if (!(ctx->entry.speed > 0.0)) return TDO_OK;  // the ramp ends at rest: the path starts at rest
+  if (first.kind != TDO_SEGMENT_LINE || !(first.length >= ctx->entry.brake))
+    return TDO_ERR_INVALID_ARGUMENT;
+  const V3 d = sub(mk(first.p[1]), mk(first.p[0])), v = mk(ctx->entry.v);
+  const double angle = atan2(norm(cross(d, v)), dot(d, v));
+  return angle <= kEntryAngle ? TDO_OK : TDO_ERR_INVALID_ARGUMENT;
+}
+
 /** Parts per curved segment: the most (kSubMax, halved as needed) whose plateaus and profile
  *  pieces fit the capacities, so a smaller max_profile gets a coarser (slower) profile. */
 uint32_t curve_parts(const tdo_traj* ctx, const tdo_path& path) {
@@ -567,7 +602,7 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       Boundary& b = ctx->bounds[n];
       b.cap = HUGE_VAL;  // inside a segment: no kink, no curvature jump
       if (n == 0) {
-        b.cap = 0.0;  // start at rest
+        b.cap = ctx->moving ? ctx->entry.speed : 0.0;  // start at rest, or at the entry's speed
       } else if (j == 0) {
         const tdo_path_segment& prev = path.seg[ctx->plateaus[n - 1].seg];
         int jump = 0;
@@ -698,8 +733,11 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   for (uint32_t k = n; k > 0; --k)
     bd[k - 1].v = dmin(
         bd[k - 1].v, reach(bd[k].v, pl[k - 1].len, pl[k - 1].level, pl[k - 1].acc, pl[k - 1].jerk));
+  // A moving start keeps its speed: the braking line (tdo_traj_entry.brake) lets every later
+  // boundary be reached from it, so a lower speed here means the path broke that promise.
+  if (ctx->moving && n > 0 && !(bd[0].v >= ctx->entry.speed)) return TDO_ERR_INFEASIBLE;
   ctx->n_phases = 0;
-  Cursor c{0.0, 0.0, 0.0, 0.0};
+  Cursor c{ctx->moving ? ctx->entry.ramp : 0.0, 0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < n; ++k) {
     Plateau& p = pl[k];
     const double v0 = bd[k].v, v1 = bd[k + 1].v;
@@ -745,6 +783,22 @@ tdo_status sample_count(const tdo_traj* ctx, double dt, uint32_t* n_out) {
   if (!(steps + 1.0 <= static_cast<double>(ctx->cfg.max_samples))) return TDO_ERR_SAMPLE_CAPACITY;
   *n_out = static_cast<uint32_t>(steps) + 1u;
   return TDO_OK;
+}
+
+/** Sample of a moving start's entry ramp at t (< ramp); sample 0 is the start state itself. */
+void entry_sample(const tdo_traj* ctx, double t, uint32_t i, tdo_sample* out) {
+  const V3 p0 = mk(ctx->start_p), v0 = mk(ctx->start.v), a0 = mk(ctx->start.a);
+  const V3 j = mk(ctx->entry.jerk);
+  out->t = t;
+  if (i == 0u) {  // exactly the caller's state
+    out->p = ctx->start_p;
+    out->v = ctx->start.v;
+    out->a = ctx->start.a;
+    return;
+  }
+  out->p = tv(add(p0, mul(add(v0, mul(add(mul(a0, 0.5), mul(j, t / 6.0)), t)), t)));
+  out->v = tv(add(v0, mul(add(a0, mul(j, 0.5 * t)), t)));
+  out->a = tv(add(a0, mul(j, t)));
 }
 
 /** Generates samples 0, 1, ..., n-1 of the current profile in order (the only sampling code). */
@@ -806,6 +860,11 @@ void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
   const uint32_t i = g->i++;
   const uint32_t n = g->n;
   const double t = g->dt * i;
+  if (ctx->moving && (i == 0u || t < ctx->entry.ramp) && i + 1u < n) {
+    entry_sample(ctx, t, i, out);
+    *owner = 0u;
+    return;
+  }
   while (g->ph + 1u < ctx->n_phases && ctx->phases[g->ph + 1u].t0 <= t) ++g->ph;
   const Phase& f = ctx->phases[g->ph];
   double tau = t - f.t0;
@@ -1061,6 +1120,38 @@ static uint32_t plateau_capacity(const tdo_traj_config* cfg) {
   return by_profile > cfg->max_segments ? by_profile : cfg->max_segments;
 }
 
+extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max,
+                                          double a_max, double j_max, tdo_traj_entry* out) {
+  if (s == nullptr || out == nullptr || !finite3(p0) || !positive(v_max) || !positive(a_max) ||
+      !positive(j_max))
+    return TDO_ERR_INVALID_ARGUMENT;
+  memset(out, 0, sizeof(*out));
+  if (!finite3(s->v) || !finite3(s->a)) return TDO_ERR_STATE_NOT_FINITE;
+  const V3 v0 = mk(s->v), a0 = mk(s->a);
+  if (norm(v0) > v_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_TOO_FAST;
+  const double acc = norm(a0);
+  if (acc > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
+  // Ramp: a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its
+  // norm never exceeds the larger end (the norm is convex).
+  const double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
+  V3 v1 = add(v0, mul(a0, 0.5 * ramp));
+  double speed = norm(v1);
+  if (!(speed <= v_max * (1.0 + kStateSlack))) return TDO_ERR_STATE_OVER_LIMITS;
+  if (speed > v_max) {  // rounding only (kStateSlack): the path starts at exactly v_max
+    v1 = mul(v1, v_max / speed);
+    speed = v_max;
+  }
+  out->ramp = ramp;
+  out->jerk = ramp > 0.0 ? tv(mul(a0, -1.0 / ramp)) : tdo_vec3{0.0, 0.0, 0.0};
+  out->p = tv(add(mk(p0), add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0))));
+  out->v = tv(v1);
+  out->speed = speed;
+  out->brake =
+      scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs;
+  if (!(speed > 0.0)) out->brake = 0.0;
+  return TDO_OK;
+}
+
 extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
     return 0;
@@ -1113,7 +1204,9 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
   out->report.min_clearance = HUGE_VAL;
   out->report.violations = ctx->violations;
   ctx->n_last = 0;
+  ctx->moving = 0;
   tdo_status st = validate(ctx, in);
+  if (st == TDO_OK) st = validate_start(ctx, in);
   if (st != TDO_OK) return st;
   const Limits lim{in->v_max, in->a_max, in->j_max, in->a_lat_max, in->dt};
   st = analyse(ctx, in, lim);
@@ -1152,7 +1245,9 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
     // Clearance violations are geometry: a slower flight does not move the path.
     if (dynamic == 0u || round == rounds) break;
     // Lower the plateaus around every violation (speed, acceleration and jerk limits).
-    for (uint32_t k = 0; k < ctx->n_plateaus; ++k)
+    // A moving start's braking line keeps its limits: it must stop from the start speed.
+    const uint32_t first = ctx->moving && ctx->entry.speed > 0.0 ? 1u : 0u;
+    for (uint32_t k = first; k < ctx->n_plateaus; ++k)
       if (ctx->hit[k]) ctx->plateaus[k].scale *= kRefineFactor;
   }
   return TDO_ERR_INFEASIBLE;

@@ -18,6 +18,8 @@ inline tdo_vec3 cross(tdo_vec3 a, tdo_vec3 b) {
 }
 inline double norm(tdo_vec3 a) { return sqrt(dot(a, a)); }
 inline bool finite3(tdo_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+// Every component exactly +-0 (a NaN is not zero).
+inline bool zero3(tdo_vec3 a) { return fabs(a.x) <= 0.0 && fabs(a.y) <= 0.0 && fabs(a.z) <= 0.0; }
 // a / |a|, or `fallback` when |a| <= eps.
 inline tdo_vec3 unit_or(tdo_vec3 a, tdo_vec3 fallback, double eps) {
   const double n = norm(a);

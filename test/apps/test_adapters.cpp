@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <ostream>
@@ -335,6 +336,57 @@ TEST(RequestAdapter, RoundTripKeepsEveryParameter) {
   EXPECT_EQ(b.stop_angle, a.stop_angle);
   EXPECT_EQ(b.dt, a.dt);
   EXPECT_EQ(b.corner_time, a.corner_time);
+}
+
+TEST(RequestAdapter, GivenAMovingStart_WhenRoundTripped_ThenTheStateArrivesExactly) {
+  // GIVEN a trajectory request from a vehicle in motion
+  tdo_plan_request in = sample_request();
+  in.params.depth = TDO_PLAN_TRAJECTORY;
+  in.state.v = tdo_vec3{1.25, -0.5, 0.125};
+  in.state.a = tdo_vec3{-0.75, 0.25, 1.5};
+  tdo::plan_request_t m{};
+  m.vehicle_id = 3;
+  // WHEN it goes to the message and back
+  tdo_lcm::plan_request_to_msg(in, 0.4, &m);
+  tdo_plan_request out{};
+  ASSERT_TRUE(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr).ok());
+  // THEN velocity and acceleration are the same bits
+  EXPECT_EQ(std::memcmp(&out.state, &in.state, sizeof(in.state)), 0);
+  EXPECT_EQ(m.start_vel[0], 1.25);
+  EXPECT_EQ(m.start_acc[2], 1.5);
+}
+
+TEST(RequestAdapter, GivenBadStartStates_WhenAdapted_ThenRefusedNamingTheField) {
+  tdo::plan_request_t base = sample_request_msg();
+  base.depth = tdo::plan_request_t::DEPTH_TRAJECTORY;
+  tdo_plan_request out{};
+  const auto field = [&](const tdo::plan_request_t& m) {
+    return tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr).field;
+  };
+  tdo::plan_request_t m = base;
+  m.start_vel[1] = kNaN;  // GIVEN a NaN velocity, THEN non_finite naming start_vel[1]
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr), Reason::non_finite);
+  EXPECT_EQ(field(m), "start_vel[1]");
+  m = base;
+  m.start_acc[2] = kInf;  // an infinite acceleration
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr), Reason::non_finite);
+  EXPECT_EQ(field(m), "start_acc[2]");
+  m = base;
+  m.start_vel[0] = 2.5;  // |v| = 3.2 m/s > v_max = 3
+  m.start_vel[1] = 2.0;
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr), Reason::out_of_range);
+  EXPECT_EQ(field(m), "start_vel");
+  m = base;
+  m.start_acc[0] = 2.6;  // > a_max = 2.5
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr), Reason::out_of_range);
+  EXPECT_EQ(field(m), "start_acc");
+  m = base;
+  m.depth = tdo::plan_request_t::DEPTH_SMOOTH;  // a moving start without the trajectory stage
+  m.start_vel[0] = 1.0;
+  EXPECT_REASON(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr), Reason::out_of_range);
+  EXPECT_EQ(field(m), "start_vel");
+  m.start_vel[0] = 0.0;  // at rest, any depth
+  EXPECT_TRUE(tdo_lcm::plan_request_from_msg(m, 3, &out, nullptr).ok());
 }
 
 TEST(RequestAdapter, AnotherVehicleIsNamedFirst) {

@@ -486,6 +486,50 @@ TEST_F(PlannerNodeTest, GivenSamplesOffWhenPlannedThenOnlyTheCompactFormTravels)
   EXPECT_EQ(inbox_.feas[1].refused_field, "samples");
 }
 
+TEST_F(PlannerNodeTest, GivenAMovingStart_WhenRequested_ThenTheTrajectoryBeginsInThatState) {
+  // GIVEN a vehicle flying +y at 1 m/s and accelerating +x, asking without samples
+  send(cfg_.map_channel, wall_map(5));
+  tdo::plan_request_t r = request(1);
+  r.samples = tdo::plan_request_t::SAMPLES_OFF;
+  r.start_vel[1] = 1.0;
+  r.start_acc[0] = 0.5;
+  send(cfg_.request_channel, r);
+  // THEN a plan whose first sample is that state; its acceleration ramp is no piece of the
+  // compact form, so it travels as samples
+  ASSERT_EQ(inbox_.traj.size(), 1u);
+  const tdo::trajectory_t& t = inbox_.traj[0];
+  ASSERT_EQ(t.status, "ok") << t.detail;
+  ASSERT_GT(t.n_samples, 2);
+  EXPECT_EQ(t.n_pieces, 0);
+  EXPECT_EQ(t.samples.front()[1], 1.25);
+  EXPECT_EQ(t.samples.front()[4], 0.0);
+  EXPECT_EQ(t.samples.front()[5], 1.0);
+  EXPECT_EQ(t.samples.front()[7], 0.5);
+  EXPECT_TRUE(inbox_.feas[0].ok);
+  // AND bad states are refused naming the field, or answered with the library's named status
+  r = request(2);
+  r.start_vel[0] = std::numeric_limits<double>::quiet_NaN();
+  send(cfg_.request_channel, r);
+  r = request(3);
+  r.start_vel[0] = 3.5;  // above v_max
+  send(cfg_.request_channel, r);
+  r = request(4);
+  r.start[0] = 3.25;  // 0.5 m before the wall's clearance, flying at it at 3 m/s
+  r.start_vel[0] = 3.0;
+  send(cfg_.request_channel, r);
+  ASSERT_EQ(inbox_.traj.size(), 4u);
+  EXPECT_EQ(inbox_.traj[1].status, "non_finite");
+  EXPECT_EQ(inbox_.feas[1].refused_field, "start_vel[0]");
+  EXPECT_EQ(inbox_.traj[2].status, "out_of_range");
+  EXPECT_EQ(inbox_.feas[2].refused_field, "start_vel");
+  EXPECT_EQ(inbox_.traj[3].status, "state_cannot_stop");
+  EXPECT_EQ(inbox_.traj[3].status_code, TDO_ERR_STATE_CANNOT_STOP);
+  EXPECT_EQ(inbox_.traj[3].n_samples, 0);
+  // AND the node keeps serving
+  send(cfg_.request_channel, request(5));
+  expect_planned(5);
+}
+
 TEST_F(PlannerNodeTest, GivenACornerTimeOutsideZeroToOneThenRefusedNamingTheField) {
   send(cfg_.map_channel, wall_map(5));
   tdo::plan_request_t r = request(1);

@@ -73,6 +73,10 @@ TEST(Status, GivenTheEnumIdentifiers_WhenNamed_ThenNameIsTheIdentifierWithoutPre
       {TDO_ERR_NOT_CONFIGURED, "not_configured"},
       {TDO_ERR_OPEN_CAPACITY, "open_capacity"},
       {TDO_ERR_UPDATE_CONTRADICTORY, "update_contradictory"},
+      {TDO_ERR_STATE_NOT_FINITE, "state_not_finite"},
+      {TDO_ERR_STATE_TOO_FAST, "state_too_fast"},
+      {TDO_ERR_STATE_OVER_LIMITS, "state_over_limits"},
+      {TDO_ERR_STATE_CANNOT_STOP, "state_cannot_stop"},
   };
   EXPECT_EQ(sizeof(table) / sizeof(table[0]), static_cast<size_t>(TDO_STATUS_COUNT))
       << "a status was added to status.h without a name in this table";

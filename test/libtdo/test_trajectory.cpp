@@ -1042,4 +1042,296 @@ TEST(TrajectoryTime, GivenOnlyEightPiecesPerSegmentThenCurvesAreFlownWholeAndSlo
   EXPECT_LT(of.duration, slow - 0.05);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Moving start (tdo_traj_input.start, tdo_plan_request.state; docs/design.md s.5 "Moving start").
+// Every limit is checked by the independent finite differences above (within_limits).
+
+/** The plan's samples as a tdo_traj_output for the finite-difference checks. */
+tdo_traj_output samples_of(const tdo_plan_result& r) {
+  tdo_traj_output o{};
+  o.samples = r.samples;
+  o.n_samples = r.n_samples;
+  return o;
+}
+
+/** The limits of `p` as a trajectory input (for within_limits). */
+tdo_traj_input limits_of(const tdo_plan_params& p) {
+  tdo_traj_input in{};
+  in.v_max = p.v_max;
+  in.a_max = p.a_max;
+  in.j_max = p.j_max;
+  in.a_lat_max = p.a_lat_max;
+  in.dt = p.dt;
+  return in;
+}
+
+/** Continuity at the first samples, from the sampled positions: sample 0 is the state exactly, the
+ *  first forward difference is v0 + a0 dt/2 within j_max dt^2/6, and the first second difference
+ *  (centred at t = dt) is within j_max dt (x1.01) of a0. */
+::testing::AssertionResult continues(const tdo_traj_output& o, const tdo_vec3& p0,
+                                     const tdo_start_state& st, double j_max, double dt) {
+  if (o.n_samples < 3) return ::testing::AssertionFailure() << "too few samples";
+  const tdo_sample& s0 = o.samples[0];
+  if (!exactly(dist(s0.p, p0), 0.0) || !exactly(dist(s0.v, st.v), 0.0) ||
+      !exactly(dist(s0.a, st.a), 0.0) || !exactly(s0.t, 0.0))
+    return ::testing::AssertionFailure() << "sample 0 is not the start state";
+  const tdo_vec3 v_fd = (o.samples[1].p - o.samples[0].p) * (1.0 / dt);
+  const double dv = dist(v_fd, st.v + st.a * (0.5 * dt));
+  if (dv > j_max * dt * dt / 6.0 * 1.01 + 1e-12)
+    return ::testing::AssertionFailure() << "first velocity off by " << dv << " m/s";
+  const tdo_vec3 a_fd =
+      (o.samples[2].p - o.samples[1].p * 2.0 + o.samples[0].p) * (1.0 / (dt * dt));
+  const double da = dist(a_fd, st.a);
+  if (da > j_max * dt * 1.01 + 1e-6)
+    return ::testing::AssertionFailure() << "first acceleration off by " << da << " m/s^2";
+  return ::testing::AssertionSuccess();
+}
+
+/** Lowest finite-difference speed between the first and the last `margin` samples. */
+double min_inner_speed(const tdo_traj_output& o, double dt, uint32_t margin) {
+  double lo = kInfty;
+  for (uint32_t i = margin; i + 1 + margin < o.n_samples; ++i)
+    lo = std::fmin(lo, len3(o.samples[i + 1].p - o.samples[i].p) / dt);
+  return lo;
+}
+
+constexpr int32_t kHallX = 30, kHallY = 12, kHallZ = 6;
+
+/** A 30 x 12 x 6 m hall at 1 m voxels, a wall at x in [20, 21] for y < 8 (the goal lies behind it)
+ *  and a planner with every stage (stored or streamed samples). */
+class MovingStart : public ::testing::Test {
+ protected:
+  static tdo_capacity cap(uint32_t stream) {
+    tdo_capacity c{};
+    tdo_capacity_for_grid(&c, kHallX, kHallY, kHallZ, 0.5, 27u, 0u);
+    c.max_boxes = 16;
+    c.stream_samples = stream;
+    return c;
+  }
+  MovingStart() : pl_(cap(0u)), streamed_(cap(1u)) {}
+  void SetUp() override {
+    ASSERT_EQ(pl_.status(), TDO_OK);
+    ASSERT_EQ(streamed_.status(), TDO_OK);
+    for (tdo_test::TestPlanner* p : {&pl_, &streamed_}) {
+      const tdo_grid_desc d{kHallX, kHallY, kHallZ, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+      ASSERT_EQ(tdo_grid_reset(p->grid(), &d), TDO_OK);
+      const tdo_box wall{tdo_vec3{20, 0, 0}, tdo_vec3{21, 8, 6}};
+      ASSERT_EQ(tdo_grid_add_box(p->grid(), &wall), TDO_OK);
+      ASSERT_EQ(tdo_grid_finish(p->grid(), 0.5), TDO_OK);
+    }
+  }
+  static tdo_plan_request request(tdo_vec3 start, tdo_vec3 v, tdo_vec3 a) {
+    tdo_plan_request r{};
+    r.start = start;
+    r.goal = tdo_vec3{25.5, 4.5, 3.0};
+    tdo_plan_params_default(&r.params);
+    r.state.v = v;
+    r.state.a = a;
+    return r;
+  }
+  tdo_status plan(const tdo_plan_request& r) { return tdo_planner_plan(pl_.planner(), &r, &res_); }
+  /** The streamed planner regenerates the same samples bit for bit. */
+  ::testing::AssertionResult streams_the_same(const tdo_plan_request& r) {
+    tdo_plan_result s{};
+    const tdo_status st = tdo_planner_plan(streamed_.planner(), &r, &s);
+    if (st != TDO_OK) return ::testing::AssertionFailure() << tdo_status_str(st);
+    std::vector<tdo_sample> got;
+    tdo_planner_each_sample(
+        streamed_.planner(),
+        [](void* u, uint32_t, const tdo_sample* x) {
+          static_cast<std::vector<tdo_sample>*>(u)->push_back(*x);
+        },
+        &got);
+    if (got.size() != res_.n_samples) return ::testing::AssertionFailure() << "sample count";
+    for (uint32_t i = 0; i < res_.n_samples; ++i)
+      if (std::memcmp(&got[i], &res_.samples[i], sizeof(tdo_sample)) != 0)
+        return ::testing::AssertionFailure() << "sample " << i << " differs";
+    return ::testing::AssertionSuccess();
+  }
+  tdo_test::TestPlanner pl_, streamed_;
+  tdo_plan_result res_{};
+};
+
+TEST_F(MovingStart,
+       GivenAStartMovingTowardTheGoal_WhenPlanned_ThenItContinuesTheStateWithinLimits) {
+  // GIVEN a vehicle at (3, 4.5, 3) flying +x at 2 m/s and accelerating (1, 0.5, 0) m/s^2, the goal
+  // straight ahead behind the wall's gap
+  const tdo_plan_request r =
+      request(tdo_vec3{3.0, 4.5, 3.0}, tdo_vec3{2.0, 0.0, 0.0}, tdo_vec3{1.0, 0.5, 0.0});
+  // WHEN planned
+  ASSERT_EQ(plan(r), TDO_OK);
+  const tdo_traj_output o = samples_of(res_);
+  // THEN the samples begin with exactly that state and continue it (finite differences)
+  EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt));
+  // AND stay within v, a, j and the turn radius from the first sample (independent check)
+  EXPECT_TRUE(within_limits(o, limits_of(r.params)));
+  EXPECT_EQ(res_.feasibility.ok, 1);
+  // AND end at the goal at rest
+  const tdo_sample& last = o.samples[o.n_samples - 1];
+  EXPECT_TRUE(exactly(dist(last.p, r.goal), 0.0));
+  EXPECT_TRUE(exactly(len3(last.v), 0.0));
+  // AND the vehicle keeps moving: no stop on the way (the corners curve it through the gap)
+  EXPECT_GT(min_inner_speed(o, r.params.dt, 100u), 0.3);
+  // AND it arrives sooner than from rest
+  tdo_plan_request rest = r;
+  rest.state = tdo_start_state{};
+  tdo_plan_result from_rest{};
+  ASSERT_EQ(tdo_planner_plan(pl_.planner(), &rest, &from_rest), TDO_OK);
+  EXPECT_LT(o.n_samples, from_rest.n_samples);
+  ASSERT_EQ(plan(r), TDO_OK);
+  // AND the streamed planner hands out the same samples
+  EXPECT_TRUE(streams_the_same(r));
+}
+
+TEST_F(MovingStart, GivenAStartMovingAwayFromTheGoal_WhenPlanned_ThenItBrakesToRestAndTurnsBack) {
+  // GIVEN a vehicle at (10, 4.5, 3) flying -x at 2.5 m/s, away from the goal, braking slightly
+  const tdo_plan_request r =
+      request(tdo_vec3{10.0, 4.5, 3.0}, tdo_vec3{-2.5, 0.0, 0.0}, tdo_vec3{0.5, 0.0, 0.0});
+  // WHEN planned
+  ASSERT_EQ(plan(r), TDO_OK);
+  const tdo_traj_output o = samples_of(res_);
+  // THEN it begins with exactly the state, within every limit
+  EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt));
+  EXPECT_TRUE(within_limits(o, limits_of(r.params)));
+  // AND it keeps flying -x until it stops (a sample at rest), then turns back to the goal
+  uint32_t stop = 0;
+  for (uint32_t i = 1; i + 1 < o.n_samples && stop == 0; ++i)
+    if (exactly(len3(o.samples[i].v), 0.0)) stop = i;
+  ASSERT_GT(stop, 0u) << "no stop";
+  for (uint32_t i = 0; i < stop; ++i) EXPECT_LT(o.samples[i + 1].p.x, o.samples[i].p.x) << i;
+  EXPECT_LT(o.samples[stop].p.x, r.start.x - 0.5);
+  EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0));
+  EXPECT_TRUE(streams_the_same(r));
+}
+
+TEST_F(MovingStart, GivenAStartMovingAcrossThePath_WhenPlanned_ThenItCurvesInWithoutStopping) {
+  // GIVEN a vehicle at (4, 3, 3) flying +y at 1.5 m/s, across the direction to the goal
+  const tdo_plan_request r =
+      request(tdo_vec3{4.0, 3.0, 3.0}, tdo_vec3{0.0, 1.5, 0.0}, tdo_vec3{0.0, 0.0, 0.0});
+  // WHEN planned
+  ASSERT_EQ(plan(r), TDO_OK);
+  const tdo_traj_output o = samples_of(res_);
+  // THEN it begins with exactly the state, within every limit
+  EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt));
+  EXPECT_TRUE(within_limits(o, limits_of(r.params)));
+  // AND it turns towards the goal on a curve, without stopping
+  EXPECT_GT(min_inner_speed(o, r.params.dt, 100u), 0.3);
+  EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0));
+}
+
+TEST_F(MovingStart, GivenAWallCloserThanTheStoppingDistance_WhenPlanned_ThenStateCannotStop) {
+  // GIVEN a vehicle 2.5 m before the wall's face (x = 20, clearance 0.5 m) flying at it at 3 m/s:
+  // it needs about 2.3 m to stop, more than the 2 m it has
+  tdo_plan_request r =
+      request(tdo_vec3{17.5, 4.0, 3.0}, tdo_vec3{3.0, 0.0, 0.0}, tdo_vec3{0.0, 0.0, 0.0});
+  // WHEN planned
+  // THEN no plan: the named status, and no samples
+  EXPECT_EQ(plan(r), TDO_ERR_STATE_CANNOT_STOP);
+  EXPECT_EQ(res_.n_samples, 0u);
+  EXPECT_EQ(res_.samples, nullptr);
+  // AND accelerating towards it from 2.5 m/s is as hopeless (the ramp first, then the braking)
+  r.state.v = tdo_vec3{2.9, 0.0, 0.0};
+  r.state.a = tdo_vec3{0.5, 0.0, 0.0};
+  EXPECT_EQ(plan(r), TDO_ERR_STATE_CANNOT_STOP);
+  // AND at 1 m/s it stops in time and flies to the goal
+  r.state.v = tdo_vec3{1.0, 0.0, 0.0};
+  r.state.a = tdo_vec3{0.0, 0.0, 0.0};
+  ASSERT_EQ(plan(r), TDO_OK);
+  const tdo_traj_output o = samples_of(res_);
+  EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt));
+  EXPECT_TRUE(within_limits(o, limits_of(r.params)));
+  EXPECT_GE(res_.feasibility.min_clearance, 0.5 - 1e-9);
+}
+
+TEST_F(MovingStart, GivenBadStates_WhenPlanned_ThenNamedStatusesAndNoPlan) {
+  const tdo_vec3 p0{5.0, 4.5, 3.0}, zero{0.0, 0.0, 0.0};
+  struct Case {
+    tdo_vec3 v, a;
+    tdo_status want;
+  };
+  const Case cases[] = {
+      {tdo_vec3{kNan, 0.0, 0.0}, zero, TDO_ERR_STATE_NOT_FINITE},
+      {zero, tdo_vec3{0.0, kInfty, 0.0}, TDO_ERR_STATE_NOT_FINITE},
+      {tdo_vec3{0.0, 0.0, -kInfty}, zero, TDO_ERR_STATE_NOT_FINITE},
+      {tdo_vec3{2.5, 2.0, 0.0}, zero, TDO_ERR_STATE_TOO_FAST},  // 3.2 m/s > v_max
+      {tdo_vec3{1.0, 0.0, 0.0}, tdo_vec3{0.0, 3.1, 0.0}, TDO_ERR_STATE_OVER_LIMITS},
+      // at v_max and still accelerating along the velocity: the ramp would exceed v_max
+      {tdo_vec3{3.0, 0.0, 0.0}, tdo_vec3{2.0, 0.0, 0.0}, TDO_ERR_STATE_OVER_LIMITS},
+  };
+  for (const Case& c : cases) {
+    const tdo_plan_request r = request(p0, c.v, c.a);
+    // WHEN planned, THEN the named status and no samples
+    EXPECT_EQ(plan(r), c.want) << tdo_status_str(c.want);
+    EXPECT_EQ(res_.status, c.want);
+    EXPECT_EQ(res_.n_samples, 0u);
+  }
+  // AND a NaN is named at every depth; a moving start below depth TRAJECTORY is invalid
+  tdo_plan_request r = request(p0, tdo_vec3{kNan, 0.0, 0.0}, zero);
+  r.params.depth = TDO_PLAN_SEARCH;
+  EXPECT_EQ(plan(r), TDO_ERR_STATE_NOT_FINITE);
+  r.state.v = tdo_vec3{1.0, 0.0, 0.0};
+  r.params.depth = TDO_PLAN_SMOOTH;
+  EXPECT_EQ(plan(r), TDO_ERR_INVALID_ARGUMENT);
+  // AND a start inside the wall's clearance stays start_blocked, moving or not
+  r = request(tdo_vec3{19.8, 4.0, 3.0}, tdo_vec3{-1.0, 0.0, 0.0}, zero);
+  EXPECT_EQ(plan(r), TDO_ERR_START_BLOCKED);
+}
+
+TEST_F(MovingStart, GivenAZeroStateWithNegativeZeros_WhenPlanned_ThenExactlyThePlanFromRest) {
+  // GIVEN the same request at rest, once all +0 and once with -0 components
+  const tdo_plan_request a = request(tdo_vec3{3.0, 4.5, 3.0}, tdo_vec3{}, tdo_vec3{});
+  const tdo_plan_request b =
+      request(tdo_vec3{3.0, 4.5, 3.0}, tdo_vec3{-0.0, 0.0, -0.0}, tdo_vec3{0.0, -0.0, 0.0});
+  // WHEN planned
+  ASSERT_EQ(plan(a), TDO_OK);
+  const std::vector<tdo_sample> want(res_.samples, res_.samples + res_.n_samples);
+  ASSERT_EQ(plan(b), TDO_OK);
+  // THEN the samples are the same bits, starting at rest
+  ASSERT_EQ(res_.n_samples, want.size());
+  EXPECT_EQ(std::memcmp(res_.samples, want.data(), want.size() * sizeof(tdo_sample)), 0);
+  EXPECT_TRUE(exactly(len3(want[0].v), 0.0));
+}
+
+TEST(TrajectoryStart,
+     GivenAMovingStartAndItsBrakingLine_WhenParameterised_ThenItContinuesTheState) {
+  // GIVEN a state at (1, 2, 3) with v = (1.5, 1, 0) m/s and a = (0, -1, 0.5) m/s^2, its entry
+  const tdo_vec3 p0{1.0, 2.0, 3.0};
+  tdo_start_state st{};
+  st.v = tdo_vec3{1.5, 1.0, 0.0};
+  st.a = tdo_vec3{0.0, -1.0, 0.5};
+  tdo_traj_entry e{};
+  ASSERT_EQ(tdo_traj_entry_plan(p0, &st, 3.0, 3.0, 10.0, &e), TDO_OK);
+  EXPECT_NEAR(e.ramp, len3(st.a) / (0.95 * 10.0), 1e-15);
+  EXPECT_GT(e.brake, 0.0);
+  // AND a 12 m line from the ramp's end along its velocity
+  const tdo_vec3 d = e.v * (1.0 / e.speed);
+  Traj t;
+  ASSERT_EQ(t.status(), TDO_OK);
+  std::vector<tdo_path_segment> segs{line(e.p, e.p + d * 12.0)};
+  tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.start_p = p0;
+  in.start = st;
+  // WHEN parameterised
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  // THEN it starts in the state, within every limit, and ends at rest at the line's end
+  EXPECT_TRUE(continues(out, p0, st, in.j_max, in.dt));
+  EXPECT_TRUE(within_limits(out, in));
+  EXPECT_TRUE(exactly(dist(out.samples[out.n_samples - 1].p, segs[0].p[1]), 0.0));
+  // AND a path that does not begin with the braking line is refused
+  segs[0] = line(e.p, e.p + d * (0.5 * e.brake));
+  path = make_path(segs);
+  in.path = path;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  segs[0] = line(e.p, e.p + tdo_vec3{0.0, 0.0, 12.0});  // the wrong direction
+  path = make_path(segs);
+  in.path = path;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  segs[0] = line(p0, p0 + d * 12.0);  // not at the ramp's end
+  path = make_path(segs);
+  in.path = path;
+  EXPECT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+}
+
 }  // namespace

@@ -38,6 +38,8 @@ struct Options {
   std::string map_path;
   std::vector<double> start;
   std::vector<double> goal;
+  std::vector<double> start_vel; /**< m/s, the vehicle's velocity at the start (empty: 0) */
+  std::vector<double> start_acc; /**< m/s^2, its acceleration at the start (empty: 0) */
   std::string planner = "tdo";
   bool json = false;
   bool optimum = false;   /**< print the v/a time optimum along the plan's own path */
@@ -174,6 +176,9 @@ bool is_bad_input(tdo_status st) {
     case TDO_ERR_START_EQUALS_GOAL:
     case TDO_ERR_OBSTACLE_CAPACITY:
     case TDO_ERR_CLEARANCE_CAPACITY:
+    case TDO_ERR_STATE_NOT_FINITE:
+    case TDO_ERR_STATE_TOO_FAST:
+    case TDO_ERR_STATE_OVER_LIMITS:
       return true;
     default:
       return false;
@@ -369,9 +374,30 @@ std::string explain(tdo_status st, const tdo_grid* grid, const tdo_vec3& start,
   }
 }
 
+/** One-line explanation of a refused start state (--start-vel, --start-acc). */
+std::string explain_state(tdo_status st, const tdo_plan_request& req) {
+  const std::string name = tdo_status_str(st);
+  const tdo_vec3 v = req.state.v, a = req.state.a;
+  const double speed = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  const double acc = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+  if (st == TDO_ERR_STATE_TOO_FAST)
+    return name + ": start speed " + fmt(speed) + " m/s is above v_max " + fmt(req.params.v_max);
+  if (acc > req.params.a_max)
+    return name + ": start acceleration " + fmt(acc) + " m/s^2 is above a_max " +
+           fmt(req.params.a_max);
+  return name +
+         ": removing the start acceleration (jerk 0.95 j_max) would take the speed above "
+         "v_max " +
+         fmt(req.params.v_max);
+}
+
 std::string explain_no_plan(tdo_status st, uint32_t budget) {
   const std::string name = tdo_status_str(st);
   switch (st) {
+    case TDO_ERR_STATE_CANNOT_STOP:
+      return name +
+             ": an obstacle or the map bound lies within the stopping distance along the "
+             "start velocity (--start-vel)";
     case TDO_ERR_NO_PATH:
       return name + ": the goal is unreachable";
     case TDO_ERR_BUDGET:
@@ -598,6 +624,15 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   req.start = start;
   req.goal = goal;
   req.params = plan_params(o, kind);
+  if (!o.start_vel.empty()) req.state.v = to_vec(o.start_vel, "--start-vel");
+  if (!o.start_acc.empty()) req.state.a = to_vec(o.start_acc, "--start-acc");
+  const tdo_vec3 sv = req.state.v, sa = req.state.a;
+  const auto nonzero = [](const tdo_vec3& q) {
+    return std::fabs(q.x) > 0.0 || std::fabs(q.y) > 0.0 || std::fabs(q.z) > 0.0;
+  };
+  const bool moving = nonzero(sv) || nonzero(sa);
+  if (moving && req.params.depth != TDO_PLAN_TRAJECTORY)
+    throw BadInput{"--start-vel / --start-acc need a planner with a trajectory (--planner tdo)"};
   tdo_plan_result res{};
   const auto t0 = std::chrono::steady_clock::now();
   const tdo_status st = tdo_planner_plan(p.planner, &req, &res);
@@ -657,6 +692,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     std::printf("planner          %s (%s, clearance %s m)\n", o.planner.c_str(),
                 turn_terms_text(req.params).c_str(), fmt(clearance).c_str());
     std::printf("start -> goal    %s -> %s\n", fmt_vec(start).c_str(), fmt_vec(goal).c_str());
+    if (moving)
+      std::printf("start_state      v %s m/s, a %s m/s^2\n", fmt_vec(sv).c_str(),
+                  fmt_vec(sa).c_str());
     std::printf("status           %s\n", tdo_status_str(st));
     if (planned) {
       std::printf("grid path        %u voxels, search cost %.6f m\n", res.n_grid_path,
@@ -705,6 +743,8 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   }
 
   if (st == TDO_OK) return kExitOk;
+  if (st == TDO_ERR_STATE_TOO_FAST || st == TDO_ERR_STATE_OVER_LIMITS)
+    throw BadInput{explain_state(st, req)};
   if (is_bad_input(st)) throw BadInput{explain(st, p.grid, start, goal, clearance)};
   std::fprintf(stderr, "tdo-plan: no plan: %s\n",
                explain_no_plan(st, req.params.max_expansions).c_str());
@@ -725,6 +765,8 @@ bool is_bench_planner(const std::string& name) {
 
 /** A planner of tools/baselines (the bench's interface): summary or JSON without a trajectory. */
 int run_bench_planner(const Options& o, const tdo_io::Map& map, double clearance) {
+  if (!o.start_vel.empty() || !o.start_acc.empty())
+    throw BadInput{"--start-vel / --start-acc need a planner with a trajectory (--planner tdo)"};
   if (o.start.empty() && !map.has_start) throw BadInput{"no start: give --start X Y Z"};
   if (o.goal.empty() && !map.has_goal) throw BadInput{"no goal: give --goal X Y Z"};
   const tdo_vec3 start = o.start.empty() ? map.start : to_vec(o.start, "--start");
@@ -791,6 +833,13 @@ int run(int argc, char** argv) {
                  "m, voxel edge an OcTree map (.bt/.ot) is voxelized at (default: the tree's)");
   app.add_option("--start", o.start, "start X Y Z in m (default: the map's 'start')")->expected(3);
   app.add_option("--goal", o.goal, "goal X Y Z in m (default: the map's 'goal')")->expected(3);
+  app.add_option("--start-vel", o.start_vel,
+                 "velocity VX VY VZ in m/s at the start (default 0 0 0: at rest; a moving start, "
+                 "docs/design.md s.5)")
+      ->expected(3);
+  app.add_option("--start-acc", o.start_acc,
+                 "acceleration AX AY AZ in m/s^2 at the start (default 0 0 0)")
+      ->expected(3);
   app.add_option("--planner", o.planner,
                  "tdo (the full TDO-MSF pipeline) | astar | bidir (raw grid paths, no penalties) | "
                  "msf-mtpo (the paper's baseline) | the bench's planners: model-a..model-e "
@@ -838,6 +887,8 @@ int run(int argc, char** argv) {
       ->group("");
   scen->excludes(app.get_option("--start"));
   scen->excludes(app.get_option("--goal"));
+  scen->excludes(app.get_option("--start-vel"));
+  scen->excludes(app.get_option("--start-acc"));
 
   try {
     app.parse(argc, argv);

@@ -415,6 +415,32 @@ Check library_ranges(const tdo::plan_request_t& m) {
   return {};
 }
 
+/** The moving start (start_vel, start_acc): finite, within v_max and a_max, only with the
+ *  trajectory stage (tdo_planner_plan's rules, named by field here). */
+Check start_state_check(const tdo::plan_request_t& m) {
+  Check c = need_finite3("start_vel", m.start_vel);
+  if (c.ok()) c = need_finite3("start_acc", m.start_acc);
+  if (!c.ok()) return c;
+  const double speed = std::sqrt(m.start_vel[0] * m.start_vel[0] + m.start_vel[1] * m.start_vel[1] +
+                                 m.start_vel[2] * m.start_vel[2]);
+  const double acc = std::sqrt(m.start_acc[0] * m.start_acc[0] + m.start_acc[1] * m.start_acc[1] +
+                               m.start_acc[2] * m.start_acc[2]);
+  if (!(speed > 0.0) && !(acc > 0.0)) return {};
+  if (m.depth != tdo::plan_request_t::DEPTH_TRAJECTORY)
+    return fail_field(Reason::out_of_range, "start_vel",
+                      "a moving start needs depth " +
+                          std::to_string(tdo::plan_request_t::DEPTH_TRAJECTORY) + ", not " +
+                          std::to_string(m.depth));
+  if (speed > m.v_max * (1.0 + 1e-9))  // the library's rounding allowance (trajectory.h)
+    return fail_field(Reason::out_of_range, "start_vel",
+                      "start speed " + exact_num(speed) + " m/s above v_max " + exact_num(m.v_max));
+  if (acc > m.a_max * (1.0 + 1e-9))
+    return fail_field(
+        Reason::out_of_range, "start_acc",
+        "start acceleration " + exact_num(acc) + " m/s^2 above a_max " + exact_num(m.a_max));
+  return {};
+}
+
 }  // namespace
 
 Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
@@ -438,6 +464,7 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
   if (m.samples != tdo::plan_request_t::SAMPLES_OFF && m.samples != tdo::plan_request_t::SAMPLES_ON)
     return fail_field(Reason::bad_enum, "samples", "samples " + std::to_string(m.samples));
   c = library_ranges(m);
+  if (c.ok()) c = start_state_check(m);
   if (!c.ok()) return c;
 
   tdo_plan_request r{};
@@ -451,6 +478,8 @@ Check plan_request_from_msg(const tdo::plan_request_t& msg, int32_t vehicle_id,
         tdo_param_set(&r.params, static_cast<uint32_t>(f.param), f.get(m)) != TDO_OK)
       return fail_field(Reason::out_of_range, f.name, std::string(f.name) + " cannot be held");
   }
+  r.state.v = tdo_vec3{m.start_vel[0], m.start_vel[1], m.start_vel[2]};
+  r.state.a = tdo_vec3{m.start_acc[0], m.start_acc[1], m.start_acc[2]};
   *out = r;
   if (clearance != nullptr) *clearance = m.clearance;
   return {};
@@ -463,6 +492,12 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
   out->goal[0] = req.goal.x;
   out->goal[1] = req.goal.y;
   out->goal[2] = req.goal.z;
+  out->start_vel[0] = req.state.v.x;
+  out->start_vel[1] = req.state.v.y;
+  out->start_vel[2] = req.state.v.z;
+  out->start_acc[0] = req.state.a.x;
+  out->start_acc[1] = req.state.a.y;
+  out->start_acc[2] = req.state.a.z;
   out->clearance = clearance;
   for (const RequestField& f : request_fields()) {
     if (f.param < 0) continue;

@@ -71,11 +71,15 @@ void tdo_plan_params_default(tdo_plan_params* p);
  *  as they are. Nothing for NULL pointers. */
 void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in);
 
-/** One planning request. */
+/** One planning request. Zero-initialise it: a zero `state` is a start at rest. */
 typedef struct tdo_plan_request {
   tdo_vec3 start;         /**< m, world frame */
   tdo_vec3 goal;          /**< m, world frame */
   tdo_plan_params params; /**< parameters */
+  tdo_start_state state;  /**< m/s and m/s^2 at `start`: the vehicle's motion (trajectory.h).
+                               Zero: at rest, the plan exactly as without it. Non-zero: the
+                               trajectory begins with exactly this velocity and acceleration
+                               (docs/design.md s.5, "Moving start"); needs depth TRAJECTORY */
 } tdo_plan_request;
 
 /** Everything a plan produced. Arrays point into the planner arena, valid until the next plan. */
@@ -83,12 +87,15 @@ typedef struct tdo_plan_result {
   tdo_status status;         /**< overall status (TDO_OK only when every stage run passed) */
   tdo_plan_depth reached;    /**< last stage that produced output */
   tdo_search_output search;  /**< stage 1 */
-  const tdo_vec3* grid_path; /**< m, voxel centres with the exact start and goal at the ends;
+  const tdo_vec3* grid_path; /**< m, voxel centres with the exact start and goal at the ends
+                                  (with a moving start: the search start, at the entry's end);
                                   the start (goal) voxel's centre stays as well when the segment
                                   from the start to the next centre (from the previous centre to
                                   the goal) would not keep the clearance */
   uint32_t n_grid_path;
-  const tdo_vec3* waypoints; /**< m, polyline P2 (stage 2) */
+  const tdo_vec3* waypoints; /**< m, polyline P2 (stage 2); with a moving start it begins with
+                                  the entry points (the end of the ramp, the end of the braking
+                                  line) before the corrected path from the search start */
   uint32_t n_waypoints;
   uint32_t n_safety_critical; /**< waypoints kept for clearance */
   tdo_path path;              /**< stage 3 */
@@ -110,7 +117,12 @@ typedef struct tdo_plan_result {
  *         or goal point itself (not only its voxel's centre) is closer than the clearance to an
  *         obstacle, at every depth (docs/design.md s.0: every point of the output keeps it);
  * TDO_ERR_INFEASIBLE (with the report) when no trajectory meets the limits; capacity and budget
- * statuses.
+ * statuses. A moving start (req->state non-zero): TDO_ERR_STATE_NOT_FINITE (at every depth),
+ * TDO_ERR_INVALID_ARGUMENT below depth TRAJECTORY, TDO_ERR_STATE_TOO_FAST,
+ * TDO_ERR_STATE_OVER_LIMITS (tdo_traj_entry_plan), TDO_ERR_START_OUT_OF_BOUNDS /
+ * TDO_ERR_START_BLOCKED for the start point, TDO_ERR_STATE_CANNOT_STOP when the ramp or the
+ * braking line along the velocity leaves the bounds or the clearance, or the braking line ends in
+ * a blocked voxel.
  */
 tdo_status tdo_planner_plan(tdo_planner* planner, const tdo_plan_request* req,
                             tdo_plan_result* out);

@@ -36,7 +36,15 @@ typedef enum tdo_status {
   TDO_ERR_NOT_CONFIGURED = 21, /**< a pipeline stage was asked for but its capacities are zero */
   TDO_ERR_OPEN_CAPACITY = 22,  /**< search open list full (tdo_search_config.max_open) */
   TDO_ERR_UPDATE_CONTRADICTORY = 23, /**< a map update sets and clears the same voxel */
-  TDO_STATUS_COUNT = 24              /**< number of statuses (not a status) */
+  TDO_ERR_STATE_NOT_FINITE = 24,     /**< start velocity or acceleration has a NaN or infinity */
+  TDO_ERR_STATE_TOO_FAST = 25,       /**< start speed above v_max */
+  TDO_ERR_STATE_OVER_LIMITS =
+      26, /**< start acceleration above a_max, or the jerk-limited removal of the acceleration
+               would take the speed above v_max (docs/design.md s.5, moving start) */
+  TDO_ERR_STATE_CANNOT_STOP =
+      27, /**< an obstacle or the map bound lies within the stopping distance along the start
+               velocity: no braking or curving in keeps the clearance (docs/design.md s.5) */
+  TDO_STATUS_COUNT = 28 /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

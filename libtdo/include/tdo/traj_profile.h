@@ -6,7 +6,9 @@
  * Piece k covers t in [t0, t0 + dur) (s); inside it the path arclength is the exact cubic
  *   s(t) = s0 + v0 tau + a0 tau^2 / 2 + j tau^3 / 6,  tau = t - t0,
  * and the position is the path point at s. The pieces follow each other without gaps in time
- * (t0 of a piece is t0 + dur of the one before; the first starts at 0). How many pieces a path
+ * (t0 of a piece is t0 + dur of the one before; the first starts at 0, or with a moving start at
+ * the end of its acceleration ramp, tdo_traj_entry.ramp, whose samples lie off the path and are
+ * no piece). How many pieces a path
  * segment gets is the time parameterisation's business and may vary: readers take n_pieces as
  * given. Sample i of the trajectory (tdo_traj_output.samples) lies at t = i * dt, and the last one,
  * at t = (n_samples - 1) * dt, is exactly the goal at rest.

@@ -89,24 +89,67 @@ typedef struct tdo_traj_config {
                                  bounds their number (TDO_ERR_SAMPLE_CAPACITY) */
 } tdo_traj_config;
 
+/**
+ * The motion a trajectory starts with: a plan from a moving vehicle (docs/design.md s.5, "Moving
+ * start"). All zero: at rest, the trajectory as without it.
+ */
+typedef struct tdo_start_state {
+  tdo_vec3 v; /**< m/s, world frame: velocity at the start (|v| <= v_max) */
+  tdo_vec3 a; /**< m/s^2, world frame: acceleration at the start (|a| <= a_max) */
+} tdo_start_state;
+
+/**
+ * How a moving start enters its path (tdo_traj_entry_plan): a ramp of constant jerk brings the
+ * acceleration to zero, then the path begins with a straight line along the velocity left, at
+ * least `brake` long, so that the vehicle can always stop on it within the limits.
+ */
+typedef struct tdo_traj_entry {
+  double ramp;   /**< s, duration of the jerk ramp (0 when the start acceleration is zero) */
+  tdo_vec3 jerk; /**< m/s^3, the ramp's constant jerk, -a / ramp, |jerk| = 0.95 j_max */
+  tdo_vec3 p;    /**< m, position at the end of the ramp: where the path must begin */
+  tdo_vec3 v;    /**< m/s, velocity there (acceleration zero): the path's initial tangent */
+  double speed;  /**< m/s, |v|, at most v_max */
+  double brake;  /**< m, the path's first line must be at least this long: the distance in which
+                      the speed profile's straight-line limits (0.99 a_max, 0.6 j_max) stop from
+                      `speed`, plus 1e-6 relative and 1e-9 m */
+} tdo_traj_entry;
+
+/**
+ * @brief The entry of the state (p0, s): the acceleration ramp and the braking line.
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, non-finite p0 or limits not > 0;
+ *         TDO_ERR_STATE_NOT_FINITE (a NaN or infinity in s); TDO_ERR_STATE_TOO_FAST (|v| above
+ *         v_max); TDO_ERR_STATE_OVER_LIMITS (|a| above a_max, or the speed at the end of the ramp,
+ *         the highest speed on it, above v_max). Each limit allows 1e-9
+ *         relative for rounding (a state sampled at v_max); the entry's speed is then v_max.
+ */
+tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max, double a_max,
+                               double j_max, tdo_traj_entry* out);
+
 /** Input. */
 typedef struct tdo_traj_input {
-  tdo_path path;        /**< geometric path (stage 3); each segment's `length` as path.h says */
-  const tdo_grid* grid; /**< for the clearance column of the report (may be NULL: not checked);
-                             when given it must be finished */
-  double clearance;     /**< m, >= 0; every sample keeps it (checked only with a grid) */
-  double v_max;         /**< m/s, > 0 */
-  double a_max;         /**< m/s^2, > 0 */
-  double j_max;         /**< m/s^3, > 0 */
-  double a_lat_max;     /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.9 a_max
-                             is used; the tangential acceleration gets the rest of 0.98 a_max) */
-  double dt;            /**< s, sample period, > 0 (default 0.01) */
+  tdo_path path;         /**< geometric path (stage 3); each segment's `length` as path.h says */
+  const tdo_grid* grid;  /**< for the clearance column of the report (may be NULL: not checked);
+                              when given it must be finished */
+  double clearance;      /**< m, >= 0; every sample keeps it (checked only with a grid) */
+  double v_max;          /**< m/s, > 0 */
+  double a_max;          /**< m/s^2, > 0 */
+  double j_max;          /**< m/s^3, > 0 */
+  double a_lat_max;      /**< m/s^2, > 0, lateral limit used for curve speeds (at most 0.9 a_max
+                              is used; the tangential acceleration gets the rest of 0.98 a_max) */
+  double dt;             /**< s, sample period, > 0 (default 0.01) */
+  tdo_vec3 start_p;      /**< m, where a moving start begins (unused when `start` is zero) */
+  tdo_start_state start; /**< zero (zero-initialised input): start at rest at the path's first
+                              point. Otherwise the samples begin at start_p with exactly this
+                              velocity and acceleration: the ramp of tdo_traj_entry_plan, then the
+                              path, which must begin at the entry's p (within 1e-6 m) with a line
+                              along its v (within 1e-3 rad) at least `brake` long */
 } tdo_traj_input;
 
 /** Output; storage in the context, valid until the next run. */
 typedef struct tdo_traj_output {
-  const tdo_sample* samples; /**< every dt from t = 0 (at start, at rest) to the end (exactly at
-                                  the goal, at rest); a sample falls on every stop point. NULL
+  const tdo_sample* samples; /**< every dt from t = 0 (at start, at rest or in the start state)
+                                  to the end (exactly at the goal, at rest); a sample falls on
+                                  every stop point. NULL
                                   with stream_samples (n_samples still counts them) */
   uint32_t n_samples;
   double duration;        /**< s, (n_samples - 1) * dt */
@@ -144,7 +187,8 @@ tdo_status tdo_traj_init(tdo_traj** ctx, tdo_arena* arena, const tdo_traj_config
  *         TDO_ERR_INVALID_ARGUMENT for null pointers, a limit or dt zero, negative or non-finite, a
  *         negative or non-finite clearance, an empty or zero-length path, an unknown segment kind,
  *         non-finite points, curvature or lengths, a negative length, a v_limit not > 0, or
- *         consecutive segments whose end points are more than 1e-6 m apart.
+ *         consecutive segments whose end points are more than 1e-6 m apart, or a path that does not
+ *         begin as a moving start needs; the statuses of tdo_traj_entry_plan for a bad start.
  */
 tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_traj_output* out);
 

@@ -22,7 +22,8 @@ int main(void) {
   if (st == TDO_OK) st = tdo_grid_finish(grid, 0.5); /* keep 0.5 m from every obstacle */
 
   /* One call: search, correction, smoothing, time parameterisation, feasibility, metrics. */
-  tdo_plan_request req;
+  /* Zero-initialised: the vehicle starts at rest (req.state, docs/design.md s.5). */
+  tdo_plan_request req = {0};
   tdo_plan_params_default(&req.params); /* the table of tdo/params.h: tdo-plan --list-params */
   req.start = (tdo_vec3){1.0, 1.0, 1.5};
   req.goal = (tdo_vec3){9.0, 1.0, 1.5};

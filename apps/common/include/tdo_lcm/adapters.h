@@ -84,14 +84,16 @@ std::vector<uint8_t> grid_occupancy(const tdo_grid* grid);
  * @return ok; out_of_range (use_defaults bits beyond USE_DEFAULT_ALL); other_vehicle; non_finite;
  *         out_of_range (negative max_expansions, map_id < -1, or a parameter outside its valid
  *         range in tdo/params.h, for the stages `depth` runs); bad_enum (an enum or boolean field
- *         outside its values, whatever the depth; samples). Every refusal but other_vehicle names
- *         the field (its LCM name, request_fields.h) in Check::field.
+ *         outside its values, whatever the depth; samples); for the moving start (start_vel,
+ *         start_acc -> out->state): non_finite, out_of_range (speed above v_max, acceleration
+ *         above a_max, a non-zero state below DEPTH_TRAJECTORY). Every refusal but other_vehicle
+ *         names the field (its LCM name, request_fields.h) in Check::field.
  */
 Check plan_request_from_msg(const tdo::plan_request_t& m, int32_t vehicle_id, tdo_plan_request* out,
                             double* clearance);
 
-/** Fill start, goal, clearance and every parameter of `out` from `req` (ids and utime untouched).
- */
+/** Fill start, goal, the start state, clearance and every parameter of `out` from `req` (ids and
+ *  utime untouched). */
 void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::plan_request_t* out);
 
 // ---- answers ---------------------------------------------------------------------------------
