@@ -19,6 +19,7 @@
 #include <math.h>
 
 #include "directions.h"
+#include "grid_geometry.h"
 #include "grid_internal.h"
 #include "vec3.h"
 
@@ -27,47 +28,6 @@ namespace {
 
 constexpr int32_t kDfReach = 2;        // voxels beyond the clearance reach lowered exactly
 constexpr uint64_t kMovesVisits = 27;  // voxel visits of one legal-step recomputation
-
-int64_t index_of(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
-  return i + j * g->stride_y + k * g->stride_z;
-}
-
-bool in_grid(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
-  return i >= 0 && j >= 0 && k >= 0 && i < g->desc.nx && j < g->desc.ny && k < g->desc.nz;
-}
-
-// ---- the arithmetic of grid.cpp (kept identical: the result must equal a rebuild)
-
-int64_t clamp_index(double v, int32_t n) {
-  if (v < -1.0) return -1;
-  if (v > static_cast<double>(n)) return n;
-  return static_cast<int64_t>(v);
-}
-
-void interior_range(double o, double r, int32_t n, double a, double b, int64_t* lo, int64_t* hi) {
-  const int64_t first0 = clamp_index(floor((a - o) / r) - 1.0, n);
-  const int64_t last0 = clamp_index(ceil((b - o) / r) + 1.0, n);
-  int64_t first = first0 < 0 ? 0 : first0;
-  int64_t last = last0 > n - 1 ? n - 1 : last0;
-  while (first <= last && !(o + static_cast<double>(first + 1) * r > a)) ++first;
-  while (last >= first && !(o + static_cast<double>(last) * r < b)) --last;
-  *lo = first;
-  *hi = last;
-}
-
-void centre_range(double o, double r, int32_t n, double a, double b, double c, int64_t* lo,
-                  int64_t* hi) {
-  const int64_t f = clamp_index(ceil((a - c - o) / r - 0.5), n);
-  const int64_t l = clamp_index(floor((b + c - o) / r - 0.5), n);
-  *lo = f < 0 ? 0 : f;
-  *hi = l > n - 1 ? n - 1 : l;
-}
-
-double axis_gap(double p, double a, double b) {
-  if (p < a) return a - p;
-  if (p > b) return p - b;
-  return 0.0;
-}
 
 // The clearance stencil of the grid's clearance into g->stencil; false when it does not fit
 // (tdo_grid_finish would have failed first). Bounded: (2 reach + 1)^3 offsets.

@@ -599,6 +599,27 @@ tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) 
 }
 
 /** One query: plan, print JSON or a summary. */
+/** The text output's lines about the search: work, memory, retry and guide (search.h). */
+void print_search(const Options& o, const tdo_search_output& sr) {
+  std::printf("expansions       %" PRIu32 "\n", sr.expansions);
+  std::printf("states           %" PRIu32 " (both directions; at most %" PRIu32
+              " in one: --max-nodes)\n",
+              sr.states, sr.peak_nodes);
+  std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", sr.peak_open);
+  if (sr.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
+    std::printf("search_try       retry %" PRIu32 " (%s: grid-distance heuristic)\n", sr.fallback,
+                o.retry == "first"         ? "no octile try, --retry first"
+                : o.retry == "first-terms" ? "after the first try, --retry first-terms"
+                                           : "after the octile try");
+  else if (o.retry == "first-terms")
+    std::printf(
+        "search_try       first (grid distances and the deviation term, --retry "
+        "first-terms)\n");
+  if (sr.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
+    std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
+                sr.guide == 1 ? "corridor" : "corridor empty, whole grid", sr.guide_expansions);
+}
+
 int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_search_kind kind) {
   tdo_vec3 start{};
   tdo_vec3 goal{};
@@ -718,25 +739,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
                       opt.time_s, ratio);
       }
     }
-    std::printf("expansions       %" PRIu32 "\n", res.search.expansions);
-    std::printf("states           %" PRIu32 " (both directions; at most %" PRIu32
-                " in one: --max-nodes)\n",
-                res.search.states, res.search.peak_nodes);
-    std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", res.search.peak_open);
-    if (res.search.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
-      std::printf("search_try       retry %" PRIu32 " (%s: grid-distance heuristic)\n",
-                  res.search.fallback,
-                  o.retry == "first"         ? "no octile try, --retry first"
-                  : o.retry == "first-terms" ? "after the first try, --retry first-terms"
-                                             : "after the octile try");
-    else if (o.retry == "first-terms")
-      std::printf(
-          "search_try       first (grid distances and the deviation term, --retry "
-          "first-terms)\n");
-    if (res.search.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
-      std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
-                  res.search.guide == 1 ? "corridor" : "corridor empty, whole grid",
-                  res.search.guide_expansions);
+    print_search(o, res.search);
     std::printf("plan_time_ms     %.3f\n", plan_ms);
     std::printf("arena_bytes      %zu\n", p.bytes);
     std::fflush(stdout);
