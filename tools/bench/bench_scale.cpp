@@ -38,6 +38,7 @@ struct Options {
   bool load = false;                   // --load: map loading only (scale_load.h)
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
+  std::string guide = "on";            // tdo's coarse guide on grids of 2^20 voxels or more
 };
 
 void usage(FILE* f) {
@@ -45,6 +46,7 @@ void usage(FILE* f) {
       f,
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
       "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
+      "                       [--guide on|off]\n"
       "                       [--maps-dir DIR] [--load]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
@@ -57,6 +59,8 @@ void usage(FILE* f) {
       "                   tdo-plan --max-nodes (default 4000000; 0 = voxels x headings)\n"
       "  --states S       tdo's search states: heading (the library's default) or voxel\n"
       "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
+      "  --guide on|off   tdo's coarse guide on grids of 2^20 voxels or more (design s.1;\n"
+      "                   default on, as tdo-plan)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"
       "                   .3dmap map against the OctoMap library's read / the .3dmap parse\n"
@@ -95,7 +99,7 @@ int parse_args(int argc, char** argv, Options* o) {
     }
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
                              a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
-                             a == "--max-nodes" || a == "--states";
+                             a == "--max-nodes" || a == "--states" || a == "--guide";
     if (!takes_value) {
       std::fprintf(stderr, "tdo-bench-scale: unknown argument '%s'\n", a.c_str());
       usage(stderr);
@@ -115,6 +119,9 @@ int parse_args(int argc, char** argv, Options* o) {
       o->workloads.emplace_back(v);  // an unknown name is refused with the known ones listed
     } else if (a == "--maps-dir") {
       o->maps_dir = v;
+    } else if (a == "--guide") {
+      o->guide = v;
+      ok = o->guide == "on" || o->guide == "off";
     } else if (a == "--states") {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";
@@ -162,7 +169,7 @@ int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::Sca
   }
   std::unique_ptr<tdo_bench::ScaleMapRun> run = tdo_bench::ScaleMapRun::create(
       map, sm.clearance, static_cast<uint32_t>(o.max_nodes),
-      o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING, w.rrt, &err);
+      o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING, o.guide == "on", w.rrt, &err);
   if (!run) {
     std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
     return 2;
@@ -236,10 +243,10 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu, states "
-      "%s%s\n",
+      "%s, guide %s%s\n",
       static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
       static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
-      o.states.c_str(), o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+      o.states.c_str(), o.guide.c_str(), o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
   std::printf("\ncpu: %s; load average before %s, after %s\n", tdo_bench::cpu_model().c_str(),

@@ -86,7 +86,8 @@ bool rss_reset_peak() {
 ScaleMapRun::~ScaleMapRun() = default;
 
 std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double clearance,
-                                                 uint32_t node_cap, int states, bool rrt,
+                                                 uint32_t node_cap, int states, bool guide,
+                                                 bool rrt,
                                                  std::string* error) {
   std::unique_ptr<ScaleMapRun> r(new ScaleMapRun());
   r->clearance_ = clearance;
@@ -100,8 +101,8 @@ std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double 
   cfg.cap = tdo_io::capacity_for(map, clearance, voxel ? 1u : 27u, node_cap);
   cfg.cap.exact_heuristic = 1u;  // the retry's tables (capacity_for sets them for 27 headings)
   // The coarse guide as tdo-plan sets it: grids of 2^20 voxels or more, voxel states included.
-  if (static_cast<double>(map.desc.nx) * map.desc.ny * map.desc.nz >= 1048576.0)
-    cfg.cap.guide_shift = 2u;
+  cfg.cap.guide_shift =
+      guide && static_cast<double>(map.desc.nx) * map.desc.ny * map.desc.nz >= 1048576.0 ? 2u : 0u;
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";

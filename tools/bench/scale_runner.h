@@ -53,10 +53,12 @@ class ScaleMapRun {
    *        voxels. `node_cap`: search states per direction of both libtdo planners (capacity_for;
    *        0 = voxels x headings). `states`: the tdo search's tdo_state_space; with
    *        TDO_STATES_VOXEL tdo is sized without headings but keeps the retry tables, as tdo-plan
-   *        --states voxel. @return null with `error` on a set-up failure.
+   *        --states voxel. `guide`: tdo's coarse guide on grids of 2^20 voxels or more
+   *        (tdo_capacity.guide_shift 2), as tdo-plan --guide. @return null with `error` on a
+   *        set-up failure.
    */
   static std::unique_ptr<ScaleMapRun> create(const tdo_io::Map& map, double clearance,
-                                             uint32_t node_cap, int states, bool rrt,
+                                             uint32_t node_cap, int states, bool guide, bool rrt,
                                              std::string* error);
   ~ScaleMapRun();
   ScaleMapRun(const ScaleMapRun&) = delete;
