@@ -246,7 +246,8 @@ int main(int argc, char** argv) {
       "%s, guide %s%s\n",
       static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
       static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
-      o.states.c_str(), o.guide.c_str(), o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+      o.states.c_str(), o.guide.c_str(),
+      o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
   std::printf("\ncpu: %s; load average before %s, after %s\n", tdo_bench::cpu_model().c_str(),

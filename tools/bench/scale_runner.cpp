@@ -87,8 +87,7 @@ ScaleMapRun::~ScaleMapRun() = default;
 
 std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double clearance,
                                                  uint32_t node_cap, int states, bool guide,
-                                                 bool rrt,
-                                                 std::string* error) {
+                                                 bool rrt, std::string* error) {
   std::unique_ptr<ScaleMapRun> r(new ScaleMapRun());
   r->clearance_ = clearance;
   r->states_ = states;
