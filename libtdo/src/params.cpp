@@ -169,7 +169,7 @@ void write_int(unsigned char* at, size_t size, int32_t n) {
 }  // namespace
 
 extern "C" double tdo_param_get(const tdo_plan_params* p, uint32_t i) {
-  if (p == nullptr || i >= kCount) return NAN;
+  if (p == nullptr || i >= kCount) return static_cast<double>(NAN);
   const tdo_param_info& r = kTable[i];
   const unsigned char* at = reinterpret_cast<const unsigned char*>(p) + r.offset;
   switch (r.type) {
@@ -187,7 +187,7 @@ extern "C" double tdo_param_get(const tdo_plan_params* p, uint32_t i) {
     case TDO_PARAM_ENUM:
       return static_cast<double>(read_int(at, r.size));
   }
-  return NAN;
+  return static_cast<double>(NAN);
 }
 
 extern "C" tdo_status tdo_param_set(tdo_plan_params* p, uint32_t i, double v) {

@@ -225,7 +225,7 @@ TEST_F(MapUpdateMemq, GivenBadUpdates_WhenReceived_ThenEachIsCountedByNameAndSer
   other_vehicle.vehicle_id = kVehicle + 1;
   send(cfg_.map_update_channel, other_vehicle);
   tdo::map_update_t nan_box = update(40, 2);
-  nan_box.boxes.push_back({1.0, 1.0, 1.0, NAN, 2.0, 2.0});
+  nan_box.boxes.push_back({1.0, 1.0, 1.0, std::nan(""), 2.0, 2.0});
   nan_box.n_boxes = 1;
   send(cfg_.map_update_channel, nan_box);
   EXPECT_EQ(heartbeat_reason("update.stale_update"), 1);

@@ -350,7 +350,7 @@ TEST_F(GridUpdateRefused, GivenBadVoxelsOrBoxes_WhenApplied_ThenNamedStatuses) {
   expect_refused(tdo_grid_update{nullptr, 3, nullptr, 0, nullptr, 0, 0}, TDO_ERR_INVALID_ARGUMENT);
   const tdo_box flat{v3(0, 3, 1), v3(1, 3, 2)};
   expect_refused(tdo_grid_update{in, 1, nullptr, 0, &flat, 1, 0}, TDO_ERR_INVALID_BOX);
-  const tdo_box nan_box{v3(0, 3, 1), v3(1, NAN, 2)};
+  const tdo_box nan_box{v3(0, 3, 1), v3(1, std::nan(""), 2)};
   expect_refused(tdo_grid_update{in, 1, nullptr, 0, &nan_box, 1, 0}, TDO_ERR_INVALID_BOX);
   const tdo_box three[3] = {{v3(0, 3, 1), v3(1, 4, 2)},
                             {v3(0, 3, 1), v3(1, 4, 2)},

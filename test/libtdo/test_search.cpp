@@ -1295,7 +1295,7 @@ TEST(SearchCorridor,
 #endif
   ASSERT_EQ(pl.status(), TDO_OK);
   Rng rng(2718);
-  int found = 0, restricted_only = 0;
+  int found = 0;
   for (int round = 0; round < 300; ++round) {
     const Case c = random_case(rng, 16, 8);
     TestCorridor tc(c.map, 2);
@@ -1327,7 +1327,6 @@ TEST(SearchCorridor,
         continue;
       }
       ++found;
-      restricted_only += inside < kInf ? 0 : 1;
       EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
       for (const tdo_voxel& v : r.path) EXPECT_TRUE(tc.in[tc.cell_of_voxel(v)]) << tdo_test::str(v);
       EXPECT_GE(r.out.cost, best - 1e-9);
