@@ -39,6 +39,7 @@ PACKAGES=(
   libnlopt-cxx-dev # tools/tdo-tune: nlopt.hpp
   clang-14           # the clang build and the libFuzzer targets (TDO_FUZZ, docs/fuzzing.md)
   libclang-rt-14-dev # clang's libFuzzer, ASan and UBSan runtimes
+  universal-ctags    # scripts/check_structure.py (function lengths, CTest repo.structure)
 )
 
 log() { printf '[setup] %s\n' "$*"; }
