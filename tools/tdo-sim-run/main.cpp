@@ -197,9 +197,10 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
 struct OnlineAgg {
   int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
   int over_limits = 0, escape_failed = 0;
-  long replans = 0, failures = 0, blocked = 0, stuck = 0, switches = 0, hidden = 0, revealed = 0;
+  long replans = 0, failures = 0, blocked = 0, stuck = 0, mover_conflicts = 0, switches = 0,
+       hidden = 0, revealed = 0;
   double min_static = HUGE_VAL, min_gap = HUGE_VAL, max_v = 0.0, max_a = 0.0, max_j = 0.0;
-  std::vector<double> ms, times;
+  std::vector<double> ms, cpu, times;
   std::map<std::string, int> failed;  // failed plans by "takeover:" / "vehicle:" status
   void add(const tdo_online::Metrics& m) {
     for (const std::string& f : m.failure_statuses) ++failed[f];
@@ -216,6 +217,7 @@ struct OnlineAgg {
     failures += m.replan_failures;
     blocked += m.triggers_blocked;
     stuck += m.triggers_stuck;
+    mover_conflicts += m.mover_conflicts;
     switches += m.switches;
     revealed += m.revealed;
     min_static = std::min(min_static, m.min_true_static);
@@ -224,6 +226,7 @@ struct OnlineAgg {
     max_a = std::max(max_a, m.max_acc);
     max_j = std::max(max_j, m.max_jerk);
     ms.insert(ms.end(), m.replan_ms.begin(), m.replan_ms.end());
+    cpu.insert(cpu.end(), m.replan_cpu_ms.begin(), m.replan_cpu_ms.end());
     if (m.success) times.push_back(m.time);
     over_limits += m.max_speed > 1.01 * m.v_limit || m.max_acc > 1.01 * m.a_limit ||
                    m.max_jerk > 1.01 * m.j_limit;
@@ -269,13 +272,18 @@ void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& co
       [&](const OnlineAgg& a) { return n(a.hidden) + " / " + n(a.revealed); });
   row("blocked checks / stuck reports",
       [&](const OnlineAgg& a) { return n(a.blocked) + " / " + n(a.stuck); });
+  row("mover conflicts (left to evasion)",
+      [&](const OnlineAgg& a) { return n(a.mover_conflicts); });
   row("replans (failed attempts)",
       [&](const OnlineAgg& a) { return n(a.replans) + " (" + n(a.failures) + ")"; });
   row("plan switches", [&](const OnlineAgg& a) { return n(a.switches); });
-  row("replan ms p50 / p99", [&](const OnlineAgg& a) {
+  row("replan wall ms p50 / p99", [&](const OnlineAgg& a) {
     return s(quantile(a.ms, 0.5), "%.2f") + " / " + s(quantile(a.ms, 0.99), "%.2f");
   });
-  row("replan ms max", [&](const OnlineAgg& a) { return s(quantile(a.ms, 1.0), "%.2f"); });
+  row("replan wall ms max", [&](const OnlineAgg& a) { return s(quantile(a.ms, 1.0), "%.2f"); });
+  row("replan CPU ms p50 / p99", [&](const OnlineAgg& a) {
+    return s(quantile(a.cpu, 0.5), "%.2f") + " / " + s(quantile(a.cpu, 0.99), "%.2f");
+  });
   row("flight time s (median, arrived)",
       [&](const OnlineAgg& a) { return s(quantile(a.times, 0.5), "%.2f"); });
   row("escape failed (named status)", [&](const OnlineAgg& a) { return n(a.escape_failed); });
@@ -351,6 +359,89 @@ tdo_online::Replanner parse_replanner(const std::string& s) {
   throw BadInput{"--replanner must be tdo, none or msf-mtpo, got '" + s + "'"};
 }
 
+// The followers' bench: N random episodes with E-APF and APF, with and without movers.
+int follower_bench(int bench, uint64_t seed, const RandomSpec& r, const tdo_episode::Options& o) {
+  const std::string dir = scratch_dir();
+  Agg eapf, apf, eapf_free, apf_free;
+  for (Agg* a : {&eapf, &apf, &eapf_free, &apf_free}) a->clearance = o.clearance;
+  for (int i = 0; i < bench; ++i) {
+    const uint64_t sd = seed + static_cast<uint64_t>(i);
+    const tdo_io::Map map = random_map(r, sd, dir);
+    std::string err;
+    for (int variant = 0; variant < 4; ++variant) {
+      tdo_episode::Options vo = o;
+      vo.keep_samples = false;
+      vo.seed = sd;
+      vo.follower = (variant % 2 == 0) ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
+      vo.movers = variant < 2;
+      tdo_episode::Episode e;
+      if (!tdo_episode::run(map, vo, &e, &err)) throw BadInput{err};
+      Agg* a = variant == 0 ? &eapf : variant == 1 ? &apf : variant == 2 ? &eapf_free : &apf_free;
+      a->add(e.m);
+    }
+  }
+  std::filesystem::remove_all(dir);
+  std::printf(
+      "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns, %d movers "
+      "(%.2g-%.2g m/s, radius %.2g-%.2g m), seeds %llu..%llu\n",
+      bench, r.size[0], r.size[1], r.size[2], r.columns, r.movers, r.speed[0], r.speed[1],
+      r.radius[0], r.radius[1], static_cast<unsigned long long>(seed),
+      static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
+  print_table(
+      {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
+  tdo_plan_params lim;
+  tdo_plan_params_default(&lim);
+  std::printf("limits v %.3g m/s, a %.3g m/s^2, j %.3g m/s^3 (1 %% tolerance):", lim.v_max,
+              lim.a_max, lim.j_max);
+  for (const auto& c :
+       {std::make_pair("E-APF", &eapf), std::make_pair("APF", &apf),
+        std::make_pair("E-APF no mover", &eapf_free), std::make_pair("APF no mover", &apf_free)})
+    std::printf(" %s %s;", c.first, c.second->over_limits == 0 ? "met" : "NOT met");
+  std::printf("\n");
+  return kExitOk;
+}
+
+CLI::Option* add_online_options(CLI::App* app, tdo_online::Options* online,
+                                std::string* replanner) {
+  CLI::Option* unknown = app->add_option(
+      "--unknown", online->unknown,
+      "F in [0, 1]: online mode. A fraction F of the columns (seeded) stays hidden until the range "
+      "sensor sees it; revealed columns update the known map; the plan is checked and replanned. "
+      "--bench then compares tdo replanning, E-APF only and MSF-MTPO replanning");
+  app->add_option("--sensor-range", online->sensor_range, "m, range sensor reach (default 5)");
+  app->add_option("--replanner", *replanner,
+                  "online single episode: tdo (default), none (E-APF only) or msf-mtpo");
+  app->add_option("--latency", online->latency,
+                  "s, the new plan takes over this long after the trigger (default 0.1)");
+  app->add_option("--replan-horizon", online->horizon,
+                  "s, the active trajectory is checked this far ahead (default 5)");
+  return unknown;
+}
+
+// The online mode: its options checked, then the bench or one episode (random or a map file).
+int online_main(const tdo_online::Options& online, int bench, uint64_t seed, const RandomSpec& r,
+                bool random, const std::string& map_path, bool check) {
+  if (!(online.unknown >= 0.0 && online.unknown <= 1.0))
+    throw BadInput{"--unknown must be in [0, 1]"};
+  if (!std::isfinite(online.sensor_range) || online.sensor_range <= 0.0)
+    throw BadInput{"--sensor-range must be finite and > 0"};
+  if (!std::isfinite(online.latency) || online.latency < 0.0 || online.latency > 10.0)
+    throw BadInput{"--latency must be in [0, 10]"};
+  if (!std::isfinite(online.horizon) || online.horizon < 0.0)
+    throw BadInput{"--replan-horizon must be finite and >= 0"};
+  if (bench > 0) return online_bench(bench, seed, r, online);
+  tdo_io::Map map;
+  if (random) {
+    const std::string dir = scratch_dir();
+    map = random_map(r, seed, dir);
+    std::filesystem::remove_all(dir);
+  } else {
+    std::string err;
+    if (!tdo_io::load_map(map_path, &map, &err)) throw BadInput{err};
+  }
+  return online_single(map, online, check);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "Plan a map's query with tdo_planner_plan, fly it in the libtdo simulator with the E-APF "
@@ -388,18 +479,7 @@ int run(int argc, char** argv) {
   app.add_flag("--check", check, "exit 1 unless success and no collision (single episode)");
   tdo_online::Options online;
   std::string replanner = "tdo";
-  auto* unknown_opt = app.add_option(
-      "--unknown", online.unknown,
-      "F in [0, 1]: online mode. A fraction F of the columns (seeded) stays hidden until the range "
-      "sensor sees it; revealed columns update the known map; the plan is checked and replanned. "
-      "--bench then compares tdo replanning, E-APF only and MSF-MTPO replanning");
-  app.add_option("--sensor-range", online.sensor_range, "m, range sensor reach (default 5)");
-  app.add_option("--replanner", replanner,
-                 "online single episode: tdo (default), none (E-APF only) or msf-mtpo");
-  app.add_option("--latency", online.latency,
-                 "s, the new plan takes over this long after the trigger (default 0.1)");
-  app.add_option("--replan-horizon", online.horizon,
-                 "s, the active trajectory is checked this far ahead (default 5)");
+  CLI::Option* unknown_opt = add_online_options(&app, &online, &replanner);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -439,74 +519,16 @@ int run(int argc, char** argv) {
   const int sources = (map_path.empty() ? 0 : 1) + (random ? 1 : 0) + (bench > 0 ? 1 : 0);
   if (sources != 1) throw BadInput{"give exactly one of --map FILE, --random, --bench N"};
   if (unknown_opt->count() > 0) {
-    if (!(online.unknown >= 0.0 && online.unknown <= 1.0))
-      throw BadInput{"--unknown must be in [0, 1]"};
-    if (!std::isfinite(online.sensor_range) || online.sensor_range <= 0.0)
-      throw BadInput{"--sensor-range must be finite and > 0"};
-    if (!std::isfinite(online.latency) || online.latency < 0.0 || online.latency > 10.0)
-      throw BadInput{"--latency must be in [0, 10]"};
-    if (!std::isfinite(online.horizon) || online.horizon < 0.0)
-      throw BadInput{"--replan-horizon must be finite and >= 0"};
     if (noise > 0.0 || !o.params.empty() || o.follower != TDO_FOLLOWER_EAPF)
       throw BadInput{"--unknown flies E-APF without --noise or --param"};
     online.replanner = parse_replanner(replanner);
     online.movers = !no_movers;
     online.time_factor = o.time_factor;
-    if (bench > 0) return online_bench(bench, seed, r, online);
-    tdo_io::Map map;
-    std::string dir;
-    if (random) {
-      dir = scratch_dir();
-      map = random_map(r, seed, dir);
-      std::filesystem::remove_all(dir);
-    } else {
-      std::string err;
-      if (!tdo_io::load_map(map_path, &map, &err)) throw BadInput{err};
-    }
     online.hide_seed = seed;
-    return online_single(map, online, check);
+    return online_main(online, bench, seed, r, random, map_path, check);
   }
 
-  if (bench > 0) {
-    const std::string dir = scratch_dir();
-    Agg eapf, apf, eapf_free, apf_free;
-    for (Agg* a : {&eapf, &apf, &eapf_free, &apf_free}) a->clearance = o.clearance;
-    for (int i = 0; i < bench; ++i) {
-      const uint64_t sd = seed + static_cast<uint64_t>(i);
-      const tdo_io::Map map = random_map(r, sd, dir);
-      std::string err;
-      for (int variant = 0; variant < 4; ++variant) {
-        tdo_episode::Options vo = o;
-        vo.keep_samples = false;
-        vo.seed = sd;
-        vo.follower = (variant % 2 == 0) ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
-        vo.movers = variant < 2;
-        tdo_episode::Episode e;
-        if (!tdo_episode::run(map, vo, &e, &err)) throw BadInput{err};
-        Agg* a = variant == 0 ? &eapf : variant == 1 ? &apf : variant == 2 ? &eapf_free : &apf_free;
-        a->add(e.m);
-      }
-    }
-    std::filesystem::remove_all(dir);
-    std::printf(
-        "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns, %d movers "
-        "(%.2g-%.2g m/s, radius %.2g-%.2g m), seeds %llu..%llu\n",
-        bench, r.size[0], r.size[1], r.size[2], r.columns, r.movers, r.speed[0], r.speed[1],
-        r.radius[0], r.radius[1], static_cast<unsigned long long>(seed),
-        static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
-    print_table(
-        {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
-    tdo_plan_params lim;
-    tdo_plan_params_default(&lim);
-    std::printf("limits v %.3g m/s, a %.3g m/s^2, j %.3g m/s^3 (1 %% tolerance):", lim.v_max,
-                lim.a_max, lim.j_max);
-    for (const auto& c :
-         {std::make_pair("E-APF", &eapf), std::make_pair("APF", &apf),
-          std::make_pair("E-APF no mover", &eapf_free), std::make_pair("APF no mover", &apf_free)})
-      std::printf(" %s %s;", c.first, c.second->over_limits == 0 ? "met" : "NOT met");
-    std::printf("\n");
-    return kExitOk;
-  }
+  if (bench > 0) return follower_bench(bench, seed, r, o);
 
   tdo_io::Map map;
   std::string dir;

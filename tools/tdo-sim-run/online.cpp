@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 
 namespace tdo_online {
@@ -32,6 +33,13 @@ double now_ms() {
       .count();
 }
 
+// CPU time of this thread, ms (what the replanning itself costs, without waiting for a core).
+double cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
 struct Arena {
   std::unique_ptr<unsigned char[]> mem;
   tdo_arena a{};
@@ -56,6 +64,7 @@ struct Loop {
   bool pending = false;       // a switch is staged
   double next_attempt = 0.0;  // s, vehicle time of the next allowed replanning attempt
   bool blocked = false;       // the last check found the active trajectory blocked
+  double lookahead = 0.1;     // s, the follower's reference lead over its clock
   Loop(const tdo_io::Map& mp, const Options& op, Metrics* me) : map(mp), o(op), m(me) {}
 };
 
@@ -149,8 +158,10 @@ bool sense(Loop* L, tdo_vec3 p, uint32_t* n_revealed, std::string* error) {
   return true;
 }
 
-// Is the active trajectory blocked on the known grid within the horizon from ref_time?
-bool check_blocked(const Loop* L, double ref_time) {
+// Is the active trajectory blocked within the horizon from ref_time: on the known grid, or (when
+// `movers` is given) by a mover's predicted position (constant velocity from `t_clock`)?
+bool check_blocked(const Loop* L, double ref_time, const tdo_apf_input* movers = nullptr,
+                   double t_clock = 0.0) {
   tdo_replan_check_input ci{};
   ci.grid = L->grid;
   ci.samples = L->active.data();
@@ -158,14 +169,22 @@ bool check_blocked(const Loop* L, double ref_time) {
   ci.t = std::max(0.0, ref_time);
   ci.horizon = L->o.horizon;
   ci.clearance = std::max(0.0, L->o.clearance - L->o.check_slack);
+  if (movers != nullptr) {
+    ci.t = std::max(0.0, t_clock);
+    ci.clearance = 0.0;  // the grid was checked at the clearance already
+    ci.movers = movers->movers;
+    ci.n_movers = movers->n_movers;
+    ci.mover_clearance = L->o.vehicle_radius + L->o.mover_margin;
+  }
   tdo_replan_check_result cr{};
-  return tdo_replan_check(&ci, &cr) == TDO_OK && cr.blocked != 0;
+  return tdo_replan_check(&ci, &cr) == TDO_OK && cr.blocked != 0 &&
+         (movers == nullptr || cr.cause == TDO_REPLAN_MOVER);
 }
 
 // One replanning attempt: from the takeover state on the active trajectory (switch at the
 // takeover time), else from the vehicle's own state (switch at once). True when a plan is staged.
 bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehicle_state& s) {
-  const double t0 = now_ms();
+  const double t0 = now_ms(), c0 = cpu_ms();
   tdo_replan_takeover_result tk{};
   tdo_status st = tdo_replan_takeover(L->active.data(), static_cast<uint32_t>(L->active.size()),
                                       std::max(0.0, out.ref_time), L->o.latency, &tk);
@@ -187,7 +206,7 @@ bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehi
     st = plan(L, s.p, vs, &L->staged);
     t_switch = std::max(0.0, out.ref_time);
   }
-  const double ms = now_ms() - t0;
+  const double ms = now_ms() - t0, cpu = cpu_ms() - c0;
   if (st != TDO_OK) {
     L->m->failure_statuses.push_back(std::string("vehicle:") + tdo_status_str(st));
     ++L->m->replan_failures;
@@ -206,18 +225,25 @@ bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehi
   L->pending = true;
   ++L->m->replans;
   L->m->replan_ms.push_back(ms);
+  L->m->replan_cpu_ms.push_back(cpu);
   return true;
 }
 
 // Sensing, checking and replanning of one step (before the follower's command is applied).
-bool online_step(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehicle_state& s,
+bool online_step(Loop* L, tdo_apf* apf, const tdo_apf_input& in, const tdo_apf_output& out,
                  bool sense_now, std::string* error) {
+  const tdo_vehicle_state& s = in.state;
   if (sense_now) {
     uint32_t n = 0;
     if (!sense(L, s.p, &n, error)) return false;
     if (L->o.replanner != Replanner::None && !L->pending) {
       L->blocked = check_blocked(L, out.ref_time);
       if (L->blocked) ++L->m->triggers_blocked;
+      // Movers over the same horizon: counted, left to the follower's evasion (the planner plans
+      // on the static map and cannot route round a moving sphere).
+      if (!L->blocked && in.n_movers > 0u &&
+          check_blocked(L, out.ref_time, &in, out.ref_time - L->lookahead))
+        ++L->m->mover_conflicts;
     }
   }
   if (L->o.replanner == Replanner::None || L->pending) return true;
@@ -266,6 +292,7 @@ bool start_flight(Loop* L, Flight* f, const tdo_apf_config& acfg, const tdo_sim_
   prm->a_max = L->params.a_max;
   prm->j_max = L->params.j_max;
   prm->goal_tol = L->o.goal_tol;
+  L->lookahead = prm->lookahead;
   tdo_apf_task task{};
   task.samples = L->active.data();
   task.n_samples = static_cast<uint32_t>(L->active.size());
@@ -326,7 +353,7 @@ bool fly(Loop* L, Flight* f, double dt, std::vector<tdo_vec3>* pos, std::string*
       ++m.switches;
     }
     if ((ao.events & TDO_APF_EVENT_ESCAPE_FAILED) != 0u) m.escape_failed = true;
-    if (!online_step(L, f->apf, ao, so.state, k % sense_every == 0u, error)) return false;
+    if (!online_step(L, f->apf, in, ao, k % sense_every == 0u, error)) return false;
     tdo_sim_input si{};
     si.setpoint = ao.setpoint;
     tdo_sim_run(f->sim, &si, &so);

@@ -52,6 +52,8 @@ struct Options {
   double static_clearance = 0.25; /**< m, static contact when the centre comes closer than this to
                                        a true box */
   bool movers = true;             /**< fly among the map's movers */
+  double mover_margin = 0.5;      /**< m, a mover conflicts with the plan within its radius +
+                                       vehicle_radius + this (the follower's default margin) */
 };
 
 /** Metrics of one online episode. */
@@ -68,9 +70,13 @@ struct Metrics {
   uint32_t revealed = 0;             /**< of them revealed by the sensor */
   uint32_t triggers_blocked = 0;     /**< checks that found the active trajectory blocked */
   uint32_t triggers_stuck = 0;       /**< follower local-minimum reports that asked for a replan */
+  uint32_t mover_conflicts = 0;      /**< checks (static clear) whose trajectory meets a mover's
+                                          predicted position within the horizon: left to the
+                                          follower's evasion, no replan */
   uint32_t replans = 0;              /**< new plans handed to the follower */
   uint32_t replan_failures = 0;      /**< replanning attempts without a plan (retried later) */
   std::vector<double> replan_ms;     /**< ms, wall time from trigger to new plan, per replan */
+  std::vector<double> replan_cpu_ms; /**< ms, the same in thread CPU time */
   /** "takeover:<status>" / "vehicle:<status>" of every plan that failed (the takeover plan, then
    *  the plan from the vehicle's state) */
   std::vector<std::string> failure_statuses;
