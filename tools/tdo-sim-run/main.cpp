@@ -198,7 +198,7 @@ struct OnlineAgg {
   int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
   int over_limits = 0, escape_failed = 0;
   long replans = 0, failures = 0, blocked = 0, stuck = 0, mover_conflicts = 0, switches = 0,
-       hidden = 0, revealed = 0;
+       stale = 0, hidden = 0, revealed = 0;
   double min_static = HUGE_VAL, min_gap = HUGE_VAL, max_v = 0.0, max_a = 0.0, max_j = 0.0;
   std::vector<double> ms, cpu, times;
   std::map<std::string, int> failed;  // failed plans by "takeover:" / "vehicle:" status
@@ -219,6 +219,7 @@ struct OnlineAgg {
     stuck += m.triggers_stuck;
     mover_conflicts += m.mover_conflicts;
     switches += m.switches;
+    stale += m.stale_switches;
     revealed += m.revealed;
     min_static = std::min(min_static, m.min_true_static);
     min_gap = std::min(min_gap, m.min_mover_gap);
@@ -276,7 +277,8 @@ void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& co
       [&](const OnlineAgg& a) { return n(a.mover_conflicts); });
   row("replans (failed attempts)",
       [&](const OnlineAgg& a) { return n(a.replans) + " (" + n(a.failures) + ")"; });
-  row("plan switches", [&](const OnlineAgg& a) { return n(a.switches); });
+  row("plan switches (stale, replaced)",
+      [&](const OnlineAgg& a) { return n(a.switches) + " (" + n(a.stale) + ")"; });
   row("replan wall ms p50 / p99", [&](const OnlineAgg& a) {
     return s(quantile(a.ms, 0.5), "%.2f") + " / " + s(quantile(a.ms, 0.99), "%.2f");
   });

@@ -61,10 +61,11 @@ struct Loop {
   std::vector<uint32_t> revealed;
   std::vector<tdo_box> update_boxes;
   std::vector<tdo_sample> active, staged;
-  bool pending = false;       // a switch is staged
-  double next_attempt = 0.0;  // s, vehicle time of the next allowed replanning attempt
-  bool blocked = false;       // the last check found the active trajectory blocked
-  double lookahead = 0.1;     // s, the follower's reference lead over its clock
+  bool pending = false;           // a switch is staged
+  double pending_deadline = 0.0;  // s, vehicle time by which the staged switch must have happened
+  double next_attempt = 0.0;      // s, vehicle time of the next allowed replanning attempt
+  bool blocked = false;           // the last check found the active trajectory blocked
+  double lookahead = 0.1;         // s, the follower's reference lead over its clock
   Loop(const tdo_io::Map& mp, const Options& op, Metrics* me) : map(mp), o(op), m(me) {}
 };
 
@@ -181,34 +182,54 @@ bool check_blocked(const Loop* L, double ref_time, const tdo_apf_input* movers =
          (movers == nullptr || cr.cause == TDO_REPLAN_MOVER);
 }
 
-// One replanning attempt: from the takeover state on the active trajectory (switch at the
-// takeover time), else from the vehicle's own state (switch at once). True when a plan is staged.
-bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehicle_state& s) {
-  const double t0 = now_ms(), c0 = cpu_ms();
-  tdo_replan_takeover_result tk{};
-  tdo_status st = tdo_replan_takeover(L->active.data(), static_cast<uint32_t>(L->active.size()),
-                                      std::max(0.0, out.ref_time), L->o.latency, &tk);
-  double t_switch = tk.t;
-  if (st == TDO_OK) st = plan(L, tk.p, tk.state, &L->staged);
-  // A state the planner cannot enter within the jerk limit (accelerating close to v_max): the
-  // next samples, up to 0.3 s on, until one is accepted.
-  for (int k = 1; k <= 6 && st == TDO_ERR_STATE_OVER_LIMITS; ++k) {
+// A plan from the takeover state on the active trajectory (the switch at the takeover time). A
+// state the planner cannot enter within its limits (accelerating or turning close to v_max) is
+// followed by the next samples, up to 0.3 s on, until one is accepted.
+tdo_status plan_takeover(Loop* L, const tdo_apf_output& out, double* t_switch) {
+  tdo_status st = TDO_ERR_STATE_OVER_LIMITS;
+  for (int k = 0; k <= 6 && st == TDO_ERR_STATE_OVER_LIMITS; ++k) {
+    tdo_replan_takeover_result tk{};
     st = tdo_replan_takeover(L->active.data(), static_cast<uint32_t>(L->active.size()),
                              std::max(0.0, out.ref_time), L->o.latency + 0.05 * k, &tk);
-    t_switch = tk.t;
+    *t_switch = tk.t;
     if (st == TDO_OK) st = plan(L, tk.p, tk.state, &L->staged);
   }
-  if (st != TDO_OK) {
-    L->m->failure_statuses.push_back(std::string("takeover:") + tdo_status_str(st));
-    tdo_start_state vs{};
-    vs.v = s.v;
-    vs.a = s.a;
+  if (st != TDO_OK) L->m->failure_statuses.push_back(std::string("takeover:") + tdo_status_str(st));
+  return st;
+}
+
+// A plan from the vehicle's own state (the switch at once). A state the planner refuses as over
+// its limits (the simulator's state at a limit, within rounding, or turning at v_max) is tried
+// again with the acceleration dropped and the speed at most 0.98 v_max: the switch is not
+// continuous anyway, and the follower's motion rule limits the difference.
+tdo_status plan_from_vehicle(Loop* L, const tdo_apf_output& out, const tdo_vehicle_state& s,
+                             double* t_switch) {
+  *t_switch = std::max(0.0, out.ref_time);
+  tdo_start_state vs{};
+  vs.v = s.v;
+  vs.a = s.a;
+  tdo_status st = plan(L, s.p, vs, &L->staged);
+  if (st == TDO_ERR_STATE_OVER_LIMITS) {
+    const double sp = std::sqrt(vs.v.x * vs.v.x + vs.v.y * vs.v.y + vs.v.z * vs.v.z);
+    const double f = sp > 0.98 * L->params.v_max ? 0.98 * L->params.v_max / sp : 1.0;
+    vs.v = tdo_vec3{vs.v.x * f, vs.v.y * f, vs.v.z * f};
+    vs.a = tdo_vec3{0.0, 0.0, 0.0};
     st = plan(L, s.p, vs, &L->staged);
-    t_switch = std::max(0.0, out.ref_time);
   }
+  if (st != TDO_OK) L->m->failure_statuses.push_back(std::string("vehicle:") + tdo_status_str(st));
+  return st;
+}
+
+// One replanning attempt: from the takeover state, else (or with `vehicle_only`) from the
+// vehicle's state. True when a plan is staged in the follower.
+bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehicle_state& s,
+                bool vehicle_only) {
+  const double t0 = now_ms(), c0 = cpu_ms();
+  double t_switch = 0.0;
+  tdo_status st = vehicle_only ? TDO_ERR_NOT_CONFIGURED : plan_takeover(L, out, &t_switch);
+  if (st != TDO_OK) st = plan_from_vehicle(L, out, s, &t_switch);
   const double ms = now_ms() - t0, cpu = cpu_ms() - c0;
   if (st != TDO_OK) {
-    L->m->failure_statuses.push_back(std::string("vehicle:") + tdo_status_str(st));
     ++L->m->replan_failures;
     return false;
   }
@@ -223,6 +244,10 @@ bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehi
     return false;
   }
   L->pending = true;
+  // The reference reaches the switch time after t_switch - ref_time of clock time; the clock
+  // holds while the vehicle is pushed off, so a switch not taken half a second after that is
+  // given up (the vehicle is replanned from its own state).
+  L->pending_deadline = s.t + std::max(0.0, t_switch - out.ref_time) + 0.5;
   ++L->m->replans;
   L->m->replan_ms.push_back(ms);
   L->m->replan_cpu_ms.push_back(cpu);
@@ -246,12 +271,18 @@ bool online_step(Loop* L, tdo_apf* apf, const tdo_apf_input& in, const tdo_apf_o
         ++L->m->mover_conflicts;
     }
   }
-  if (L->o.replanner == Replanner::None || L->pending) return true;
+  if (L->o.replanner == Replanner::None) return true;
+  bool stale = false;
+  if (L->pending) {
+    if (s.t <= L->pending_deadline || s.t < L->next_attempt) return true;
+    stale = true;
+    ++L->m->stale_switches;
+  }
   const bool stuck =
       (out.events & TDO_APF_EVENT_LM_DETECTED) != 0u || out.mode == TDO_APF_MODE_STUCK;
   if (stuck) ++L->m->triggers_stuck;
-  if ((L->blocked || stuck) && s.t >= L->next_attempt) {
-    if (try_replan(L, apf, out, s)) {
+  if (stale || ((L->blocked || stuck) && s.t >= L->next_attempt)) {
+    if (try_replan(L, apf, out, s, stale)) {
       L->blocked = false;
     } else {
       L->next_attempt = s.t + L->o.retry_period;

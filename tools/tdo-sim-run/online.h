@@ -80,10 +80,13 @@ struct Metrics {
   /** "takeover:<status>" / "vehicle:<status>" of every plan that failed (the takeover plan, then
    *  the plan from the vehicle's state) */
   std::vector<std::string> failure_statuses;
-  uint32_t switches = 0;                                 /**< TDO_APF_EVENT_SWITCHED seen */
-  bool escape_failed = false;                            /**< the follower gave up at some point */
-  double time = 0.0;                                     /**< s, arrival time or the time flown */
-  double plan_duration = 0.0;                            /**< s, first plan */
+  uint32_t switches = 0;       /**< TDO_APF_EVENT_SWITCHED seen */
+  uint32_t stale_switches = 0; /**< staged switches not taken in time (the reference held back
+                                    while the vehicle was pushed off): replaced by a plan from the
+                                    vehicle's state */
+  bool escape_failed = false;  /**< the follower gave up at some point */
+  double time = 0.0;           /**< s, arrival time or the time flown */
+  double plan_duration = 0.0;  /**< s, first plan */
   double max_speed = 0.0, max_acc = 0.0, max_jerk = 0.0; /**< executed, finite differences */
   double v_limit = 0.0, a_limit = 0.0, j_limit = 0.0;    /**< the limits flown with */
   uint32_t steps = 0;
