@@ -287,8 +287,10 @@ bool fly(const tdo_io::Map& map, const Options& o, double dt, tdo_apf* apf, tdo_
   return true;
 }
 
-// Step 5: executed v, a, j maxima by finite differences of the positions (paper eq. 15-17).
-void executed_limits(const std::vector<tdo_vec3>& pos, double dt, Metrics* m) {
+}  // namespace
+
+void executed_vaj(const std::vector<tdo_vec3>& pos, double dt, double* max_v, double* max_a,
+                  double* max_j) {
   std::vector<tdo_vec3> v, a;
   for (std::size_t i = 0; i + 1 < pos.size(); ++i)
     v.push_back(tdo_vec3{(pos[i + 1].x - pos[i].x) / dt, (pos[i + 1].y - pos[i].y) / dt,
@@ -297,10 +299,17 @@ void executed_limits(const std::vector<tdo_vec3>& pos, double dt, Metrics* m) {
     a.push_back(tdo_vec3{(v[i + 1].x - v[i].x) / dt, (v[i + 1].y - v[i].y) / dt,
                          (v[i + 1].z - v[i].z) / dt});
   const tdo_vec3 zero{0.0, 0.0, 0.0};
-  for (const auto& x : v) m->max_speed = std::max(m->max_speed, dist(x, zero));
-  for (const auto& x : a) m->max_acc = std::max(m->max_acc, dist(x, zero));
+  for (const auto& x : v) *max_v = std::max(*max_v, dist(x, zero));
+  for (const auto& x : a) *max_a = std::max(*max_a, dist(x, zero));
   for (std::size_t i = 0; i + 1 < a.size(); ++i)
-    m->max_jerk = std::max(m->max_jerk, dist(a[i + 1], a[i]) / dt);
+    *max_j = std::max(*max_j, dist(a[i + 1], a[i]) / dt);
+}
+
+namespace {
+
+// Step 5: executed v, a, j maxima by finite differences of the positions (paper eq. 15-17).
+void executed_limits(const std::vector<tdo_vec3>& pos, double dt, Metrics* m) {
+  executed_vaj(pos, dt, &m->max_speed, &m->max_acc, &m->max_jerk);
 }
 
 }  // namespace

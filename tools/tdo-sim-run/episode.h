@@ -105,6 +105,13 @@ bool run(const tdo_io::Map& map, const Options& o, Episode* out, std::string* er
 /** The episode as JSON text (metrics, plan, steps, movers' tracks, events). */
 std::string to_json(const Episode& e, const tdo_io::Map& map, const Options& o);
 
+/**
+ * @brief Executed speed, acceleration and jerk maxima by finite differences of positions taken
+ *        every dt (paper eq. 15-17); each maximum is raised, never lowered (start them at 0).
+ */
+void executed_vaj(const std::vector<tdo_vec3>& pos, double dt, double* max_v, double* max_a,
+                  double* max_j);
+
 /** Stable name of a follower ("eapf" / "apf"). */
 const char* follower_name(tdo_follower_kind k);
 

@@ -10,11 +10,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "episode.h"
 #include "mapgen.h"
+#include "online.h"
 #include "tool_cli.h"
 
 namespace {
@@ -190,6 +192,258 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
       [&](const Agg& a) { return std::to_string(a.over_limits); });
 }
 
+// ---- Online episodes (--unknown): hidden columns, sensing, replanning (issue 20) ----
+
+struct OnlineAgg {
+  int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
+  int over_limits = 0, escape_failed = 0;
+  long replans = 0, failures = 0, blocked = 0, stuck = 0, mover_conflicts = 0, switches = 0,
+       stale = 0, hidden = 0, revealed = 0;
+  double min_static = HUGE_VAL, min_gap = HUGE_VAL, max_v = 0.0, max_a = 0.0, max_j = 0.0;
+  std::vector<double> ms, cpu, times;
+  std::map<std::string, int> failed;  // failed plans by "takeover:" / "vehicle:" status
+  void add(const tdo_online::Metrics& m) {
+    for (const std::string& f : m.failure_statuses) ++failed[f];
+    ++episodes;
+    hidden += m.hidden;
+    if (!m.planned) return;
+    ++planned;
+    success += m.success;
+    collisions += m.collision;
+    coll_mover += m.collision_mover;
+    coll_static += m.collision_static;
+    escape_failed += m.escape_failed;
+    replans += m.replans;
+    failures += m.replan_failures;
+    blocked += m.triggers_blocked;
+    stuck += m.triggers_stuck;
+    mover_conflicts += m.mover_conflicts;
+    switches += m.switches;
+    stale += m.stale_switches;
+    revealed += m.revealed;
+    min_static = std::min(min_static, m.min_true_static);
+    min_gap = std::min(min_gap, m.min_mover_gap);
+    max_v = std::max(max_v, m.max_speed);
+    max_a = std::max(max_a, m.max_acc);
+    max_j = std::max(max_j, m.max_jerk);
+    ms.insert(ms.end(), m.replan_ms.begin(), m.replan_ms.end());
+    cpu.insert(cpu.end(), m.replan_cpu_ms.begin(), m.replan_cpu_ms.end());
+    if (m.success) times.push_back(m.time);
+    over_limits += m.max_speed > 1.01 * m.v_limit || m.max_acc > 1.01 * m.a_limit ||
+                   m.max_jerk > 1.01 * m.j_limit;
+  }
+};
+
+// The q-quantile (nearest rank) of v; 0 for none.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto r = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, r > 0 ? r - 1 : 0)];
+}
+
+void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& cols) {
+  auto row = [&](const char* name, auto f) {
+    std::printf("%-34s", name);
+    for (const auto& c : cols) std::printf(" %16s", f(c.second).c_str());
+    std::printf("\n");
+  };
+  auto s = [](double x, const char* fm = "%.3f") {
+    char b[64];
+    std::snprintf(b, sizeof b, fm, x);
+    return std::string(b);
+  };
+  auto n = [](long x) { return std::to_string(x); };
+  std::printf("%-34s", "");
+  for (const auto& c : cols) std::printf(" %16s", c.first.c_str());
+  std::printf("\n");
+  row("episodes (first plan ok)",
+      [&](const OnlineAgg& a) { return n(a.episodes) + " (" + n(a.planned) + ")"; });
+  row("success", [&](const OnlineAgg& a) {
+    return n(a.success) + " (" + s(100.0 * a.success / std::max(a.episodes, 1), "%.1f") + " %)";
+  });
+  row("collisions (mover / static)", [&](const OnlineAgg& a) {
+    return n(a.collisions) + " (" + n(a.coll_mover) + "/" + n(a.coll_static) + ")";
+  });
+  row("min true static distance m", [&](const OnlineAgg& a) { return s(a.min_static); });
+  row("min mover gap m", [&](const OnlineAgg& a) {
+    return std::isfinite(a.min_gap) ? s(a.min_gap) : std::string("-");
+  });
+  row("hidden / revealed columns",
+      [&](const OnlineAgg& a) { return n(a.hidden) + " / " + n(a.revealed); });
+  row("blocked checks / stuck reports",
+      [&](const OnlineAgg& a) { return n(a.blocked) + " / " + n(a.stuck); });
+  row("mover conflicts (left to evasion)",
+      [&](const OnlineAgg& a) { return n(a.mover_conflicts); });
+  row("replans (failed attempts)",
+      [&](const OnlineAgg& a) { return n(a.replans) + " (" + n(a.failures) + ")"; });
+  row("plan switches (stale, replaced)",
+      [&](const OnlineAgg& a) { return n(a.switches) + " (" + n(a.stale) + ")"; });
+  row("replan wall ms p50 / p99", [&](const OnlineAgg& a) {
+    return s(quantile(a.ms, 0.5), "%.2f") + " / " + s(quantile(a.ms, 0.99), "%.2f");
+  });
+  row("replan wall ms max", [&](const OnlineAgg& a) { return s(quantile(a.ms, 1.0), "%.2f"); });
+  row("replan CPU ms p50 / p99", [&](const OnlineAgg& a) {
+    return s(quantile(a.cpu, 0.5), "%.2f") + " / " + s(quantile(a.cpu, 0.99), "%.2f");
+  });
+  row("flight time s (median, arrived)",
+      [&](const OnlineAgg& a) { return s(quantile(a.times, 0.5), "%.2f"); });
+  row("escape failed (named status)", [&](const OnlineAgg& a) { return n(a.escape_failed); });
+  row("executed max v / a / j", [&](const OnlineAgg& a) {
+    return s(a.max_v, "%.2f") + "/" + s(a.max_a, "%.2f") + "/" + s(a.max_j, "%.1f");
+  });
+  row("episodes over a v/a/j limit (1 %)", [&](const OnlineAgg& a) { return n(a.over_limits); });
+}
+
+int online_bench(int bench, uint64_t seed, const RandomSpec& r, const tdo_online::Options& base) {
+  const std::string dir = scratch_dir();
+  using tdo_online::Replanner;
+  const Replanner kinds[3] = {Replanner::Tdo, Replanner::None, Replanner::MsfMtpo};
+  OnlineAgg agg[3];
+  for (int i = 0; i < bench; ++i) {
+    const uint64_t sd = seed + static_cast<uint64_t>(i);
+    const tdo_io::Map map = random_map(r, sd, dir);
+    for (int v = 0; v < 3; ++v) {
+      tdo_online::Options o = base;
+      o.replanner = kinds[v];
+      o.hide_seed = sd;
+      tdo_online::Metrics m;
+      std::string err;
+      if (!tdo_online::run(map, o, &m, &err)) throw BadInput{err};
+      agg[v].add(m);
+    }
+  }
+  std::filesystem::remove_all(dir);
+  std::printf(
+      "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns (%.0f %% hidden, sensor range "
+      "%.3g m), %d movers, seeds %llu..%llu\n",
+      bench, r.size[0], r.size[1], r.size[2], r.columns, 100.0 * base.unknown, base.sensor_range,
+      r.movers, static_cast<unsigned long long>(seed),
+      static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
+  print_online_table({{"tdo replan", agg[0]}, {"E-APF only", agg[1]}, {"MSF-MTPO replan", agg[2]}});
+  for (int v = 0; v < 3; v += 2) {
+    std::printf("failed plans (%s):", tdo_online::replanner_name(kinds[v]));
+    for (const auto& kv : agg[v].failed) std::printf(" %s %d;", kv.first.c_str(), kv.second);
+    std::printf("%s\n", agg[v].failed.empty() ? " none" : "");
+  }
+  const OnlineAgg& t = agg[0];
+  std::printf(
+      "online: episodes=%d success=%d collisions=%d replans=%ld replan_p99_ms=%.2f "
+      "over_limits=%d\n",
+      t.episodes, t.success, t.collisions, t.replans, quantile(t.ms, 0.99), t.over_limits);
+  return kExitOk;
+}
+
+int online_single(const tdo_io::Map& map, const tdo_online::Options& o, bool check) {
+  tdo_online::Metrics m;
+  std::string err;
+  if (!tdo_online::run(map, o, &m, &err)) throw BadInput{err};
+  std::string fails;
+  for (const std::string& f : m.failure_statuses) fails += (fails.empty() ? "" : ",") + f;
+  std::printf(
+      "online %s: plan %s, hidden %u revealed %u, success %s, collision %s (static %s, mover %s), "
+      "min true static distance %.3f m, replans %u (failed %u%s%s), switches %u, time %.2f s, "
+      "max v %.3f a %.3f j %.3f\n",
+      tdo_online::replanner_name(o.replanner),
+      tdo_status_str(static_cast<tdo_status>(m.plan_status)), m.hidden, m.revealed,
+      m.success ? "yes" : "no", m.collision ? "yes" : "no", m.collision_static ? "yes" : "no",
+      m.collision_mover ? "yes" : "no", m.min_true_static, m.replans, m.replan_failures,
+      fails.empty() ? "" : ": ", fails.c_str(), m.switches, m.time, m.max_speed, m.max_acc,
+      m.max_jerk);
+  if (check && (!m.planned || !m.success || m.collision)) return kExitFailed;
+  return kExitOk;
+}
+
+tdo_online::Replanner parse_replanner(const std::string& s) {
+  if (s == "tdo") return tdo_online::Replanner::Tdo;
+  if (s == "none") return tdo_online::Replanner::None;
+  if (s == "msf-mtpo") return tdo_online::Replanner::MsfMtpo;
+  throw BadInput{"--replanner must be tdo, none or msf-mtpo, got '" + s + "'"};
+}
+
+// The followers' bench: N random episodes with E-APF and APF, with and without movers.
+int follower_bench(int bench, uint64_t seed, const RandomSpec& r, const tdo_episode::Options& o) {
+  const std::string dir = scratch_dir();
+  Agg eapf, apf, eapf_free, apf_free;
+  for (Agg* a : {&eapf, &apf, &eapf_free, &apf_free}) a->clearance = o.clearance;
+  for (int i = 0; i < bench; ++i) {
+    const uint64_t sd = seed + static_cast<uint64_t>(i);
+    const tdo_io::Map map = random_map(r, sd, dir);
+    std::string err;
+    for (int variant = 0; variant < 4; ++variant) {
+      tdo_episode::Options vo = o;
+      vo.keep_samples = false;
+      vo.seed = sd;
+      vo.follower = (variant % 2 == 0) ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
+      vo.movers = variant < 2;
+      tdo_episode::Episode e;
+      if (!tdo_episode::run(map, vo, &e, &err)) throw BadInput{err};
+      Agg* a = variant == 0 ? &eapf : variant == 1 ? &apf : variant == 2 ? &eapf_free : &apf_free;
+      a->add(e.m);
+    }
+  }
+  std::filesystem::remove_all(dir);
+  std::printf(
+      "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns, %d movers "
+      "(%.2g-%.2g m/s, radius %.2g-%.2g m), seeds %llu..%llu\n",
+      bench, r.size[0], r.size[1], r.size[2], r.columns, r.movers, r.speed[0], r.speed[1],
+      r.radius[0], r.radius[1], static_cast<unsigned long long>(seed),
+      static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
+  print_table(
+      {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
+  tdo_plan_params lim;
+  tdo_plan_params_default(&lim);
+  std::printf("limits v %.3g m/s, a %.3g m/s^2, j %.3g m/s^3 (1 %% tolerance):", lim.v_max,
+              lim.a_max, lim.j_max);
+  for (const auto& c :
+       {std::make_pair("E-APF", &eapf), std::make_pair("APF", &apf),
+        std::make_pair("E-APF no mover", &eapf_free), std::make_pair("APF no mover", &apf_free)})
+    std::printf(" %s %s;", c.first, c.second->over_limits == 0 ? "met" : "NOT met");
+  std::printf("\n");
+  return kExitOk;
+}
+
+CLI::Option* add_online_options(CLI::App* app, tdo_online::Options* online,
+                                std::string* replanner) {
+  CLI::Option* unknown = app->add_option(
+      "--unknown", online->unknown,
+      "F in [0, 1]: online mode. A fraction F of the columns (seeded) stays hidden until the range "
+      "sensor sees it; revealed columns update the known map; the plan is checked and replanned. "
+      "--bench then compares tdo replanning, E-APF only and MSF-MTPO replanning");
+  app->add_option("--sensor-range", online->sensor_range, "m, range sensor reach (default 5)");
+  app->add_option("--replanner", *replanner,
+                  "online single episode: tdo (default), none (E-APF only) or msf-mtpo");
+  app->add_option("--latency", online->latency,
+                  "s, the new plan takes over this long after the trigger (default 0.1)");
+  app->add_option("--replan-horizon", online->horizon,
+                  "s, the active trajectory is checked this far ahead (default 5)");
+  return unknown;
+}
+
+// The online mode: its options checked, then the bench or one episode (random or a map file).
+int online_main(const tdo_online::Options& online, int bench, uint64_t seed, const RandomSpec& r,
+                bool random, const std::string& map_path, bool check) {
+  if (!(online.unknown >= 0.0 && online.unknown <= 1.0))
+    throw BadInput{"--unknown must be in [0, 1]"};
+  if (!std::isfinite(online.sensor_range) || online.sensor_range <= 0.0)
+    throw BadInput{"--sensor-range must be finite and > 0"};
+  if (!std::isfinite(online.latency) || online.latency < 0.0 || online.latency > 10.0)
+    throw BadInput{"--latency must be in [0, 10]"};
+  if (!std::isfinite(online.horizon) || online.horizon < 0.0)
+    throw BadInput{"--replan-horizon must be finite and >= 0"};
+  if (bench > 0) return online_bench(bench, seed, r, online);
+  tdo_io::Map map;
+  if (random) {
+    const std::string dir = scratch_dir();
+    map = random_map(r, seed, dir);
+    std::filesystem::remove_all(dir);
+  } else {
+    std::string err;
+    if (!tdo_io::load_map(map_path, &map, &err)) throw BadInput{err};
+  }
+  return online_single(map, online, check);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{
       "Plan a map's query with tdo_planner_plan, fly it in the libtdo simulator with the E-APF "
@@ -225,6 +479,9 @@ int run(int argc, char** argv) {
                  "NAME=VALUE follower parameter override (tdo_apf_params field, e.g. k_r=2); "
                  "applies to both followers in --bench");
   app.add_flag("--check", check, "exit 1 unless success and no collision (single episode)");
+  tdo_online::Options online;
+  std::string replanner = "tdo";
+  CLI::Option* unknown_opt = add_online_options(&app, &online, &replanner);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -263,47 +520,17 @@ int run(int argc, char** argv) {
   o.accel_noise = noise;
   const int sources = (map_path.empty() ? 0 : 1) + (random ? 1 : 0) + (bench > 0 ? 1 : 0);
   if (sources != 1) throw BadInput{"give exactly one of --map FILE, --random, --bench N"};
-
-  if (bench > 0) {
-    const std::string dir = scratch_dir();
-    Agg eapf, apf, eapf_free, apf_free;
-    for (Agg* a : {&eapf, &apf, &eapf_free, &apf_free}) a->clearance = o.clearance;
-    for (int i = 0; i < bench; ++i) {
-      const uint64_t sd = seed + static_cast<uint64_t>(i);
-      const tdo_io::Map map = random_map(r, sd, dir);
-      std::string err;
-      for (int variant = 0; variant < 4; ++variant) {
-        tdo_episode::Options vo = o;
-        vo.keep_samples = false;
-        vo.seed = sd;
-        vo.follower = (variant % 2 == 0) ? TDO_FOLLOWER_EAPF : TDO_FOLLOWER_APF;
-        vo.movers = variant < 2;
-        tdo_episode::Episode e;
-        if (!tdo_episode::run(map, vo, &e, &err)) throw BadInput{err};
-        Agg* a = variant == 0 ? &eapf : variant == 1 ? &apf : variant == 2 ? &eapf_free : &apf_free;
-        a->add(e.m);
-      }
-    }
-    std::filesystem::remove_all(dir);
-    std::printf(
-        "tdo-sim-run --bench %d: random %dx%dx%d m maps, %d columns, %d movers "
-        "(%.2g-%.2g m/s, radius %.2g-%.2g m), seeds %llu..%llu\n",
-        bench, r.size[0], r.size[1], r.size[2], r.columns, r.movers, r.speed[0], r.speed[1],
-        r.radius[0], r.radius[1], static_cast<unsigned long long>(seed),
-        static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
-    print_table(
-        {{"E-APF", eapf}, {"APF", apf}, {"E-APF no mover", eapf_free}, {"APF no mover", apf_free}});
-    tdo_plan_params lim;
-    tdo_plan_params_default(&lim);
-    std::printf("limits v %.3g m/s, a %.3g m/s^2, j %.3g m/s^3 (1 %% tolerance):", lim.v_max,
-                lim.a_max, lim.j_max);
-    for (const auto& c :
-         {std::make_pair("E-APF", &eapf), std::make_pair("APF", &apf),
-          std::make_pair("E-APF no mover", &eapf_free), std::make_pair("APF no mover", &apf_free)})
-      std::printf(" %s %s;", c.first, c.second->over_limits == 0 ? "met" : "NOT met");
-    std::printf("\n");
-    return kExitOk;
+  if (unknown_opt->count() > 0) {
+    if (noise > 0.0 || !o.params.empty() || o.follower != TDO_FOLLOWER_EAPF)
+      throw BadInput{"--unknown flies E-APF without --noise or --param"};
+    online.replanner = parse_replanner(replanner);
+    online.movers = !no_movers;
+    online.time_factor = o.time_factor;
+    online.hide_seed = seed;
+    return online_main(online, bench, seed, r, random, map_path, check);
   }
+
+  if (bench > 0) return follower_bench(bench, seed, r, o);
 
   tdo_io::Map map;
   std::string dir;
