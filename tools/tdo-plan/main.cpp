@@ -19,6 +19,7 @@
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 #include "tdo_io/text.h"
+#include "tool_cli.h"
 #include "va_optimum.h"
 
 namespace {
@@ -29,9 +30,7 @@ constexpr int kExitBadInput = 2;
 constexpr double kScenTolerance = 1e-4;
 
 /** Bad input: printed as one line "tdo-plan: error: ..." on stderr, exit status 2. */
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
 
 /** Everything the command line sets. */
 struct Options {
@@ -893,15 +892,8 @@ int run(int argc, char** argv) {
   scen->excludes(app.get_option("--start-vel"));
   scen->excludes(app.get_option("--start-acc"));
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    throw BadInput{e.what()};
-  }
+  const int help = tdo_tool::parse_args(app, argc, argv);
+  if (help >= 0) return help;
 
   if (list_params) {
     print_params();
