@@ -517,6 +517,13 @@ const char* quantity_name(tdo_quantity q) {
   return "?";
 }
 
+// The path metrics every planner reports (tdo_metric_name's names, and turns).
+nlohmann::json metrics_json(const tdo_metrics& m) {
+  nlohmann::json j = {{"turns", m.turns}};
+  for (uint32_t i = 0; i < tdo_metric_count(); ++i) j[tdo_metric_name(i)] = tdo_metric_value(&m, i);
+  return j;
+}
+
 nlohmann::json feasibility_json(const tdo_feasibility& f) {
   nlohmann::json v = nlohmann::json::array();
   for (uint32_t i = 0; i < f.n_violations; ++i) {
@@ -681,18 +688,11 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       j["trajectory"] = {{"dt", req.params.dt}, {"samples", samples}};
     }
     if (planned) {
-      j["metrics"] = {{"length_m", m.length_m},
-                      {"turns", m.turns},
-                      {"total_turn_deg", m.total_turn_deg},
-                      {"min_clearance_m", m.min_clearance_m},
-                      {"avg_curvature", m.avg_curvature},
-                      {"smoothness", m.smoothness},
-                      {"energy", m.energy},
-                      {"flight_time_s", m.flight_time_s},
-                      {"plan_time_ms", plan_ms},
-                      {"expansions", res.search.expansions},
-                      {"smooth", m.curvature_continuous != 0 && st == TDO_OK &&
-                                     res.reached == TDO_PLAN_TRAJECTORY}};
+      j["metrics"] = metrics_json(m);
+      j["metrics"].update({{"plan_time_ms", plan_ms},
+                           {"expansions", res.search.expansions},
+                           {"smooth", m.curvature_continuous != 0 && st == TDO_OK &&
+                                          res.reached == TDO_PLAN_TRAJECTORY}});
     } else {
       j["metrics"] = {{"plan_time_ms", plan_ms}, {"expansions", res.search.expansions}};
     }
@@ -792,15 +792,8 @@ int run_bench_planner(const Options& o, const tdo_io::Map& map, double clearance
     for (const tdo_vec3& q : r.path) j["waypoints"].push_back({q.x, q.y, q.z});
     j["metrics"] = {{"plan_time_ms", r.plan_time_ms}, {"expansions", r.expansions}};
     if (r.ok) {
-      j["metrics"].update({{"length_m", m.length_m},
-                           {"turns", m.turns},
-                           {"total_turn_deg", m.total_turn_deg},
-                           {"min_clearance_m", m.min_clearance_m},
-                           {"avg_curvature", m.avg_curvature},
-                           {"smoothness", m.smoothness},
-                           {"energy", m.energy},
-                           {"flight_time_s", m.flight_time_s},
-                           {"smooth", r.smooth}});
+      j["metrics"].update(metrics_json(m));
+      j["metrics"]["smooth"] = r.smooth;
     }
     std::cout << j.dump() << std::endl;
   } else {

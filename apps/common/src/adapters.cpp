@@ -541,23 +541,13 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
     t.samples[i] = row;
   }
   const tdo_metrics& m = r.metrics;
-  const struct {
-    const char* name;
-    double value;
-  } metrics[] = {{"length_m", m.length_m},
-                 {"total_turn_deg", m.total_turn_deg},
-                 {"min_clearance_m", m.min_clearance_m},
-                 {"avg_curvature", m.avg_curvature},
-                 {"smoothness", m.smoothness},
-                 {"energy", m.energy},
-                 {"flight_time_s", m.flight_time_s},
-                 {"plan_time_ms", plan_ms},
-                 {"search_cost", r.search.cost}};
-  for (const auto& s : metrics) {
-    c = need_not_nan(s.name, s.value);
+  for (uint32_t i = 0; i < tdo_metric_count(); ++i) {
+    c = need_not_nan(tdo_metric_name(i), tdo_metric_value(&m, i));
     if (!c.ok()) return c;
   }
-  c = count_of("turns", m.turns, &t.turns);
+  c = need_not_nan("plan_time_ms", plan_ms);
+  if (c.ok()) c = need_not_nan("search_cost", r.search.cost);
+  if (c.ok()) c = count_of("turns", m.turns, &t.turns);
   if (c.ok()) c = count_of("expansions", r.search.expansions, &t.expansions);
   if (!c.ok()) return c;
   t.length_m = m.length_m;
