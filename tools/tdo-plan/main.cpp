@@ -626,23 +626,18 @@ void print_search(const Options& o, const tdo_search_output& sr) {
                 sr.guide == 1 ? "corridor" : "corridor empty, whole grid", sr.guide_expansions);
 }
 
+// The start or goal (`name`): --NAME when given, else the map file's line; bad input without both.
+tdo_vec3 end_point(const std::vector<double>& given, const std::string& name, bool in_map,
+                   const tdo_vec3& from_map, const std::string& path) {
+  const std::string option = "--" + name;
+  if (!given.empty()) return to_vec(given, option.c_str());
+  if (in_map) return from_map;
+  throw BadInput{"no " + name + ": give " + option + " X Y Z or a '" + name + "' line in " + path};
+}
+
 int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_search_kind kind) {
-  tdo_vec3 start{};
-  tdo_vec3 goal{};
-  if (!o.start.empty()) {
-    start = to_vec(o.start, "--start");
-  } else if (map.has_start) {
-    start = map.start;
-  } else {
-    throw BadInput{"no start: give --start X Y Z or a 'start' line in " + map.path};
-  }
-  if (!o.goal.empty()) {
-    goal = to_vec(o.goal, "--goal");
-  } else if (map.has_goal) {
-    goal = map.goal;
-  } else {
-    throw BadInput{"no goal: give --goal X Y Z or a 'goal' line in " + map.path};
-  }
+  const tdo_vec3 start = end_point(o.start, "start", map.has_start, map.start, map.path);
+  const tdo_vec3 goal = end_point(o.goal, "goal", map.has_goal, map.goal, map.path);
 
   Planner p;
   build_planner(o, map, clearance, &p);

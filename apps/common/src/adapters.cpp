@@ -509,16 +509,26 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
 
 // ---- answers ---------------------------------------------------------------------------------
 
+namespace {
+
+// What every answer (trajectory, feasibility report) carries: the request's ids and the status.
+template <typename Msg>
+void put_answer_head(const AnswerIds& ids, tdo_status status, Msg* m) {
+  m->utime = ids.utime;
+  m->request_id = ids.request_id;
+  m->request_seq = ids.request_seq;
+  m->vehicle_id = ids.vehicle_id;
+  m->status_code = static_cast<int32_t>(status);
+  m->status = tdo_status_str(status);
+}
+
+}  // namespace
+
 Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, const AnswerIds& ids,
                         double plan_ms, tdo::trajectory_t* out, bool with_samples) {
   tdo::trajectory_t t{};
-  t.utime = ids.utime;
-  t.request_id = ids.request_id;
-  t.request_seq = ids.request_seq;
-  t.vehicle_id = ids.vehicle_id;
+  put_answer_head(ids, r.status, &t);
   t.map_id = ids.map_id;
-  t.status_code = static_cast<int32_t>(r.status);
-  t.status = tdo_status_str(r.status);
   t.reached = r.n_grid_path > 0 ? static_cast<int8_t>(r.reached) : int8_t{-1};
   Check c = copy_points("grid_path", r.grid_path, r.n_grid_path, &t.n_grid_path, &t.grid_path);
   if (c.ok())
@@ -566,12 +576,7 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
 Check feasibility_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, double clearance,
                          const AnswerIds& ids, tdo::feasibility_t* out) {
   tdo::feasibility_t f{};
-  f.utime = ids.utime;
-  f.request_id = ids.request_id;
-  f.request_seq = ids.request_seq;
-  f.vehicle_id = ids.vehicle_id;
-  f.status_code = static_cast<int32_t>(r.status);
-  f.status = tdo_status_str(r.status);
+  put_answer_head(ids, r.status, &f);
   f.checked = r.reached == TDO_PLAN_TRAJECTORY && r.n_grid_path > 0;
   const tdo_feasibility& q = r.feasibility;
   f.ok = f.checked && q.ok != 0;
