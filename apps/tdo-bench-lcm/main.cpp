@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tdo_lcm/adapters.h"
+#include "tdo_lcm/app_cli.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/map_file.h"
 #include "tdo_lcm/wire.h"
@@ -76,12 +77,8 @@ int parse_options(int argc, char** argv, Options* o) {
   app.add_flag("--samples", o->samples,
                "ask for the sampled form too (SAMPLES_ON, ~280 kB answers on Map5) instead of the "
                "compact form alone (~6 kB)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  int parse_rc = 0;
+  if (!tdo_lcm::parse_options(app, argc, argv, &parse_rc)) return parse_rc;
   if (!(o->rate >= 0.0) || !(o->duration > 0.0) || !(o->drain >= 0.0)) {
     std::fprintf(stderr, "tdo-bench-lcm: error: --rate >= 0, --duration > 0, --drain >= 0\n");
     return 2;

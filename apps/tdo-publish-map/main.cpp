@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "map_publisher.h"
+#include "tdo_lcm/app_cli.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/map_file.h"
 #include "tdo_lcm/types.h"
@@ -121,12 +122,8 @@ int main(int argc, char** argv) {
                  "s to run with --update-box or --serve (0 = until the last update, or a signal "
                  "with --serve)")
       ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  int parse_rc = 0;
+  if (!tdo_lcm::parse_options(app, argc, argv, &parse_rc)) return parse_rc;
   if (!octomap && resolution > 0.0) {
     std::fprintf(stderr, "tdo-publish-map: error: --resolution applies with --octomap\n");
     return 2;

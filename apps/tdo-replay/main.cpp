@@ -7,6 +7,7 @@
 
 #include "planner_options.h"
 #include "replay.h"
+#include "tdo_lcm/app_cli.h"
 
 int main(int argc, char** argv) {
   tdo_lcm::ReplayOptions opt;
@@ -32,12 +33,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-lines", max_lines, "diff lines printed in all (0 = every line)")
       ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  int parse_rc = 0;
+  if (!tdo_lcm::parse_options(app, argc, argv, &parse_rc)) return parse_rc;
   tdo_lcm::apply_max_size(max_size, &opt.planner);
   std::string error;
   for (const std::string& o : overrides) {

@@ -20,6 +20,7 @@
 
 #include "planner_node.h"
 #include "tdo_lcm/adapters.h"
+#include "tdo_lcm/app_cli.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/map_file.h"
 #include "tdo_lcm/node_status.h"
@@ -54,12 +55,8 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", out_path, "LCM log to write (replaced)")->required();
   app.add_option("--clearance", clearance, "m, clearance hint sent with the maps")
       ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
-  }
+  int parse_rc = 0;
+  if (!tdo_lcm::parse_options(app, argc, argv, &parse_rc)) return parse_rc;
 
   tdo::map_t map1{}, map6{};
   tdo_lcm::MapFileInfo info1, info6;

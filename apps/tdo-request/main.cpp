@@ -15,6 +15,32 @@
 #include "tdo_lcm/types.h"
 #include "tdo_lcm/wire.h"
 
+namespace {
+
+// One kind of answer to the request: the last message on its channel for the request and vehicle.
+template <typename Msg>
+struct Answer {
+  Msg msg{};
+  std::size_t bytes = 0;  // encoded size of msg
+  bool have = false;
+
+  void subscribe(tdo_lcm::Bus* bus, const std::string& channel, int64_t request_id,
+                 int32_t vehicle_id) {
+    bus->subscribe(
+        channel, [this, request_id, vehicle_id](const void* d, std::size_t n, const std::string&) {
+          Msg m{};
+          if (!tdo_lcm::decode(d, n, &m).ok() || m.request_id != request_id ||
+              m.vehicle_id != vehicle_id)
+            return;
+          msg = std::move(m);
+          bytes = n;
+          have = true;
+        });
+  }
+};
+
+}  // namespace
+
 int main(int argc, char** argv) {
   tdo_lcm::RunOptions opt;
   opt.url = tdo_lcm::kDefaultUrl;
@@ -72,32 +98,15 @@ int main(int argc, char** argv) {
   req.map_id = map_id;
   req.samples = samples ? tdo::plan_request_t::SAMPLES_ON : tdo::plan_request_t::SAMPLES_OFF;
 
+  Answer<tdo::trajectory_t> traj;  // before the bus: its handlers write here
+  Answer<tdo::feasibility_t> feas;
   tdo_lcm::Bus bus(opt.url);
   if (!bus.good()) {
     std::fprintf(stderr, "tdo-request: error: cannot start LCM on '%s'\n", opt.url.c_str());
     return 2;
   }
-  bool have_traj = false, have_feas = false;
-  tdo::trajectory_t traj{};
-  tdo::feasibility_t feas{};
-  std::size_t traj_bytes = 0;
-  bus.subscribe(trajectory_channel, [&](const void* d, std::size_t n, const std::string&) {
-    tdo::trajectory_t m{};
-    if (!tdo_lcm::decode(d, n, &m).ok() || m.request_id != req.request_id ||
-        m.vehicle_id != vehicle_id)
-      return;
-    traj = std::move(m);
-    traj_bytes = n;
-    have_traj = true;
-  });
-  bus.subscribe(feasibility_channel, [&](const void* d, std::size_t n, const std::string&) {
-    tdo::feasibility_t m{};
-    if (!tdo_lcm::decode(d, n, &m).ok() || m.request_id != req.request_id ||
-        m.vehicle_id != vehicle_id)
-      return;
-    feas = std::move(m);
-    have_feas = true;
-  });
+  traj.subscribe(&bus, trajectory_channel, req.request_id, vehicle_id);
+  feas.subscribe(&bus, feasibility_channel, req.request_id, vehicle_id);
   if (!bus.publish(request_channel, req)) {
     std::fprintf(stderr, "tdo-request: error: cannot publish on %s\n", request_channel.c_str());
     return 2;
@@ -108,14 +117,14 @@ int main(int argc, char** argv) {
     return 0;
   }
   const auto end = std::chrono::steady_clock::now() + tdo_lcm::steady_seconds(timeout);
-  while (!(have_traj && have_feas) && std::chrono::steady_clock::now() < end)
+  while (!(traj.have && feas.have) && std::chrono::steady_clock::now() < end)
     if (bus.handle_timeout(50) < 0) break;  // bounded by the timeout; < 0: LCM error
-  if (!(have_traj && have_feas)) {
+  if (!(traj.have && feas.have)) {
     std::fprintf(stderr, "tdo-request: no answer to request %lld within %g s (%s)\n",
                  static_cast<long long>(req.request_id), timeout,
-                 have_traj ? "trajectory only" : (have_feas ? "report only" : "nothing"));
+                 traj.have ? "trajectory only" : (feas.have ? "report only" : "nothing"));
     return 1;
   }
-  std::fputs(tdo_lcm::answer_summary(req, traj, feas, traj_bytes).c_str(), stdout);
-  return traj.status == "ok" ? 0 : 1;
+  std::fputs(tdo_lcm::answer_summary(req, traj.msg, feas.msg, traj.bytes).c_str(), stdout);
+  return traj.msg.status == "ok" ? 0 : 1;
 }

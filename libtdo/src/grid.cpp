@@ -32,6 +32,8 @@ void inflate_box(tdo_grid* g, const tdo_box& box, double c) {
   }
 }
 
+}  // namespace
+
 // Offsets (di,dj,dk) whose centre is strictly closer than c to the cube of voxel (0,0,0).
 // Refused in constant time when the stencil cannot fit: every offset with |di|, |dj|, |dk| <= m
 // lies inside when sqrt(3) (m - 1/2) r < c, so (2m + 1)^3 cells are a lower bound of the count.
@@ -66,6 +68,8 @@ tdo_status build_stencil(tdo_grid* g, double c, uint32_t* count) {
   *count = n;
   return TDO_OK;
 }
+
+namespace {
 
 // Index i of the half-open span [o + i r, o + (i+1) r) holding p, computed the way the spans are:
 // floor((p - o) / r) can be off by one within a rounding step of a face.
@@ -134,16 +138,16 @@ void inflate_run(tdo_grid* g, uint32_t n_rows, int64_t i0, int64_t i1, int64_t j
   }
 }
 
-// Next x >= i in row `row` (nx voxels) holding a cube, or nx; skips 8 voxels per word read.
-int64_t next_cube(const uint8_t* row, int64_t i, int64_t nx) {
-  constexpr uint64_t kCubeBytes = 0x0202020202020202ull;  // kFlagCube in every byte
-  while (i + 8 <= nx) {
+// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
+int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
+  const uint64_t bytes = 0x0101010101010101ull * bit;
+  while (i + 8 <= n) {
     uint64_t w;
     memcpy(&w, row + i, sizeof w);
-    if ((w & kCubeBytes) != 0) break;
+    if ((w & bytes) != 0) break;
     i += 8;
   }
-  while (i < nx && (row[i] & kFlagCube) == 0) ++i;
+  while (i < n && (row[i] & bit) == 0) ++i;
   return i;
 }
 
@@ -180,7 +184,8 @@ tdo_status inflate_cubes(tdo_grid* g, double c) {
   for (int64_t k = 0; k < d.nz; ++k) {
     for (int64_t j = 0; j < d.ny; ++j) {
       const uint8_t* row = g->flags + index_of(g, 0, j, k);
-      for (int64_t i = next_cube(row, 0, d.nx); i < d.nx; i = next_cube(row, i, d.nx)) {
+      for (int64_t i = next_flagged(row, 0, d.nx, kFlagCube); i < d.nx;
+           i = next_flagged(row, i, d.nx, kFlagCube)) {
         const int64_t i0 = i;
         while (i < d.nx && (row[i] & kFlagCube) != 0) ++i;
         inflate_run(g, n_rows, i0, i - 1, j, k);
@@ -416,19 +421,6 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
     const int64_t dq = q - v[j];
     out[q] = static_cast<uint32_t>(dq * dq + f[v[j]]);
   }
-}
-
-// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
-int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
-  const uint64_t bytes = 0x0101010101010101ull * bit;
-  while (i + 8 <= n) {
-    uint64_t w;
-    memcpy(&w, row + i, sizeof w);
-    if ((w & bytes) != 0) break;
-    i += 8;
-  }
-  while (i < n && (row[i] & bit) == 0) ++i;
-  return i;
 }
 
 // The x pass of the EDT for row (j, k): squared distance to the nearest occupied voxel of the row

@@ -51,6 +51,9 @@ inline uint32_t df_line_capacity(const GridCapacity& cap) {
 uint32_t box_ref_capacity(const GridCapacity& cap);
 size_t grid_footprint(const GridCapacity& cap);
 tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap);
+// The clearance stencil of c into g->stencil (*count offsets), TDO_ERR_CLEARANCE_CAPACITY when it
+// does not fit; grid.cpp (tdo_grid_finish) and grid_update.cpp share it.
+tdo_status build_stencil(tdo_grid* g, double c, uint32_t* count);
 }  // namespace tdo_internal
 
 struct tdo_grid {

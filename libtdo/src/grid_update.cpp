@@ -2,7 +2,7 @@
 //
 // The blocked rule is tdo_grid_finish's: a voxel is blocked when it is occupied, or its centre
 // lies strictly closer than the clearance to a box (the arithmetic of grid.cpp's inflate_box) or
-// to a cube (the clearance stencil, same arithmetic as grid.cpp's build_stencil). Per change:
+// to a cube (the clearance stencil, grid.cpp's build_stencil, shared). Per change:
 // - box added: occupied voxels of its interior, blocked voxels of its grown range (an OR, as the
 //   rebuild's union), appended to the large-box list every collision query scans;
 // - cube set: flags, the stencil OR'ed in, surface flags of the cube and its face neighbours;
@@ -28,30 +28,6 @@ namespace {
 
 constexpr int32_t kDfReach = 2;        // voxels beyond the clearance reach lowered exactly
 constexpr uint64_t kMovesVisits = 27;  // voxel visits of one legal-step recomputation
-
-// The clearance stencil of the grid's clearance into g->stencil; false when it does not fit
-// (tdo_grid_finish would have failed first). Bounded: (2 reach + 1)^3 offsets.
-bool build_stencil(tdo_grid* g, uint32_t* count) {
-  const double r = g->desc.res, c = g->clearance;
-  const int32_t reach = static_cast<int32_t>(ceil(c / r + 0.5));
-  const double c2 = c * c;
-  uint32_t n = 0;
-  for (int32_t dk = -reach; dk <= reach; ++dk)
-    for (int32_t dj = -reach; dj <= reach; ++dj)
-      for (int32_t di = -reach; di <= reach; ++di) {
-        const double gx = fmax(0.0, fabs(static_cast<double>(di)) * r - 0.5 * r);
-        const double gy = fmax(0.0, fabs(static_cast<double>(dj)) * r - 0.5 * r);
-        const double gz = fmax(0.0, fabs(static_cast<double>(dk)) * r - 0.5 * r);
-        if (!(gx * gx + gy * gy + gz * gz < c2)) continue;
-        if (n >= g->cap.max_clear_cells) return false;
-        g->stencil[3 * n] = di;
-        g->stencil[3 * n + 1] = dj;
-        g->stencil[3 * n + 2] = dk;
-        ++n;
-      }
-  *count = n;
-  return true;
-}
 
 // df entry (m, rounded down to float) for a squared distance of d2 voxel^2, as the rebuild has it.
 float df_metres(uint64_t d2, double res) {
@@ -455,7 +431,8 @@ extern "C" tdo_status tdo_grid_apply_update(tdo_grid* g, const tdo_grid_update* 
   const int64_t reach =
       g->clearance > 0.0 ? static_cast<int64_t>(ceil(g->clearance / g->desc.res + 0.5)) : 0;
   Ctx x{g, 0u, df_reach_of(g), reach, res};
-  if ((u->n_set > 0 || u->n_clear > 0) && g->clearance > 0.0 && !build_stencil(g, &x.n_stencil))
+  if ((u->n_set > 0 || u->n_clear > 0) && g->clearance > 0.0 &&
+      build_stencil(g, g->clearance, &x.n_stencil) != TDO_OK)
     return TDO_ERR_CLEARANCE_CAPACITY;  // unreachable: the finish built the same stencil
   // Boxes first, then clears (they see the new boxes), then sets.
   for (uint32_t b = 0; b < u->n_boxes; ++b) add_box(&x, u->boxes[b]);

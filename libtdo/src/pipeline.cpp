@@ -276,6 +276,62 @@ extern "C" void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input
   in->max_expansions = p->max_expansions;
 }
 
+extern "C" void tdo_plan_correct_input(const tdo_plan_params* p, tdo_correct_input* in) {
+  if (p == nullptr || in == nullptr) return;
+  in->mode = p->correction;
+  in->turn_threshold = p->turn_threshold;
+  in->shorten = p->shorten;
+}
+
+extern "C" void tdo_plan_smooth_input(const tdo_plan_params* p, tdo_smooth_input* in) {
+  if (p == nullptr || in == nullptr) return;
+  in->mode = p->smoothing;
+  in->k = p->k;
+  in->v_cruise = p->v_cruise;
+  in->v_max = p->v_max;
+  in->a_lat_max = p->a_lat_max;
+  in->j_max = p->j_max;
+  in->stop_angle = p->stop_angle;
+  in->corner_time = p->corner_time;
+}
+
+extern "C" void tdo_plan_traj_input(const tdo_plan_params* p, tdo_traj_input* in) {
+  if (p == nullptr || in == nullptr) return;
+  in->v_max = p->v_max;
+  in->a_max = p->a_max;
+  in->j_max = p->j_max;
+  in->a_lat_max = p->a_lat_max;
+  in->dt = p->dt;
+}
+
+namespace {
+
+struct MetricField {
+  const char* name;
+  double tdo_metrics::*value;
+};
+constexpr MetricField kMetricFields[] = {{"length_m", &tdo_metrics::length_m},
+                                         {"total_turn_deg", &tdo_metrics::total_turn_deg},
+                                         {"min_clearance_m", &tdo_metrics::min_clearance_m},
+                                         {"avg_curvature", &tdo_metrics::avg_curvature},
+                                         {"smoothness", &tdo_metrics::smoothness},
+                                         {"energy", &tdo_metrics::energy},
+                                         {"flight_time_s", &tdo_metrics::flight_time_s}};
+constexpr uint32_t kMetricCount = sizeof(kMetricFields) / sizeof(kMetricFields[0]);
+
+}  // namespace
+
+extern "C" uint32_t tdo_metric_count(void) { return kMetricCount; }
+
+extern "C" const char* tdo_metric_name(uint32_t i) {
+  return i < kMetricCount ? kMetricFields[i].name : nullptr;
+}
+
+extern "C" double tdo_metric_value(const tdo_metrics* m, uint32_t i) {
+  if (m == nullptr || i >= kMetricCount) return static_cast<double>(NAN);
+  return m->*kMetricFields[i].value;
+}
+
 extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* req,
                                        tdo_plan_result* out) {
   if (pl == nullptr || req == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
@@ -331,10 +387,8 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   ci.grid = pl->grid;
   ci.points = out->grid_path;
   ci.n_points = out->n_grid_path;
-  ci.mode = p.correction;
   ci.clearance = verify_clearance(clearance);
-  ci.turn_threshold = p.turn_threshold;
-  ci.shorten = p.shorten;
+  tdo_plan_correct_input(&p, &ci);
   tdo_correct_output co;
   out->status = tdo_correct_run(pl->correct, &ci, &co);
   if (out->status != TDO_OK) return out->status;
@@ -359,15 +413,8 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   mi.grid = pl->grid;
   mi.waypoints = out->waypoints;
   mi.n_waypoints = out->n_waypoints;
-  mi.mode = p.smoothing;
   mi.clearance = verify_clearance(clearance);
-  mi.k = p.k;
-  mi.v_cruise = p.v_cruise;
-  mi.v_max = p.v_max;
-  mi.a_lat_max = p.a_lat_max;
-  mi.j_max = p.j_max;
-  mi.stop_angle = p.stop_angle;
-  mi.corner_time = p.corner_time;
+  tdo_plan_smooth_input(&p, &mi);
   const uint32_t rounds = p.depth == TDO_PLAN_TRAJECTORY ? 3u : 1u;
   tdo_traj_output to;
   memset(&to, 0, sizeof(to));
@@ -389,11 +436,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
     ti.path = so.path;
     ti.grid = pl->grid;
     ti.clearance = clearance;
-    ti.v_max = p.v_max;
-    ti.a_max = p.a_max;
-    ti.j_max = p.j_max;
-    ti.a_lat_max = p.a_lat_max;
-    ti.dt = p.dt;
+    tdo_plan_traj_input(&p, &ti);
     ti.start_p = req->start;
     ti.start = req->state;
     out->status = tdo_traj_run(pl->traj, &ti, &to);

@@ -398,4 +398,83 @@ TEST(PlannerGuide, GivenWallMaps_WhenPlanningWithTheGuide_ThenAPlanWheneverOneEx
   EXPECT_EQ(res.search.guide, 0u);
 }
 
+TEST(PlanStageInputs, GivenParams_WhenStageInputsFilled_ThenTheirFieldsComeFromParamsAndNoOther) {
+  tdo_plan_params p;
+  tdo_plan_params_default(&p);
+  p.correction = TDO_CORRECT_GREEDY_LOS;
+  p.turn_threshold = 0.25;
+  p.shorten = 0;
+  p.smoothing = TDO_SMOOTHING_ARC;
+  p.k = 1.75;
+  p.v_cruise = 1.5;
+  p.v_max = 2.5;
+  p.a_lat_max = 3.5;
+  p.a_max = 4.5;
+  p.j_max = 5.5;
+  p.stop_angle = 1.25;
+  p.corner_time = 0.5;
+  p.dt = 0.02;
+  const tdo_vec3 pts[2] = {{0, 0, 0}, {1, 0, 0}};
+
+  tdo_correct_input ci{};
+  ci.points = pts;
+  ci.clearance = 0.3;
+  tdo_plan_correct_input(&p, &ci);
+  EXPECT_EQ(ci.mode, TDO_CORRECT_GREEDY_LOS);
+  EXPECT_DOUBLE_EQ(ci.turn_threshold, 0.25);
+  EXPECT_EQ(ci.shorten, 0);
+  EXPECT_EQ(ci.points, pts);
+  EXPECT_DOUBLE_EQ(ci.clearance, 0.3);
+
+  tdo_smooth_input si{};
+  si.clearance = 0.3;
+  tdo_plan_smooth_input(&p, &si);
+  EXPECT_EQ(si.mode, TDO_SMOOTHING_ARC);
+  EXPECT_DOUBLE_EQ(si.k, 1.75);
+  EXPECT_DOUBLE_EQ(si.v_cruise, 1.5);
+  EXPECT_DOUBLE_EQ(si.v_max, 2.5);
+  EXPECT_DOUBLE_EQ(si.a_lat_max, 3.5);
+  EXPECT_DOUBLE_EQ(si.j_max, 5.5);
+  EXPECT_DOUBLE_EQ(si.stop_angle, 1.25);
+  EXPECT_DOUBLE_EQ(si.corner_time, 0.5);
+  EXPECT_DOUBLE_EQ(si.min_radius, 0.0);  // not a plan parameter
+  EXPECT_DOUBLE_EQ(si.clearance, 0.3);
+
+  tdo_traj_input ti{};
+  ti.clearance = 0.3;
+  tdo_plan_traj_input(&p, &ti);
+  EXPECT_DOUBLE_EQ(ti.v_max, 2.5);
+  EXPECT_DOUBLE_EQ(ti.a_max, 4.5);
+  EXPECT_DOUBLE_EQ(ti.j_max, 5.5);
+  EXPECT_DOUBLE_EQ(ti.a_lat_max, 3.5);
+  EXPECT_DOUBLE_EQ(ti.dt, 0.02);
+  EXPECT_DOUBLE_EQ(ti.clearance, 0.3);
+
+  tdo_plan_correct_input(nullptr, &ci);  // nothing for NULL pointers
+  tdo_plan_smooth_input(&p, nullptr);
+  tdo_plan_traj_input(nullptr, nullptr);
+  EXPECT_DOUBLE_EQ(ci.turn_threshold, 0.25);
+}
+
+TEST(PlanMetricNames, GivenMetrics_WhenReadByIndex_ThenEveryRealFieldUnderItsNameAndNaNBeyond) {
+  tdo_metrics m{};
+  m.length_m = 1.0;
+  m.total_turn_deg = 2.0;
+  m.min_clearance_m = 3.0;
+  m.avg_curvature = 4.0;
+  m.smoothness = 5.0;
+  m.energy = 6.0;
+  m.flight_time_s = 7.0;
+  const char* names[] = {"length_m",   "total_turn_deg", "min_clearance_m", "avg_curvature",
+                         "smoothness", "energy",         "flight_time_s"};
+  ASSERT_EQ(tdo_metric_count(), 7u);
+  for (uint32_t i = 0; i < 7u; ++i) {
+    EXPECT_STREQ(tdo_metric_name(i), names[i]);
+    EXPECT_DOUBLE_EQ(tdo_metric_value(&m, i), static_cast<double>(i + 1u));
+  }
+  EXPECT_EQ(tdo_metric_name(7u), nullptr);
+  EXPECT_TRUE(std::isnan(tdo_metric_value(&m, 7u)));
+  EXPECT_TRUE(std::isnan(tdo_metric_value(nullptr, 0u)));
+}
+
 }  // namespace

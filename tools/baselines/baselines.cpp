@@ -130,6 +130,20 @@ static bool same_point(const tdo_vec3& a, const tdo_vec3& b) {
          !(a.z > b.z);
 }
 
+bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj_output& to,
+                             double dt, PlanResult* r) {
+  if ((ts == TDO_OK || ts == TDO_ERR_INFEASIBLE) && to.n_samples >= 2) {
+    mi.samples = to.samples;
+    mi.n_samples = to.n_samples;
+    mi.dt = dt;
+    r->has_trajectory = true;
+    r->feasible = ts == TDO_OK;
+  }
+  const tdo_status st = tdo_metrics_compute(&mi, &r->metrics);
+  if (st != TDO_OK) r->status = tdo_status_str(st);
+  return st == TDO_OK;
+}
+
 PlanResult evaluate_polyline(Environment& env, const std::vector<tdo_vec3>& pts,
                              const tdo_vec3& start, const tdo_vec3& goal) {
   PlanResult r;
@@ -162,40 +176,21 @@ PlanResult evaluate_polyline(Environment& env, const std::vector<tdo_vec3>& pts,
   si.grid = env.grid();
   si.waypoints = pts.data();
   si.n_waypoints = static_cast<uint32_t>(pts.size());
-  si.mode = TDO_SMOOTHING_NONE;
   si.clearance = env.clearance();
-  si.k = dp.k;
-  si.v_cruise = dp.v_cruise;
-  si.v_max = dp.v_max;
-  si.a_lat_max = dp.a_lat_max;
-  si.j_max = dp.j_max;
-  si.stop_angle = dp.stop_angle;
+  tdo_plan_smooth_input(&dp, &si);
+  si.mode = TDO_SMOOTHING_NONE;
   tdo_smooth_output so{};
   tdo_traj_output to{};
+  tdo_status ts = TDO_ERR_INVALID_ARGUMENT;
   if (tdo_smooth_run(env.smoother(), &si, &so) == TDO_OK) {
     tdo_traj_input ti{};
     ti.path = so.path;
     ti.grid = env.grid();
     ti.clearance = env.clearance();
-    ti.v_max = dp.v_max;
-    ti.a_max = dp.a_max;
-    ti.j_max = dp.j_max;
-    ti.a_lat_max = dp.a_lat_max;
-    ti.dt = dp.dt;
-    const tdo_status ts = tdo_traj_run(env.traj(), &ti, &to);
-    if ((ts == TDO_OK || ts == TDO_ERR_INFEASIBLE) && to.n_samples >= 2) {
-      mi.samples = to.samples;
-      mi.n_samples = to.n_samples;
-      mi.dt = dp.dt;
-      r.has_trajectory = true;
-      r.feasible = ts == TDO_OK;
-    }
+    tdo_plan_traj_input(&dp, &ti);
+    ts = tdo_traj_run(env.traj(), &ti, &to);
   }
-  const tdo_status st = tdo_metrics_compute(&mi, &r.metrics);
-  if (st != TDO_OK) {
-    r.status = tdo_status_str(st);
-    return r;
-  }
+  if (!metrics_with_trajectory(mi, ts, to, dp.dt, &r)) return r;
   if (r.metrics.min_clearance_m < env.clearance() - 1e-9) {  // cannot happen after the checks
     r.status = "collides";
     return r;

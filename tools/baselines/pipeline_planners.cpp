@@ -25,6 +25,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 enum class Stage { Search, Correct, SmoothOnce, Trajectory };
+// The library depth of each Stage (SmoothOnce: stage 5 then runs here, without refinement).
+constexpr tdo_plan_depth kStageDepth[] = {TDO_PLAN_SEARCH, TDO_PLAN_CORRECT, TDO_PLAN_SMOOTH,
+                                          TDO_PLAN_TRAJECTORY};
 
 struct Preset {
   const char* name;
@@ -129,20 +132,7 @@ class PipelinePlanner : public Planner {
     pp.search = preset_.kind;
     pp.correction = preset_.correction;
     pp.smoothing = preset_.smoothing;
-    switch (preset_.stage) {
-      case Stage::Search:
-        pp.depth = TDO_PLAN_SEARCH;
-        break;
-      case Stage::Correct:
-        pp.depth = TDO_PLAN_CORRECT;
-        break;
-      case Stage::SmoothOnce:
-        pp.depth = TDO_PLAN_SMOOTH;
-        break;
-      case Stage::Trajectory:
-        pp.depth = TDO_PLAN_TRAJECTORY;
-        break;
-    }
+    pp.depth = kStageDepth[static_cast<int>(preset_.stage)];
 
     tdo_plan_result res{};
     tdo_traj_output to{};
@@ -154,11 +144,7 @@ class PipelinePlanner : public Planner {
       ti.path = res.path;
       ti.grid = env.grid();
       ti.clearance = env.clearance();
-      ti.v_max = pp.v_max;
-      ti.a_max = pp.a_max;
-      ti.j_max = pp.j_max;
-      ti.a_lat_max = pp.a_lat_max;
-      ti.dt = pp.dt;
+      tdo_plan_traj_input(&pp, &ti);
       traj_status = tdo_traj_run(env.traj(), &ti, &to);  // no refinement rounds (config 0)
     }
     const auto t1 = std::chrono::steady_clock::now();
@@ -199,18 +185,7 @@ class PipelinePlanner : public Planner {
       mi.path = &res.path;
       mi.grid = env.grid();
       mi.clearance_cap = 10.0;
-      if ((traj_status == TDO_OK || traj_status == TDO_ERR_INFEASIBLE) && to.n_samples >= 2) {
-        mi.samples = to.samples;
-        mi.n_samples = to.n_samples;
-        mi.dt = pp.dt;
-        r.has_trajectory = true;
-        r.feasible = traj_status == TDO_OK;
-      }
-      const tdo_status ms_st = tdo_metrics_compute(&mi, &r.metrics);
-      if (ms_st != TDO_OK) {
-        r.status = tdo_status_str(ms_st);
-        return r;
-      }
+      if (!metrics_with_trajectory(mi, traj_status, to, pp.dt, &r)) return r;
     }
     r.curve = sample_path(res.path, 0.1, 20000);
     // Independent of what the stages claim: exact ends and the clearance of the final path.

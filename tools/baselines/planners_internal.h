@@ -16,6 +16,14 @@ std::unique_ptr<Planner> make_ompl_planner(const std::string& name);
 /** pso, gwo; null for other names. */
 std::unique_ptr<Planner> make_swarm_planner(const std::string& name);
 
+/**
+ * The metrics of `mi` into r->metrics, with the samples of stage 5 (status ts, output to, period
+ * dt) when it gave a trajectory (ok or infeasible, >= 2 samples): r->has_trajectory and
+ * r->feasible then set. False with r->status named after the status when the metrics fail.
+ */
+bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj_output& to,
+                             double dt, PlanResult* r);
+
 }  // namespace tdo_baselines
 
 #endif  // TDO_BASELINES_PLANNERS_INTERNAL_H

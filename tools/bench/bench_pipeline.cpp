@@ -54,24 +54,19 @@ const Variant kVariants[] = {{"grid_first plain", TDO_GRID_FIRST_PLAIN, 1.0},
                              {"grid_first terms, h_weight 2", TDO_GRID_FIRST_TERMS, 2.0}};
 constexpr size_t kNumVariants = sizeof(kVariants) / sizeof(kVariants[0]);
 
-struct VariantRow {
+// One planner's figures on one map.
+struct Figures {
   Stats t;
   uint32_t expansions = 0;
   uint32_t turns = 0;
-  double length = 0.0;
+  double length = 0.0;  // m
 };
 
 struct Row {
   std::string map;
-  Stats tdo;
-  Stats astar;
-  VariantRow var[kNumVariants];
-  uint32_t tdo_expansions = 0;
-  uint32_t astar_expansions = 0;
-  uint32_t tdo_turns = 0;
-  uint32_t astar_turns = 0;
-  double tdo_length = 0.0;
-  double astar_length = 0.0;
+  Figures tdo;
+  Figures astar;
+  Figures var[kNumVariants];
   size_t arena = 0;
   int feasible = 0;
 };
@@ -95,26 +90,39 @@ std::vector<double> timed(tdo_planner* pl, const tdo_plan_request& req, int repe
   return ms;
 }
 
+// `repeat` timed plans of `req` (the last result in *res) into *out; false after a message naming
+// the map and the planner when the plan fails.
+bool measure(tdo_planner* pl, const tdo_plan_request& req, int repeat, const std::string& map,
+             const std::string& planner, tdo_plan_result* res, Figures* out) {
+  tdo_status st = TDO_OK;
+  const std::vector<double> ms = timed(pl, req, repeat, res, &st);
+  if (st != TDO_OK) {
+    std::fprintf(stderr, "tdo-bench-pipeline: %s: %s: %s\n", map.c_str(), planner.c_str(),
+                 tdo_status_str(st));
+    return false;
+  }
+  out->t = stats(ms);
+  out->expansions = res->search.expansions;
+  out->turns = res->metrics.turns;
+  out->length = res->metrics.length_m;
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   tdo_bench::MapList maps{TDO_BENCH_PIPELINE_MAPS_DIR, {}};
   int repeat = 21;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
-    const std::string v = argv[++i];
-    if (maps.take(a, v)) continue;
-    if (a == "--repeat") {
-      char* end = nullptr;
-      const long r = std::strtol(v.c_str(), &end, 10);
-      if (end == v.c_str() || *end != '\0' || r < 1 || r > 100000)
-        return usage("--repeat needs an integer in [1, 100000]");
-      repeat = static_cast<int>(r);
-    } else {
-      return usage(("unknown option " + a).c_str());
-    }
-  }
+  const std::string bad = maps.parse(argc, argv, [&](const std::string& a, const std::string& v) {
+    if (a != "--repeat") return "unknown option " + a;
+    char* end = nullptr;
+    const long r = std::strtol(v.c_str(), &end, 10);
+    if (end == v.c_str() || *end != '\0' || r < 1 || r > 100000)
+      return std::string("--repeat needs an integer in [1, 100000]");
+    repeat = static_cast<int>(r);
+    return std::string();
+  });
+  if (!bad.empty()) return usage(bad.c_str());
   const std::vector<std::string> names = maps.chosen();
   const std::string& dir = maps.dir;
 
@@ -144,48 +152,22 @@ int main(int argc, char** argv) {
     req.goal = map.goal;
     tdo_plan_params_default(&req.params);
     tdo_plan_result res{};
-    tdo_status st = TDO_OK;
-    const std::vector<double> t_tdo = timed(pl, req, repeat, &res, &st);
-    if (st != TDO_OK) {
-      std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo: %s\n", name.c_str(), tdo_status_str(st));
-      return 1;
-    }
-    row.tdo = stats(t_tdo);
-    row.tdo_expansions = res.search.expansions;
-    row.tdo_turns = res.metrics.turns;
-    row.tdo_length = res.metrics.length_m;
+    if (!measure(pl, req, repeat, name, "tdo", &res, &row.tdo)) return 1;
     row.feasible = res.feasibility.ok;
 
     for (size_t k = 0; k < kNumVariants; ++k) {
       tdo_plan_params_default(&req.params);
       req.params.grid_first = kVariants[k].grid_first;
       req.params.h_weight = kVariants[k].h_weight;
-      const std::vector<double> t_var = timed(pl, req, repeat, &res, &st);
-      if (st != TDO_OK) {
-        std::fprintf(stderr, "tdo-bench-pipeline: %s: tdo %s: %s\n", name.c_str(),
-                     kVariants[k].name, tdo_status_str(st));
-        return 1;
-      }
-      VariantRow& v = row.var[k];
-      v.t = stats(t_var);
-      v.expansions = res.search.expansions;
-      v.turns = res.metrics.turns;
-      v.length = res.metrics.length_m;
+      const std::string planner = std::string("tdo ") + kVariants[k].name;
+      if (!measure(pl, req, repeat, name, planner, &res, &row.var[k])) return 1;
     }
 
     tdo_plan_params_default(&req.params);
     req.params.depth = TDO_PLAN_SEARCH;
     req.params.search = TDO_SEARCH_ASTAR;
     tdo_plan_params_plain(&req.params);  // no turn-deviation terms (first_meet: bidir only)
-    const std::vector<double> t_astar = timed(pl, req, repeat, &res, &st);
-    if (st != TDO_OK) {
-      std::fprintf(stderr, "tdo-bench-pipeline: %s: astar: %s\n", name.c_str(), tdo_status_str(st));
-      return 1;
-    }
-    row.astar = stats(t_astar);
-    row.astar_expansions = res.search.expansions;
-    row.astar_turns = res.metrics.turns;
-    row.astar_length = res.metrics.length_m;
+    if (!measure(pl, req, repeat, name, "astar", &res, &row.astar)) return 1;
     rows.push_back(row);
   }
 
@@ -197,25 +179,25 @@ int main(int argc, char** argv) {
       "|\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (const Row& r : rows)
     std::printf("| %s | %.3f | %.3f | %.3f | %u | %.3f | %u | %zu | %s |\n", r.map.c_str(),
-                r.tdo.median_ms, r.tdo.mean_ms, r.tdo.min_ms, r.tdo_expansions, r.astar.median_ms,
-                r.astar_expansions, r.arena, r.feasible ? "yes" : "no");
+                r.tdo.t.median_ms, r.tdo.t.mean_ms, r.tdo.t.min_ms, r.tdo.expansions,
+                r.astar.t.median_ms, r.astar.expansions, r.arena, r.feasible ? "yes" : "no");
   std::printf(
       "\n| map | tdo turns | astar turns | turns ratio | tdo length m | astar length m | "
       "length ratio |\n|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows)
-    std::printf("| %s | %u | %u | %.3f | %.3f | %.3f | %.3f |\n", r.map.c_str(), r.tdo_turns,
-                r.astar_turns,
-                r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0,
-                r.tdo_length, r.astar_length, r.tdo_length / r.astar_length);
+    std::printf("| %s | %u | %u | %.3f | %.3f | %.3f | %.3f |\n", r.map.c_str(), r.tdo.turns,
+                r.astar.turns,
+                r.astar.turns > 0 ? static_cast<double>(r.tdo.turns) / r.astar.turns : 0.0,
+                r.tdo.length, r.astar.length, r.tdo.length / r.astar.length);
   std::printf(
       "\n| map | tdo variant | median ms | ratio to tdo | expansions | turns | length m "
       "| length ratio to astar |\n|---|---|---:|---:|---:|---:|---:|---:|\n");
   for (const Row& r : rows)
     for (size_t k = 0; k < kNumVariants; ++k) {
-      const VariantRow& v = r.var[k];
+      const Figures& v = r.var[k];
       std::printf("| %s | %s | %.3f | %.3f | %u | %u | %.3f | %.3f |\n", r.map.c_str(),
-                  kVariants[k].name, v.t.median_ms, v.t.median_ms / r.tdo.median_ms, v.expansions,
-                  v.turns, v.length, v.length / r.astar_length);
+                  kVariants[k].name, v.t.median_ms, v.t.median_ms / r.tdo.t.median_ms, v.expansions,
+                  v.turns, v.length, v.length / r.astar.length);
     }
   // The goals of issue 3 (docs/performance.md), one line each.
   std::printf("\n");
@@ -225,14 +207,14 @@ int main(int argc, char** argv) {
     if (r.map == "map4" || r.map == "map5") limit = 5.0;
     if (limit > 0.0)
       std::printf("goal %s: median plan time %.3f ms <= %.0f ms: %s\n", r.map.c_str(),
-                  r.tdo.median_ms, limit, r.tdo.median_ms <= limit ? "met" : "NOT met");
+                  r.tdo.t.median_ms, limit, r.tdo.t.median_ms <= limit ? "met" : "NOT met");
     const double turns_ratio =
-        r.astar_turns > 0 ? static_cast<double>(r.tdo_turns) / r.astar_turns : 0.0;
+        r.astar.turns > 0 ? static_cast<double>(r.tdo.turns) / r.astar.turns : 0.0;
     std::printf("goal %s: tdo turns %u <= 10%% of astar turns %u (ratio %.3f): %s\n", r.map.c_str(),
-                r.tdo_turns, r.astar_turns, turns_ratio,
-                10u * r.tdo_turns <= r.astar_turns ? "met" : "NOT met");
+                r.tdo.turns, r.astar.turns, turns_ratio,
+                10u * r.tdo.turns <= r.astar.turns ? "met" : "NOT met");
     std::printf("goal %s: tdo length %.3f m <= astar length %.3f m: %s\n", r.map.c_str(),
-                r.tdo_length, r.astar_length, r.tdo_length <= r.astar_length ? "met" : "NOT met");
+                r.tdo.length, r.astar.length, r.tdo.length <= r.astar.length ? "met" : "NOT met");
   }
   std::printf("\nmaps: %zu\n", rows.size());
   return 0;

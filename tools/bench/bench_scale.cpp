@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "host_info.h"
 #include "scale_load.h"
 #include "scale_report.h"
@@ -71,24 +72,10 @@ void usage(FILE* f) {
       TDO_BENCH_SCALE_MAPS_DIR);
 }
 
-bool parse_count(const char* s, uint64_t min, uint64_t max, uint64_t* out) {
-  if (s == nullptr || *s == '\0' || *s == '-' || *s == '+') return false;
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(s, &end, 10);
-  if (errno != 0 || *end != '\0' || v < min || v > max) return false;
-  *out = v;
-  return true;
-}
-
 // 0 on success, 2 after a message for a bad command line, 3 for --help.
 int parse_args(int argc, char** argv, Options* o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      usage(stdout);
-      return 3;
-    }
     if (a == "--no-rrt-movingai") {
       o->rrt_movingai = false;
       continue;
@@ -100,16 +87,10 @@ int parse_args(int argc, char** argv, Options* o) {
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
                              a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
                              a == "--max-nodes" || a == "--states" || a == "--guide";
-    if (!takes_value) {
-      std::fprintf(stderr, "tdo-bench-scale: unknown argument '%s'\n", a.c_str());
-      usage(stderr);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "tdo-bench-scale: %s needs a value\n", a.c_str());
-      return 2;
-    }
-    const char* v = argv[++i];
+    int rc = 0;
+    const char* v =
+        tdo_bench::option_value("tdo-bench-scale", argc, argv, &i, takes_value, usage, &rc);
+    if (v == nullptr) return rc;
     bool ok = *v != '\0';
     if (a == "--workload") {
       if (std::find(o->workloads.begin(), o->workloads.end(), v) != o->workloads.end()) {
@@ -126,15 +107,15 @@ int parse_args(int argc, char** argv, Options* o) {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";
     } else if (a == "--limit") {
-      ok = parse_count(v, 1, UINT32_MAX, &o->limit);
+      ok = tdo_bench::parse_count(v, 1, UINT32_MAX, &o->limit);
     } else if (a == "--repeat") {
-      ok = parse_count(v, 1, 1000, &o->repeat);
+      ok = tdo_bench::parse_count(v, 1, 1000, &o->repeat);
     } else if (a == "--warmup") {
-      ok = parse_count(v, 0, 1000, &o->warmup);
+      ok = tdo_bench::parse_count(v, 0, 1000, &o->warmup);
     } else if (a == "--max-nodes") {
-      ok = parse_count(v, 0, 0xFFFFFFF0u, &o->max_nodes);
+      ok = tdo_bench::parse_count(v, 0, 0xFFFFFFF0u, &o->max_nodes);
     } else {
-      ok = parse_count(v, 0, UINT32_MAX, &o->seed);
+      ok = tdo_bench::parse_count(v, 0, UINT32_MAX, &o->seed);
     }
     if (!ok) {
       std::fprintf(stderr, "tdo-bench-scale: bad value '%s' for %s\n", v, a.c_str());

@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_args.h"
 #include "host_info.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
@@ -56,36 +57,16 @@ void usage(FILE* f) {
       TDO_BENCH_MAPS_DIR);
 }
 
-bool parse_count(const char* s, uint64_t min, uint64_t* out) {
-  if (s == nullptr || *s == '\0' || *s == '-' || *s == '+') return false;
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(s, &end, 10);
-  if (errno != 0 || *end != '\0' || v < min) return false;
-  *out = v;
-  return true;
-}
-
 // Returns 0 on success, 2 after printing a message on a bad command line, 3 for --help.
 int parse_args(int argc, char** argv, Options* o) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "-h" || a == "--help") {
-      usage(stdout);
-      return 3;
-    }
     const bool takes_value =
         a == "--maps-dir" || a == "--map" || a == "--limit" || a == "--repeat" || a == "--warmup";
-    if (!takes_value) {
-      std::fprintf(stderr, "tdo-bench-search: unknown argument '%s'\n", a.c_str());
-      usage(stderr);
-      return 2;
-    }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "tdo-bench-search: %s needs a value\n", a.c_str());
-      return 2;
-    }
-    const char* v = argv[++i];
+    int rc = 0;
+    const char* v =
+        tdo_bench::option_value("tdo-bench-search", argc, argv, &i, takes_value, usage, &rc);
+    if (v == nullptr) return rc;
     bool ok = true;
     if (a == "--maps-dir") {
       o->maps_dir = v;
@@ -94,11 +75,11 @@ int parse_args(int argc, char** argv, Options* o) {
       o->maps.emplace_back(v);
       ok = !o->maps.back().empty();
     } else if (a == "--limit") {
-      ok = parse_count(v, 1, &o->limit);
+      ok = tdo_bench::parse_count(v, 1, UINT64_MAX, &o->limit);
     } else if (a == "--repeat") {
-      ok = parse_count(v, 1, &o->repeat) && o->repeat <= 1000;
+      ok = tdo_bench::parse_count(v, 1, 1000, &o->repeat);
     } else {
-      ok = parse_count(v, 0, &o->warmup);
+      ok = tdo_bench::parse_count(v, 0, UINT64_MAX, &o->warmup);
     }
     if (!ok) {
       std::fprintf(stderr, "tdo-bench-search: bad value '%s' for %s\n", v, a.c_str());

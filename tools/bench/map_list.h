@@ -24,6 +24,24 @@ struct MapList {
     return true;
   }
 
+  /**
+   * Reads argv[1..] as OPTION VALUE pairs in order: the map options here, every other one through
+   * `other(option, value)`, which returns "" when it took the pair or the error. Returns "" or the
+   * first error (also "missing value after OPTION").
+   */
+  template <typename Other>
+  std::string parse(int argc, char** argv, Other other) {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (i + 1 >= argc) return "missing value after " + a;
+      const std::string v = argv[++i];
+      if (take(a, v)) continue;
+      const std::string err = other(a, v);
+      if (!err.empty()) return err;
+    }
+    return "";
+  }
+
   /** The named maps, or Map1-Map5 when none was named. */
   std::vector<std::string> chosen() const {
     if (!names.empty()) return names;

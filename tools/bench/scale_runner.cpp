@@ -65,6 +65,15 @@ tdo_status plan_best_of(tdo_planner* planner, const tdo_plan_request& req, uint6
   return st;
 }
 
+// A request from q's start to its goal with the library's default parameters.
+tdo_plan_request default_request(const ScaleQuery& q) {
+  tdo_plan_request req{};
+  req.start = q.start;
+  req.goal = q.goal;
+  tdo_plan_params_default(&req.params);
+  return req;
+}
+
 }  // namespace
 
 const char* scale_planner_name(int planner) {
@@ -156,10 +165,7 @@ ScaleOutcome ScaleMapRun::run(int planner, const ScaleQuery& q, uint64_t seed, u
 // The full pipeline with the library's defaults; measured by its own stage 6 (tdo_metrics_compute
 // on the final path), checked as tools/baselines checks its "tdo": exact ends and the clearance.
 ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
-  tdo_plan_request req{};
-  req.start = q.start;
-  req.goal = q.goal;
-  tdo_plan_params_default(&req.params);
+  tdo_plan_request req = default_request(q);
   req.params.states = states_;
   tdo_plan_result res{};
   ScaleOutcome o;
@@ -191,10 +197,7 @@ ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
 // Plain A*: the same one-call API, depth search, the plain search's parameters; its grid path is
 // measured and checked by tools/baselines' evaluate_polyline (as its "astar" planner).
 ScaleOutcome ScaleMapRun::run_astar(const ScaleQuery& q, uint64_t repeat) {
-  tdo_plan_request req{};
-  req.start = q.start;
-  req.goal = q.goal;
-  tdo_plan_params_default(&req.params);
+  tdo_plan_request req = default_request(q);
   req.params.depth = TDO_PLAN_SEARCH;
   req.params.search = TDO_SEARCH_ASTAR;
   tdo_plan_params_plain(&req.params);  // no turn-deviation terms (first_meet: bidir only)

@@ -114,21 +114,17 @@ int main(int argc, char** argv) {
   double clearance = 0.5;
   double cell = 0.01;
   double max_cells = 2e7;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (i + 1 >= argc) return usage(("missing value after " + a).c_str());
-    const std::string v = argv[++i];
-    if (maps.take(a, v)) continue;
-    if (a == "--clearance") {
-      if (!parse_double(v, 0.0, 1e3, &clearance)) return usage("--clearance needs a number >= 0");
-    } else if (a == "--cell") {
-      if (!parse_double(v, 1e-6, 1e3, &cell)) return usage("--cell needs a number > 0 (m)");
-    } else if (a == "--max-cells") {
-      if (!parse_double(v, 1.0, 1e12, &max_cells)) return usage("--max-cells needs a count >= 1");
-    } else {
-      return usage(("unknown option " + a).c_str());
-    }
-  }
+  const std::string bad =
+      maps.parse(argc, argv, [&](const std::string& a, const std::string& v) -> std::string {
+        if (a == "--clearance")
+          return parse_double(v, 0.0, 1e3, &clearance) ? "" : "--clearance needs a number >= 0";
+        if (a == "--cell")
+          return parse_double(v, 1e-6, 1e3, &cell) ? "" : "--cell needs a number > 0 (m)";
+        if (a == "--max-cells")
+          return parse_double(v, 1.0, 1e12, &max_cells) ? "" : "--max-cells needs a count >= 1";
+        return "unknown option " + a;
+      });
+  if (!bad.empty()) return usage(bad.c_str());
   const std::vector<std::string> names = maps.chosen();
   const std::string& dir = maps.dir;
 

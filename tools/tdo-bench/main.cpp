@@ -32,6 +32,7 @@
 
 #include "baselines.h"
 #include "bench.h"
+#include "tool_cli.h"
 
 namespace fs = std::filesystem;
 using tdo_bench::Agg;
@@ -43,9 +44,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
 
 std::vector<std::string> split(const std::string& s, char sep = ',') {
   std::vector<std::string> out;
@@ -407,13 +406,8 @@ int parse_options(int argc, char** argv, Options* po) {
                "small run for CTest: map1, 1 small random map, 2 forest pairs, 2 seeds, reduced "
                "budgets and a 2x2 sensitivity grid");
   app.add_flag("--no-progress", o.no_progress, "no progress bar on stderr");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    throw BadInput{e.what()};
-  }
+  const int help = tdo_tool::parse_args(app, argc, argv);
+  if (help >= 0) return help;
   if (o.test) {
     if (app.count("--paper-maps") == 0) o.paper_maps = "map1";
     if (app.count("--random") == 0) o.random = 1;
@@ -1085,14 +1079,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "tdo-bench: error: %s\n", e.message.c_str());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tdo-bench: error: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return tdo_tool::guarded_main("tdo-bench", run, argc, argv); }

@@ -19,6 +19,7 @@
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 #include "tdo_io/text.h"
+#include "tool_cli.h"
 #include "va_optimum.h"
 
 namespace {
@@ -29,9 +30,7 @@ constexpr int kExitBadInput = 2;
 constexpr double kScenTolerance = 1e-4;
 
 /** Bad input: printed as one line "tdo-plan: error: ..." on stderr, exit status 2. */
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
 
 /** Everything the command line sets. */
 struct Options {
@@ -518,6 +517,13 @@ const char* quantity_name(tdo_quantity q) {
   return "?";
 }
 
+// The path metrics every planner reports (tdo_metric_name's names, and turns).
+nlohmann::json metrics_json(const tdo_metrics& m) {
+  nlohmann::json j = {{"turns", m.turns}};
+  for (uint32_t i = 0; i < tdo_metric_count(); ++i) j[tdo_metric_name(i)] = tdo_metric_value(&m, i);
+  return j;
+}
+
 nlohmann::json feasibility_json(const tdo_feasibility& f) {
   nlohmann::json v = nlohmann::json::array();
   for (uint32_t i = 0; i < f.n_violations; ++i) {
@@ -620,23 +626,18 @@ void print_search(const Options& o, const tdo_search_output& sr) {
                 sr.guide == 1 ? "corridor" : "corridor empty, whole grid", sr.guide_expansions);
 }
 
+// The start or goal (`name`): --NAME when given, else the map file's line; bad input without both.
+tdo_vec3 end_point(const std::vector<double>& given, const std::string& name, bool in_map,
+                   const tdo_vec3& from_map, const std::string& path) {
+  const std::string option = "--" + name;
+  if (!given.empty()) return to_vec(given, option.c_str());
+  if (in_map) return from_map;
+  throw BadInput{"no " + name + ": give " + option + " X Y Z or a '" + name + "' line in " + path};
+}
+
 int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_search_kind kind) {
-  tdo_vec3 start{};
-  tdo_vec3 goal{};
-  if (!o.start.empty()) {
-    start = to_vec(o.start, "--start");
-  } else if (map.has_start) {
-    start = map.start;
-  } else {
-    throw BadInput{"no start: give --start X Y Z or a 'start' line in " + map.path};
-  }
-  if (!o.goal.empty()) {
-    goal = to_vec(o.goal, "--goal");
-  } else if (map.has_goal) {
-    goal = map.goal;
-  } else {
-    throw BadInput{"no goal: give --goal X Y Z or a 'goal' line in " + map.path};
-  }
+  const tdo_vec3 start = end_point(o.start, "start", map.has_start, map.start, map.path);
+  const tdo_vec3 goal = end_point(o.goal, "goal", map.has_goal, map.goal, map.path);
 
   Planner p;
   build_planner(o, map, clearance, &p);
@@ -682,18 +683,11 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       j["trajectory"] = {{"dt", req.params.dt}, {"samples", samples}};
     }
     if (planned) {
-      j["metrics"] = {{"length_m", m.length_m},
-                      {"turns", m.turns},
-                      {"total_turn_deg", m.total_turn_deg},
-                      {"min_clearance_m", m.min_clearance_m},
-                      {"avg_curvature", m.avg_curvature},
-                      {"smoothness", m.smoothness},
-                      {"energy", m.energy},
-                      {"flight_time_s", m.flight_time_s},
-                      {"plan_time_ms", plan_ms},
-                      {"expansions", res.search.expansions},
-                      {"smooth", m.curvature_continuous != 0 && st == TDO_OK &&
-                                     res.reached == TDO_PLAN_TRAJECTORY}};
+      j["metrics"] = metrics_json(m);
+      j["metrics"].update({{"plan_time_ms", plan_ms},
+                           {"expansions", res.search.expansions},
+                           {"smooth", m.curvature_continuous != 0 && st == TDO_OK &&
+                                          res.reached == TDO_PLAN_TRAJECTORY}});
     } else {
       j["metrics"] = {{"plan_time_ms", plan_ms}, {"expansions", res.search.expansions}};
     }
@@ -793,15 +787,8 @@ int run_bench_planner(const Options& o, const tdo_io::Map& map, double clearance
     for (const tdo_vec3& q : r.path) j["waypoints"].push_back({q.x, q.y, q.z});
     j["metrics"] = {{"plan_time_ms", r.plan_time_ms}, {"expansions", r.expansions}};
     if (r.ok) {
-      j["metrics"].update({{"length_m", m.length_m},
-                           {"turns", m.turns},
-                           {"total_turn_deg", m.total_turn_deg},
-                           {"min_clearance_m", m.min_clearance_m},
-                           {"avg_curvature", m.avg_curvature},
-                           {"smoothness", m.smoothness},
-                           {"energy", m.energy},
-                           {"flight_time_s", m.flight_time_s},
-                           {"smooth", r.smooth}});
+      j["metrics"].update(metrics_json(m));
+      j["metrics"]["smooth"] = r.smooth;
     }
     std::cout << j.dump() << std::endl;
   } else {
@@ -893,15 +880,8 @@ int run(int argc, char** argv) {
   scen->excludes(app.get_option("--start-vel"));
   scen->excludes(app.get_option("--start-acc"));
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    throw BadInput{e.what()};
-  }
+  const int help = tdo_tool::parse_args(app, argc, argv);
+  if (help >= 0) return help;
 
   if (list_params) {
     print_params();

@@ -32,6 +32,7 @@
 #include "baselines.h"
 #include "bench.h"
 #include "tdo/params.h"
+#include "tool_cli.h"
 
 namespace fs = std::filesystem;
 
@@ -39,9 +40,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct BadInput {
-  std::string message;
-};
+using tdo_tool::BadInput;
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
@@ -210,13 +209,8 @@ int parse_options(int argc, char** argv, Options* o) {
       ->capture_default_str();
   app.add_option("--clearance", o->clearance, "m")->capture_default_str();
   app.add_flag("--test", o->test, "smoke test: 1 small training map, map1 held out, 8 evaluations");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    throw BadInput{e.what()};
-  }
+  const int help = tdo_tool::parse_args(app, argc, argv);
+  if (help >= 0) return help;
   if (o->test) {
     if (app.count("--heldout") == 0) o->heldout = "map1";
     if (app.count("--train-random") == 0) o->train_random = 1;
@@ -419,14 +413,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const BadInput& e) {
-    std::fprintf(stderr, "tdo-tune: error: %s\n", e.message.c_str());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "tdo-tune: error: %s\n", e.what());
-    return 2;
-  }
-}
+int main(int argc, char** argv) { return tdo_tool::guarded_main("tdo-tune", run, argc, argv); }

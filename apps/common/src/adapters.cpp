@@ -509,16 +509,26 @@ void plan_request_to_msg(const tdo_plan_request& req, double clearance, tdo::pla
 
 // ---- answers ---------------------------------------------------------------------------------
 
+namespace {
+
+// What every answer (trajectory, feasibility report) carries: the request's ids and the status.
+template <typename Msg>
+void put_answer_head(const AnswerIds& ids, tdo_status status, Msg* m) {
+  m->utime = ids.utime;
+  m->request_id = ids.request_id;
+  m->request_seq = ids.request_seq;
+  m->vehicle_id = ids.vehicle_id;
+  m->status_code = static_cast<int32_t>(status);
+  m->status = tdo_status_str(status);
+}
+
+}  // namespace
+
 Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, const AnswerIds& ids,
                         double plan_ms, tdo::trajectory_t* out, bool with_samples) {
   tdo::trajectory_t t{};
-  t.utime = ids.utime;
-  t.request_id = ids.request_id;
-  t.request_seq = ids.request_seq;
-  t.vehicle_id = ids.vehicle_id;
+  put_answer_head(ids, r.status, &t);
   t.map_id = ids.map_id;
-  t.status_code = static_cast<int32_t>(r.status);
-  t.status = tdo_status_str(r.status);
   t.reached = r.n_grid_path > 0 ? static_cast<int8_t>(r.reached) : int8_t{-1};
   Check c = copy_points("grid_path", r.grid_path, r.n_grid_path, &t.n_grid_path, &t.grid_path);
   if (c.ok())
@@ -541,23 +551,13 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
     t.samples[i] = row;
   }
   const tdo_metrics& m = r.metrics;
-  const struct {
-    const char* name;
-    double value;
-  } metrics[] = {{"length_m", m.length_m},
-                 {"total_turn_deg", m.total_turn_deg},
-                 {"min_clearance_m", m.min_clearance_m},
-                 {"avg_curvature", m.avg_curvature},
-                 {"smoothness", m.smoothness},
-                 {"energy", m.energy},
-                 {"flight_time_s", m.flight_time_s},
-                 {"plan_time_ms", plan_ms},
-                 {"search_cost", r.search.cost}};
-  for (const auto& s : metrics) {
-    c = need_not_nan(s.name, s.value);
+  for (uint32_t i = 0; i < tdo_metric_count(); ++i) {
+    c = need_not_nan(tdo_metric_name(i), tdo_metric_value(&m, i));
     if (!c.ok()) return c;
   }
-  c = count_of("turns", m.turns, &t.turns);
+  c = need_not_nan("plan_time_ms", plan_ms);
+  if (c.ok()) c = need_not_nan("search_cost", r.search.cost);
+  if (c.ok()) c = count_of("turns", m.turns, &t.turns);
   if (c.ok()) c = count_of("expansions", r.search.expansions, &t.expansions);
   if (!c.ok()) return c;
   t.length_m = m.length_m;
@@ -576,12 +576,7 @@ Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, c
 Check feasibility_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, double clearance,
                          const AnswerIds& ids, tdo::feasibility_t* out) {
   tdo::feasibility_t f{};
-  f.utime = ids.utime;
-  f.request_id = ids.request_id;
-  f.request_seq = ids.request_seq;
-  f.vehicle_id = ids.vehicle_id;
-  f.status_code = static_cast<int32_t>(r.status);
-  f.status = tdo_status_str(r.status);
+  put_answer_head(ids, r.status, &f);
   f.checked = r.reached == TDO_PLAN_TRAJECTORY && r.n_grid_path > 0;
   const tdo_feasibility& q = r.feasibility;
   f.ok = f.checked && q.ok != 0;

@@ -60,9 +60,14 @@ int64_t utime_at(int64_t utime_ref, double t) {
   return out;
 }
 
-Check vehicle_state_from_msg(const tdo::vehicle_state_t& m, int32_t vehicle_id, int64_t utime_ref,
-                             tdo_vehicle_state* out) {
-  if (m.vehicle_id != vehicle_id) return other_vehicle("state", m.vehicle_id, vehicle_id);
+namespace {
+
+// A vehicle_state_t or setpoint_t (`kind` in the messages) into out's t, p, v and a: the message
+// is for this vehicle and every number finite.
+template <typename Msg, typename Motion>
+Check motion_from_msg(const char* kind, const Msg& m, int32_t vehicle_id, int64_t utime_ref,
+                      Motion* out) {
+  if (m.vehicle_id != vehicle_id) return other_vehicle(kind, m.vehicle_id, vehicle_id);
   Check c = need_finite3("position", m.position);
   if (c.ok()) c = need_finite3("velocity", m.velocity);
   if (c.ok()) c = need_finite3("acceleration", m.acceleration);
@@ -73,6 +78,27 @@ Check vehicle_state_from_msg(const tdo::vehicle_state_t& m, int32_t vehicle_id, 
   out->v = get3(m.velocity);
   out->a = get3(m.acceleration);
   return {};
+}
+
+// s's p, v, a and `yaw` into the message being built, then every one of them checked finite.
+template <typename Msg, typename Motion>
+Check put_motion(const Motion& s, double yaw, Msg* m) {
+  put3(s.p, m->position);
+  put3(s.v, m->velocity);
+  put3(s.a, m->acceleration);
+  m->yaw = yaw;
+  Check c = need_finite3("position", m->position);
+  if (c.ok()) c = need_finite3("velocity", m->velocity);
+  if (c.ok()) c = need_finite3("acceleration", m->acceleration);
+  if (c.ok()) c = need_finite("yaw", yaw);
+  return c;
+}
+
+}  // namespace
+
+Check vehicle_state_from_msg(const tdo::vehicle_state_t& m, int32_t vehicle_id, int64_t utime_ref,
+                             tdo_vehicle_state* out) {
+  return motion_from_msg("state", m, vehicle_id, utime_ref, out);
 }
 
 Check vehicle_state_to_msg(const tdo_vehicle_state& s, int64_t utime_ref, int32_t vehicle_id,
@@ -81,15 +107,9 @@ Check vehicle_state_to_msg(const tdo_vehicle_state& s, int64_t utime_ref, int32_
   m.utime = utime_at(utime_ref, s.t);
   m.seq = seq;
   m.vehicle_id = vehicle_id;
-  put3(s.p, m.position);
-  put3(s.v, m.velocity);
-  put3(s.a, m.acceleration);
-  m.yaw = yaw;
+  const Check motion = put_motion(s, yaw, &m);
   Check c = need_finite("t", s.t);
-  if (c.ok()) c = need_finite3("position", m.position);
-  if (c.ok()) c = need_finite3("velocity", m.velocity);
-  if (c.ok()) c = need_finite3("acceleration", m.acceleration);
-  if (c.ok()) c = need_finite("yaw", yaw);
+  if (c.ok()) c = motion;
   if (!c.ok()) return c;
   *out = m;
   return {};
@@ -97,17 +117,7 @@ Check vehicle_state_to_msg(const tdo_vehicle_state& s, int64_t utime_ref, int32_
 
 Check setpoint_from_msg(const tdo::setpoint_t& m, int32_t vehicle_id, int64_t utime_ref,
                         tdo_setpoint* out) {
-  if (m.vehicle_id != vehicle_id) return other_vehicle("setpoint", m.vehicle_id, vehicle_id);
-  Check c = need_finite3("position", m.position);
-  if (c.ok()) c = need_finite3("velocity", m.velocity);
-  if (c.ok()) c = need_finite3("acceleration", m.acceleration);
-  if (c.ok()) c = need_finite("yaw", m.yaw);
-  if (!c.ok()) return c;
-  out->t = seconds_since(m.utime, utime_ref);
-  out->p = get3(m.position);
-  out->v = get3(m.velocity);
-  out->a = get3(m.acceleration);
-  return {};
+  return motion_from_msg("setpoint", m, vehicle_id, utime_ref, out);
 }
 
 Check setpoint_to_msg(const tdo_setpoint& s, int64_t utime, int32_t vehicle_id, int64_t seq,
@@ -117,16 +127,9 @@ Check setpoint_to_msg(const tdo_setpoint& s, int64_t utime, int32_t vehicle_id, 
   m.seq = seq;
   m.vehicle_id = vehicle_id;
   m.request_id = request_id;
-  put3(s.p, m.position);
-  put3(s.v, m.velocity);
-  put3(s.a, m.acceleration);
-  m.yaw = yaw;
   m.status_code = static_cast<int32_t>(status);
   m.status = tdo_status_str(status);
-  Check c = need_finite3("position", m.position);
-  if (c.ok()) c = need_finite3("velocity", m.velocity);
-  if (c.ok()) c = need_finite3("acceleration", m.acceleration);
-  if (c.ok()) c = need_finite("yaw", yaw);
+  const Check c = put_motion(s, yaw, &m);
   if (!c.ok()) return c;
   *out = std::move(m);
   return {};

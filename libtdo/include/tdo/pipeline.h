@@ -71,6 +71,25 @@ void tdo_plan_params_default(tdo_plan_params* p);
  *  as they are. Nothing for NULL pointers. */
 void tdo_plan_search_input(const tdo_plan_params* p, tdo_search_input* in);
 
+/** The same for stage 2: mode (p->correction), turn_threshold and shorten; the rest is left. */
+void tdo_plan_correct_input(const tdo_plan_params* p, tdo_correct_input* in);
+
+/** The same for stage 3: mode (p->smoothing), k, v_cruise, v_max, a_lat_max, j_max, stop_angle
+ *  and corner_time; the rest is left. */
+void tdo_plan_smooth_input(const tdo_plan_params* p, tdo_smooth_input* in);
+
+/** The same for stage 5: v_max, a_max, j_max, a_lat_max and dt; the rest is left. */
+void tdo_plan_traj_input(const tdo_plan_params* p, tdo_traj_input* in);
+
+/** The real-valued metrics of a plan (tdo_metrics) under the names the LCM trajectory and
+ *  tdo-plan's JSON give them, in this order: length_m, total_turn_deg, min_clearance_m,
+ *  avg_curvature, smoothness, energy, flight_time_s. */
+uint32_t tdo_metric_count(void);
+/** Name of metric i, NULL for i >= tdo_metric_count(). */
+const char* tdo_metric_name(uint32_t i);
+/** Value of metric i in `m`; NaN for i >= tdo_metric_count() or NULL. */
+double tdo_metric_value(const tdo_metrics* m, uint32_t i);
+
 /** One planning request. Zero-initialise it: a zero `state` is a start at rest. */
 typedef struct tdo_plan_request {
   tdo_vec3 start;         /**< m, world frame */
