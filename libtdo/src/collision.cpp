@@ -488,55 +488,6 @@ bool for_each_cube_near(const tdo_grid* g, const double p0[3], const double p1[3
   return true;
 }
 
-// PROTOTYPE B: min(best, distance from point p to the surface cubes within r), rows of the
-// ball only, point-to-cube distances.
-double point_cubes_min(const tdo_grid* g, const double p[3], double r, double best) {
-  const tdo_grid_desc& d = g->desc;
-  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const int32_t n[3] = {d.nx, d.ny, d.nz};
-  int64_t lo[3], hi[3];
-  for (int i = 0; i < 3; ++i) {
-    const double a = floor((p[i] - r - o[i]) / d.res) - 1.0;
-    const double b = floor((p[i] + r - o[i]) / d.res) + 1.0;
-    if (b < 0.0 || a > static_cast<double>(n[i] - 1)) return best;
-    lo[i] = a < 0.0 ? 0 : static_cast<int64_t>(a);
-    hi[i] = b > static_cast<double>(n[i] - 1) ? n[i] - 1 : static_cast<int64_t>(b);
-  }
-  for (int64_t k = lo[2]; k <= hi[2]; ++k) {
-    const double zlo = o[2] + static_cast<double>(k) * d.res;
-    const double zhi = o[2] + static_cast<double>(k + 1) * d.res;
-    const double gz = dmax(zlo - p[2], 0.0) + dmax(p[2] - zhi, 0.0);
-    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
-      const double ylo = o[1] + static_cast<double>(j) * d.res;
-      const double yhi = o[1] + static_cast<double>(j + 1) * d.res;
-      const double gy = dmax(ylo - p[1], 0.0) + dmax(p[1] - yhi, 0.0);
-      const double rest = best * best - (gy * gy + gz * gz);
-      if (!(rest > 0.0)) continue;
-      const double w = sqrt(rest);
-      const double fa = floor((p[0] - w - o[0]) / d.res) - 1.0;
-      const double fb = floor((p[0] + w - o[0]) / d.res) + 1.0;
-      const int64_t i0 = fa < static_cast<double>(lo[0]) ? lo[0] : static_cast<int64_t>(fa);
-      const int64_t i1 = fb > static_cast<double>(hi[0]) ? hi[0] : static_cast<int64_t>(fb);
-      const uint8_t* row = g->flags + j * g->stride_y + k * g->stride_z;
-      for (int64_t i = i0; i <= i1; ++i) {
-        if ((row[i] & kFlagSurface) == 0) continue;
-        const double clo[3] = {o[0] + static_cast<double>(i) * d.res, ylo, zlo};
-        const double chi[3] = {o[0] + static_cast<double>(i + 1) * d.res, yhi, zhi};
-        const double d2 = point_box_d2(p, clo, chi);
-        if (d2 < best * best) {
-          best = sqrt(d2);
-          if (!(best > 0.0)) return 0.0;
-        }
-      }
-    }
-  }
-  return best;
-}
-
-// Query of the leaves: 0 = scan the voxels of the grown box (for_each_cube_near), 1 = rows of
-// the ball only (points), 2 = the brick index (surface_index.h). PROTOTYPE SELECTOR.
-constexpr int kLeafQuery = 2;
-
 // Rounding allowance (m) of the brick gaps of a query on [p0, p1] at limit r: quick_tol with the
 // query's own coordinates counted (a leaf may lie outside the bounds).
 double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], double r) {
@@ -545,25 +496,39 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
   return quick_tol(r, scale);
 }
 
+// Lower *bst (m) to the distance of [p0, p1] to the surface cubes of brick c.
+inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
+                      bool point, double* bst) {
+  for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
+    if (far_apart(p0, p1, lo, hi, *bst)) return true;
+    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+    if (d2 < *bst * *bst) *bst = sqrt(d2);
+    return *bst > 0.0;
+  });
+}
+
 // min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
-// index, bricks in increasing gap, stopping at the first whose gap reaches the running minimum.
-// The cubes visited get exactly the tests of the scan, so the result is the scan's. false: the
-// index cannot answer (not built, or more than kMaxBrickCands bricks); *best is then unchanged.
+// index: bricks in increasing gap, stopping at the first whose gap reaches the running minimum
+// (more than kMaxBrickCands bricks: in index order, each skipped when its gap reaches it). The
+// cubes visited get the scan's tests, and every cube the scan could lower the minimum with is
+// visited, so the result is the scan's. false: no index (*best unchanged; the caller scans).
 bool bricks_min(const tdo_grid* g, const double p0[3], const double p1[3], bool point, double r,
                 double* best) {
   if (!g->bricks_valid) return false;
   BrickCand cand[kMaxBrickCands];
   const double tol = brick_tol(g, p0, p1, r);
-  const uint32_t n = surface_bricks_near(g, p0, p1, r, tol, cand);
-  if (n > kMaxBrickCands) return false;
   double bst = *best;
-  for (uint32_t c = 0; c < n && bst > 0.0; ++c) {
-    const double lim = bst + tol;
-    if (cand[c].gap2 > 0.0 && cand[c].gap2 >= lim * lim) break;  // sorted: so are the rest
-    for_each_brick_cube(g, cand[c].brick, [&](const double* lo, const double* hi) {
-      if (far_apart(p0, p1, lo, hi, bst)) return true;
-      const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
-      if (d2 < bst * bst) bst = sqrt(d2);
+  const uint32_t n = surface_bricks_sorted(g, p0, p1, r, r + tol, cand);
+  if (n <= kMaxBrickCands) {
+    for (uint32_t c = 0; c < n && bst > 0.0; ++c) {
+      const double lim = bst + tol;
+      if (cand[c].gap2 > 0.0 && cand[c].gap2 >= lim * lim) break;  // sorted: so are the rest
+      brick_min(g, cand[c], p0, p1, point, &bst);
+    }
+  } else {
+    for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
+      const double lim = bst + tol;
+      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, point, &bst);
       return bst > 0.0;
     });
   }
@@ -571,21 +536,19 @@ bool bricks_min(const tdo_grid* g, const double p0[3], const double p1[3], bool 
   return true;
 }
 
-// 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not, -1 when the
-// brick index cannot answer. Only bricks closer than c (or touching) are visited.
+// 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not, -1 without
+// an index. Only bricks closer than c (or touching) are visited, in any order.
 int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
   if (!g->bricks_valid) return -1;
-  BrickCand cand[kMaxBrickCands];
-  const uint32_t n = surface_bricks_near(g, p0, p1, c, brick_tol(g, p0, p1, c), cand);
-  if (n > kMaxBrickCands) return -1;
-  for (uint32_t k = 0; k < n; ++k) {
-    const bool ok = for_each_brick_cube(g, cand[k].brick, [&](const double* lo, const double* hi) {
+  const double lim = c + brick_tol(g, p0, p1, c);
+  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
+    if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
+    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
       return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
     });
-    if (!ok) return 0;
-  }
-  return 1;
+  });
+  return ok ? 1 : 0;
 }
 
 bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
@@ -600,7 +563,7 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
     if (pi.lb >= c && pi.lb > 0.0) continue;
     if (pi.leaf) {
       if (pi.in_cube) return false;
-      const int fast = kLeafQuery == 2 ? bricks_clear(g, pi.p0, pi.p1, c) : -1;
+      const int fast = bricks_clear(g, pi.p0, pi.p1, c);
       if (fast == 0) return false;
       if (fast == 1) continue;
       const bool ok =
@@ -635,12 +598,7 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
       // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
       // lower the result (the boxes' part of `best` is exact).
       const double r = dmin(best, pi.ub);
-      if (kLeafQuery == 2 && bricks_min(g, pi.p0, pi.p1, a == b, r, &best)) {
-        if (!(best > 0.0)) return 0.0;
-        continue;
-      }
-      if (kLeafQuery == 1 && a == b) {
-        best = point_cubes_min(g, a, r, best);
+      if (bricks_min(g, pi.p0, pi.p1, a == b, r, &best)) {
         if (!(best > 0.0)) return 0.0;
         continue;
       }

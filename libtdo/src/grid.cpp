@@ -3,8 +3,8 @@
 
 #include "directions.h"
 #include "grid_geometry.h"
-#include "surface_index.h"
 #include "grid_internal.h"
+#include "surface_index.h"
 #include "vec3.h"
 
 namespace tdo_internal {

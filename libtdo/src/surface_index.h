@@ -10,6 +10,7 @@
 #ifndef TDO_SRC_SURFACE_INDEX_H
 #define TDO_SRC_SURFACE_INDEX_H
 
+#include <math.h>
 #include <stdint.h>
 
 #include "grid_internal.h"
@@ -41,11 +42,59 @@ struct BrickCand {
   uint32_t brick;
 };
 
-// The non-empty bricks whose tight box lies within r (m, plus the rounding allowance tol) of the
-// span box of [p0, p1] (or touches it), sorted by gap2 then index, into cand[kMaxBrickCands].
-// Returns their number, or kMaxBrickCands + 1 when there are more (cand is then unusable).
-uint32_t surface_bricks_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
-                             double tol, BrickCand* cand);
+// Call f(BrickCand) for every non-empty brick that holds a voxel of the span box of [p0, p1]
+// grown by r plus one voxel (the voxel range the scan of collision.cpp visits), in index order;
+// stop when f returns false (then return false). Bounded by the bricks of that range.
+template <class F>
+bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                         F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  double mn[3], mx[3];
+  int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
+    mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
+    const double va = floor((mn[a] - r - o[a]) / d.res) - 1.0;
+    const double vb = floor((mx[a] + r - o[a]) / d.res) + 1.0;
+    if (vb < 0.0 || va > static_cast<double>(n[a] - 1)) return true;
+    const int64_t ia = va < 0.0 ? 0 : static_cast<int64_t>(va);
+    const int64_t ib = vb > static_cast<double>(n[a] - 1) ? n[a] - 1 : static_cast<int64_t>(vb);
+    lo[a] = ia / kBrickVoxels;
+    hi[a] = ib / kBrickVoxels;
+  }
+  for (int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+      const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+        const uint32_t b = static_cast<uint32_t>(row + x);
+        if (g->brick_mask[b] == 0u) continue;
+        const uint32_t pk = g->brick_box[b];
+        const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
+        double gap2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          // The tight box's faces, by the same expressions as the cube bounds.
+          const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
+          const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
+          const double blo = o[a] + static_cast<double>(ci) * d.res;
+          const double bhi = o[a] + static_cast<double>(cj) * d.res;
+          const double gp =
+              (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
+          gap2 += gp * gp;
+        }
+        if (!f(BrickCand{gap2, b})) return false;
+      }
+    }
+  return true;
+}
+
+// The bricks of for_each_brick_near whose gap is below lim (m) or 0, sorted by gap2 then index,
+// into cand[kMaxBrickCands]. Returns their number, or kMaxBrickCands + 1 when there are more
+// (cand is then unusable).
+uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                               double lim, BrickCand* cand);
 
 // Call f(lo, hi) with the bounds (m) of every surface cube of brick `brick`, in bit order;
 // stop when f returns false (then return false).
