@@ -9,7 +9,8 @@
 // - Cubes: the segment is split recursively (explicit fixed-size stack). A piece with midpoint m
 //   and half-length L is clear when df(voxel of m) - |m - centre| - res*sqrt(3)/2 - L >= clearance:
 //   the distance field bounds the distance to every occupied voxel from below. Pieces at voxel
-//   scale test the nearby surface cubes exactly.
+//   scale test the nearby surface cubes exactly, found through the brick index
+//   (surface_index.h): nearest brick first, up to the first that cannot hold anything nearer.
 // Segment-to-box distances are exact: the squared distance is a convex piecewise quadratic in the
 // segment parameter; it is minimised in closed form on each piece between slab crossings.
 #include "tdo/collision.h"
@@ -774,13 +775,21 @@ constexpr double kPointHintAbs = 1e-9;  // m
 }  // namespace
 
 double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, PointHint* h) {
+  h->lower = -1.0;
   if (!ready(grid) || !finite3(pv) || !(cap >= 0.0)) return -1.0;
   double p[3];
   load(pv, p);
   // The hint covers box-only maps and points inside the bounds (the bucket index answers).
   if (grid->n_cubes != 0 || grid->n_boxes == 0 || !inside_bounds(grid, p)) {
     h->valid = 0;
-    return point_distance(grid, p, cap);
+    const double d = point_distance(grid, p, cap);
+    h->lower = d;
+    if (d >= cap && grid->n_boxes == 0) {
+      // No box nearer than the cap: the distance field's bound of the cubes (no cube: none).
+      h->lower =
+          grid->n_cubes == 0 ? HUGE_VAL : dmax(d, piece_info(grid, p, p, Piece{0.0, 1.0}).lb);
+    }
+    return d;
   }
   const double reach = grid->bucket_reach;
   const double near0 = dmin(cap, reach);
@@ -796,7 +805,10 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
     const double d = sqrt(point_box_d2(p, lo, hi));
     // Then the full query's running minimum takes this box's value and keeps it: d^2 is below
     // the start value and every other box's d^2 by far more than rounding.
-    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) return d;
+    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) {
+      h->lower = d;
+      return d;
+    }
   }
   // Full evaluation, as boxes_min_point does it (same running minimum, in the same order), also
   // keeping the nearest box and the second smallest distance of the listed boxes.
@@ -843,6 +855,7 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
   h->box = nearest;
   h->others = others;
   for (int i = 0; i < 3; ++i) h->q[i] = p[i];
+  h->lower = near;
   return near;  // cubes_min adds nothing without cubes
 }
 
