@@ -513,8 +513,9 @@ inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3],
 // (more than kMaxBrickCands bricks: in index order, each skipped when its gap reaches it). The
 // cubes visited get the scan's tests, and every cube the scan could lower the minimum with is
 // visited, so the result is the scan's. false: no index (*best unchanged; the caller scans).
-bool bricks_min(const tdo_grid* g, const double p0[3], const double p1[3], bool point, double r,
-                double* best) {
+// Not inlined: its 2 KB candidate array stays off the stack of queries on maps without cubes.
+__attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3], const double p1[3],
+                                          bool point, double r, double* best) {
   if (!g->bricks_valid) return false;
   BrickCand cand[kMaxBrickCands];
   const double tol = brick_tol(g, p0, p1, r);
