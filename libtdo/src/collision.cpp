@@ -9,7 +9,8 @@
 // - Cubes: the segment is split recursively (explicit fixed-size stack). A piece with midpoint m
 //   and half-length L is clear when df(voxel of m) - |m - centre| - res*sqrt(3)/2 - L >= clearance:
 //   the distance field bounds the distance to every occupied voxel from below. Pieces at voxel
-//   scale test the nearby surface cubes exactly.
+//   scale test the nearby surface cubes exactly, found through the brick index
+//   (surface_index.h): nearest brick first, up to the first that cannot hold anything nearer.
 // Segment-to-box distances are exact: the squared distance is a convex piecewise quadratic in the
 // segment parameter; it is minimised in closed form on each piece between slab crossings.
 #include "tdo/collision.h"
@@ -18,6 +19,7 @@
 
 #include "collision_internal.h"
 #include "grid_internal.h"
+#include "surface_index.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -487,6 +489,70 @@ bool for_each_cube_near(const tdo_grid* g, const double p0[3], const double p1[3
   return true;
 }
 
+// Rounding allowance (m) of the brick gaps of a query on [p0, p1] at limit r: quick_tol with the
+// query's own coordinates counted (a leaf may lie outside the bounds).
+double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], double r) {
+  double scale = bounds_scale(g);
+  for (int i = 0; i < 3; ++i) scale = dmax(scale, dmax(fabs(p0[i]), fabs(p1[i])));
+  return quick_tol(r, scale);
+}
+
+// Lower *bst (m) to the distance of [p0, p1] to the surface cubes of brick c.
+inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
+                      bool point, double* bst) {
+  for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
+    if (far_apart(p0, p1, lo, hi, *bst)) return true;
+    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+    if (d2 < *bst * *bst) *bst = sqrt(d2);
+    return *bst > 0.0;
+  });
+}
+
+// min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
+// index: bricks in increasing gap, stopping at the first whose gap reaches the running minimum
+// (more than kMaxBrickCands bricks: in index order, each skipped when its gap reaches it). The
+// cubes visited get the scan's tests, and every cube the scan could lower the minimum with is
+// visited, so the result is the scan's. false: no index (*best unchanged; the caller scans).
+// Not inlined: its 2 KB candidate array stays off the stack of queries on maps without cubes.
+__attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3], const double p1[3],
+                                          bool point, double r, double* best) {
+  if (!g->bricks_valid) return false;
+  BrickCand cand[kMaxBrickCands];
+  const double tol = brick_tol(g, p0, p1, r);
+  double bst = *best;
+  const uint32_t n = surface_bricks_sorted(g, p0, p1, r, r + tol, cand);
+  if (n <= kMaxBrickCands) {
+    for (uint32_t c = 0; c < n && bst > 0.0; ++c) {
+      const double lim = bst + tol;
+      if (cand[c].gap2 > 0.0 && cand[c].gap2 >= lim * lim) break;  // sorted: so are the rest
+      brick_min(g, cand[c], p0, p1, point, &bst);
+    }
+  } else {
+    for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
+      const double lim = bst + tol;
+      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, point, &bst);
+      return bst > 0.0;
+    });
+  }
+  *best = bst;
+  return true;
+}
+
+// 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not, -1 without
+// an index. Only bricks closer than c (or touching) are visited, in any order.
+int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
+  if (!g->bricks_valid) return -1;
+  const double lim = c + brick_tol(g, p0, p1, c);
+  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
+    if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
+    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
+      if (far_apart(p0, p1, lo, hi, c)) return true;
+      return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
+    });
+  });
+  return ok ? 1 : 0;
+}
+
 bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (g->n_cubes == 0) return true;
   Piece stack[kStackCap];
@@ -499,6 +565,9 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
     if (pi.lb >= c && pi.lb > 0.0) continue;
     if (pi.leaf) {
       if (pi.in_cube) return false;
+      const int fast = bricks_clear(g, pi.p0, pi.p1, c);
+      if (fast == 0) return false;
+      if (fast == 1) continue;
       const bool ok =
           for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
             if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
@@ -531,6 +600,10 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
       // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
       // lower the result (the boxes' part of `best` is exact).
       const double r = dmin(best, pi.ub);
+      if (bricks_min(g, pi.p0, pi.p1, a == b, r, &best)) {
+        if (!(best > 0.0)) return 0.0;
+        continue;
+      }
       for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, &best](const double* lo, const double* hi) {
         if (far_apart(pi.p0, pi.p1, lo, hi, best)) return true;
         const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
@@ -703,13 +776,21 @@ constexpr double kPointHintAbs = 1e-9;  // m
 }  // namespace
 
 double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, PointHint* h) {
+  h->lower = -1.0;
   if (!ready(grid) || !finite3(pv) || !(cap >= 0.0)) return -1.0;
   double p[3];
   load(pv, p);
   // The hint covers box-only maps and points inside the bounds (the bucket index answers).
   if (grid->n_cubes != 0 || grid->n_boxes == 0 || !inside_bounds(grid, p)) {
     h->valid = 0;
-    return point_distance(grid, p, cap);
+    const double d = point_distance(grid, p, cap);
+    h->lower = d;
+    if (d >= cap && grid->n_boxes == 0) {
+      // No box nearer than the cap: the distance field's bound of the cubes (no cube: none).
+      h->lower =
+          grid->n_cubes == 0 ? HUGE_VAL : dmax(d, piece_info(grid, p, p, Piece{0.0, 1.0}).lb);
+    }
+    return d;
   }
   const double reach = grid->bucket_reach;
   const double near0 = dmin(cap, reach);
@@ -725,7 +806,10 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
     const double d = sqrt(point_box_d2(p, lo, hi));
     // Then the full query's running minimum takes this box's value and keeps it: d^2 is below
     // the start value and every other box's d^2 by far more than rounding.
-    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) return d;
+    if (d * (1.0 + kPointHintRel) + kPointHintAbs < lim) {
+      h->lower = d;
+      return d;
+    }
   }
   // Full evaluation, as boxes_min_point does it (same running minimum, in the same order), also
   // keeping the nearest box and the second smallest distance of the listed boxes.
@@ -772,6 +856,7 @@ double point_distance_hinted(const tdo_grid* grid, tdo_vec3 pv, double cap, Poin
   h->box = nearest;
   h->others = others;
   for (int i = 0; i < 3; ++i) h->q[i] = p[i];
+  h->lower = near;
   return near;  // cubes_min adds nothing without cubes
 }
 

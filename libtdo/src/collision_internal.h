@@ -34,6 +34,9 @@ struct PointHint {
   double others;  // m, lower bound of the distance from q to every obstacle but `box`
   uint32_t box;   // index of the box nearest to q
   int valid;      // 1 when the fields above hold
+  double lower;   // m, set by every call: a proven lower bound of the uncapped distance of the
+                  // point of that call, at least its result (beyond the cap on maps of cubes
+                  // only, from the distance field), so a caller may skip points farther away
 };
 
 /**

@@ -4,6 +4,7 @@
 #include "directions.h"
 #include "grid_geometry.h"
 #include "grid_internal.h"
+#include "surface_index.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -636,7 +637,8 @@ size_t grid_footprint(const GridCapacity& cap) {
          tdo_arena_round((static_cast<size_t>(bucket_cell_capacity(cap.max_voxels)) + 1u) *
                          sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(box_ref_capacity(cap)) * sizeof(uint32_t) + 1u) +
-         tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u);
+         tdo_arena_round(static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u) +
+         surface_index_footprint(cap);
 }
 
 tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) {
@@ -668,6 +670,12 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
       tdo_arena_alloc(arena, static_cast<size_t>(cap.max_boxes) * sizeof(uint32_t) + 1u));
   if (g->cell_start == nullptr || g->box_refs == nullptr || g->large_boxes == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
+  if (cap.boxes_only == 0u) {
+    const size_t nb = brick_capacity(cap);
+    g->brick_mask = static_cast<uint64_t*>(tdo_arena_alloc(arena, nb * sizeof(uint64_t) + 1u));
+    g->brick_box = static_cast<uint16_t*>(tdo_arena_alloc(arena, nb * sizeof(uint16_t) + 1u));
+    if (g->brick_mask == nullptr || g->brick_box == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  }
   g->clearance = -1.0;
   *out = g;
   return TDO_OK;
@@ -752,6 +760,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   // Collision-query structures (collision.h): they change no blocked flag and no move. The
   // distance field borrows the moves array as scratch, so it comes first.
   if (g->n_cubes > 0) mark_surface(g);
+  surface_index_build(g);
   if (g->cap.boxes_only == 0u) build_distance_field(g);
   g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
   compute_moves(g);

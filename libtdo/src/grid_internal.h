@@ -100,6 +100,13 @@ struct tdo_grid {
   int32_t ncx, ncy, ncz;  // cells per axis
   double bucket_reach;    // m, max(clearance, kReachVoxels * res): every box closer than this to
                           // a point is listed in the point's cell
+
+  // Brick index of the surface cubes (surface_index.h), built by tdo_grid_finish and kept by map
+  // updates: per brick of 4^3 voxels a mask of its surface cubes and their packed tight box.
+  uint64_t* brick_mask;   // brick_capacity entries (nullptr when boxes_only)
+  uint16_t* brick_box;    // brick_capacity entries
+  int32_t nbx, nby, nbz;  // bricks per axis
+  int bricks_valid;       // 1 when the index holds the surface of the grid (0: too many bricks)
 };
 
 #endif  // TDO_SRC_GRID_INTERNAL_H

@@ -21,6 +21,7 @@
 #include "directions.h"
 #include "grid_geometry.h"
 #include "grid_internal.h"
+#include "surface_index.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -232,6 +233,7 @@ void refresh_surface(Ctx* x, int64_t i, int64_t j, int64_t k) {
     f |= kFlagSurface;
   else
     f = static_cast<uint8_t>(f & ~kFlagSurface);
+  surface_index_set(g, i, j, k, (f & kFlagSurface) != 0);
 }
 
 void refresh_surface_around(Ctx* x, int64_t i, int64_t j, int64_t k) {

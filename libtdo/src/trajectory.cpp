@@ -982,11 +982,13 @@ struct LipschitzProbe {
   LipschitzProbe() { hint.valid = 0; }
   /** m, lower bound of the distance at p. */
   double bound(const tdo_vec3& p) const { return ref - norm(sub(mk(p), at)) - kLipschitzSlack; }
-  /** m, the distance at p (capped at cap: min(distance, cap), still a lower bound), evaluated. */
+  /** m, the distance at p (capped at cap: min(distance, cap)), evaluated. The bound kept is
+   *  the query's proven lower bound, which may exceed the cap (PointHint::lower). */
   double eval(const tdo_grid* g, const tdo_vec3& p, double cap) {
-    ref = point_distance_hinted(g, p, cap, &hint);
+    const double d = point_distance_hinted(g, p, cap, &hint);
+    ref = dmax(d, hint.lower);
     at = mk(p);
-    return ref;
+    return d;
   }
 };
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../../libtdo/src/grid_internal.h"  // moves: the legal steps, checked against brute force
+#include "../../libtdo/src/surface_index.h"  // the brick index's bytes (footprint)
 #include "tdo/tdo.h"
 #include "test_util.h"
 
@@ -727,15 +728,22 @@ TEST(GridCapacity, GivenAnAxisLongerThanMaxAxis_WhenReset_ThenMapCapacityElseThe
   expect_same_box_answers(a.grid(), b.grid(), 77u);
 }
 
-// boxes_only drops the distance field (4 bytes per voxel) and its line scratch (8 bytes per voxel
-// of max_axis, here max_voxels): a voxel obstacle is refused by name, and box maps answer every
-// query exactly as with the field.
+// boxes_only drops the distance field (4 bytes per voxel), its line scratch (8 bytes per voxel
+// of max_axis, here max_voxels) and the brick index of the surface cubes (1/32 brick per voxel,
+// 10 bytes each): a voxel obstacle is refused by name, and box maps answer every query exactly
+// as with the field.
 TEST(GridCapacity, GivenBoxesOnly_WhenAVoxelIsAdded_ThenMapCapacityElseTheSameDistances) {
   tdo_planner_config full{}, boxes{};
   full.cap = tdo_test::make_cap(1000, 1000, 100);
   boxes.cap = full.cap;
   boxes.cap.boxes_only = 1u;
-  EXPECT_EQ(tdo_planner_footprint(&full) - tdo_planner_footprint(&boxes), (4u + 8u) * 1000u);
+  tdo_internal::GridCapacity grid_cap{};
+  grid_cap.max_voxels = 1000u;
+  EXPECT_EQ(tdo_internal::surface_index_footprint(grid_cap),
+            tdo_arena_round((1000u / 32u + 64u) * 8u + 1u) +
+                tdo_arena_round((1000u / 32u + 64u) * 2u + 1u));
+  EXPECT_EQ(tdo_planner_footprint(&full) - tdo_planner_footprint(&boxes),
+            (4u + 8u) * 1000u + tdo_internal::surface_index_footprint(grid_cap));
   TestPlanner a(full.cap), b(boxes.cap);
   ASSERT_EQ(a.status(), TDO_OK);
   ASSERT_EQ(b.status(), TDO_OK);

@@ -11,7 +11,10 @@
  *   query that reaches no further than that looks only at the cells the segment crosses; queries
  *   reaching further (a larger clearance or cap) scan every box;
  * - a distance field (exact centre-to-centre Euclidean distance to the nearest occupied voxel),
- *   used only as a lower bound to skip pieces of a segment far from the cubes.
+ *   used only as a bound to skip pieces of a segment far from the cubes;
+ * - a brick index of the surface cubes (4^3 voxels per brick: a mask and a tight box), so the
+ *   exact distance near a piece visits the nearest bricks first and stops at the first that
+ *   cannot hold anything nearer (docs/design.md s.0, "Distance to the cubes").
  * All functions are read-only on the grid, allocate nothing, do bounded work and give bit-identical
  * results for identical inputs.
  */

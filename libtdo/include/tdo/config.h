@@ -35,7 +35,8 @@ typedef struct tdo_capacity {
                                  scans). 0 = max_boxes * 64, which can never overflow; a non-zero
                                  value too small for the map makes tdo_grid_finish return
                                  TDO_ERR_BOX_CAPACITY. The grid also keeps a distance field (4 bytes
-                                 per voxel) and a few cell offsets (1/4 byte per voxel). */
+                                 per voxel), a few cell offsets (1/4 byte per voxel) and a brick
+                                 index of the surface cubes (10 bytes per 32 voxels). */
   uint32_t dense_headings;  /**< 1: every voxel gets a 27-entry heading index per search direction
                                  (108 bytes per voxel and direction), so turn-penalised searches
                                  find a (voxel, heading) state in one read; 0: states of a voxel

@@ -1,0 +1,129 @@
+// Brick index of the surface cubes, for the exact distance queries of collision.cpp
+// (docs/design.md s.0, "Distance to the cubes"). Internal to libtdo.
+//
+// The grid is cut into bricks of 4x4x4 voxels aligned at multiples of 4. Each brick keeps a 64-bit
+// mask of its surface cubes (bit x + 4 (y + 4 z) for voxel (4 bx + x, 4 by + y, 4 bz + z)) and the
+// tight bounding box of those cubes (2 bits per bound). A query collects the bricks whose tight box
+// comes within a radius of a point or segment, sorts them by that gap, and visits their cubes in
+// that order, so an exact minimum stops at the first brick that cannot hold anything nearer and a
+// clearance test looks only at bricks closer than the clearance. Nothing scans voxels.
+#ifndef TDO_SRC_SURFACE_INDEX_H
+#define TDO_SRC_SURFACE_INDEX_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "grid_internal.h"
+
+namespace tdo_internal {
+
+constexpr int32_t kBrickVoxels = 4;       // brick edge (voxels): 64 voxels, one mask bit each
+constexpr uint32_t kMaxBrickCands = 128;  // bricks one query sorts; more: the caller scans
+
+// Bricks a grid of this capacity may index: every grid whose axes all have 12 voxels or more
+// fits (ceil(n/4)/n <= 5/16 there); thinner grids go without the index (bricks_valid = 0).
+inline uint32_t brick_capacity(const GridCapacity& cap) {
+  return cap.boxes_only != 0u ? 0u : cap.max_voxels / 32u + 64u;
+}
+
+// Bytes of arena of the index: the masks and the packed boxes.
+size_t surface_index_footprint(const GridCapacity& cap);
+
+// Build the index from the kFlagSurface bits (tdo_grid_finish, after marking the surface).
+void surface_index_build(tdo_grid* g);
+
+// Voxel (i, j, k) (inside the grid) is now a surface cube (on = true) or not (map updates).
+void surface_index_set(tdo_grid* g, int64_t i, int64_t j, int64_t k, bool on);
+
+// A brick near a query: its index and the squared gap (m^2) between its tight box and the
+// query's span box, a lower bound of the squared distance of each of its cubes.
+struct BrickCand {
+  double gap2;
+  uint32_t brick;
+};
+
+// Call f(BrickCand) for every non-empty brick that holds a voxel of the span box of [p0, p1]
+// grown by r plus one voxel (the voxel range the scan of collision.cpp visits), in index order;
+// stop when f returns false (then return false). Bounded by the bricks of that range.
+template <class F>
+bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                         F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  double mn[3], mx[3];
+  int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
+    mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
+    const double va = floor((mn[a] - r - o[a]) / d.res) - 1.0;
+    const double vb = floor((mx[a] + r - o[a]) / d.res) + 1.0;
+    if (vb < 0.0 || va > static_cast<double>(n[a] - 1)) return true;
+    const int64_t ia = va < 0.0 ? 0 : static_cast<int64_t>(va);
+    const int64_t ib = vb > static_cast<double>(n[a] - 1) ? n[a] - 1 : static_cast<int64_t>(vb);
+    lo[a] = ia / kBrickVoxels;
+    hi[a] = ib / kBrickVoxels;
+  }
+  for (int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+      const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+        const uint32_t b = static_cast<uint32_t>(row + x);
+        if (g->brick_mask[b] == 0u) continue;
+        const uint32_t pk = g->brick_box[b];
+        const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
+        double gap2 = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          // The tight box's faces, by the same expressions as the cube bounds.
+          const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
+          const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
+          const double blo = o[a] + static_cast<double>(ci) * d.res;
+          const double bhi = o[a] + static_cast<double>(cj) * d.res;
+          const double gp =
+              (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
+          gap2 += gp * gp;
+        }
+        if (!f(BrickCand{gap2, b})) return false;
+      }
+    }
+  return true;
+}
+
+// The bricks of for_each_brick_near whose gap is below lim (m) or 0, sorted by gap2 then index,
+// into cand[kMaxBrickCands]. Returns their number, or kMaxBrickCands + 1 when there are more
+// (cand is then unusable).
+uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                               double lim, BrickCand* cand);
+
+// Call f(lo, hi) with the bounds (m) of every surface cube of brick `brick`, in bit order;
+// stop when f returns false (then return false).
+template <class F>
+bool for_each_brick_cube(const tdo_grid* g, uint32_t brick, F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
+  const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
+  const uint32_t by = rest % static_cast<uint32_t>(g->nby);
+  const uint32_t bz = rest / static_cast<uint32_t>(g->nby);
+  uint64_t m = g->brick_mask[brick];
+  while (m != 0u) {
+    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
+    m &= m - 1u;
+    const int64_t i = static_cast<int64_t>(bx) * kBrickVoxels + (b & 3u);
+    const int64_t j = static_cast<int64_t>(by) * kBrickVoxels + ((b >> 2) & 3u);
+    const int64_t k = static_cast<int64_t>(bz) * kBrickVoxels + (b >> 4);
+    // The same expressions as every other cube bound of the collision queries.
+    const double lo[3] = {d.origin.x + static_cast<double>(i) * d.res,
+                          d.origin.y + static_cast<double>(j) * d.res,
+                          d.origin.z + static_cast<double>(k) * d.res};
+    const double hi[3] = {d.origin.x + static_cast<double>(i + 1) * d.res,
+                          d.origin.y + static_cast<double>(j + 1) * d.res,
+                          d.origin.z + static_cast<double>(k + 1) * d.res};
+    if (!f(lo, hi)) return false;
+  }
+  return true;
+}
+
+}  // namespace tdo_internal
+
+#endif  // TDO_SRC_SURFACE_INDEX_H
