@@ -19,6 +19,7 @@
 
 #include "directions.h"
 #include "grid_internal.h"
+#include "search_headed.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -128,7 +129,7 @@ struct Side {
   StackItem stack[kStackCap];  // A* fast path (forward side only)
   // Turn-penalised searches: per voxel a lower bound (m) of the grid distance to this side's target
   // (exact_lower_bounds); nullptr = the octile distance alone.
-  const double* hx;
+  const float* hx;
   uint32_t n_stack;
   double f_cur;   // f of the state being expanded
   int use_stack;  // 1 for unidirectional A*
@@ -163,7 +164,8 @@ struct tdo_search {
   double cand_theta;  // theta_max the cand table was built for
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
-  double* hdist[2];
+  float* hdist[2];    // rounded down from the Dijkstra's keys (lower bounds stay lower bounds)
+  double* dj_dist;    // the Dijkstra's keys (m), max_voxels (dj_in_pool: in side[1].nodes)
   uint32_t* dj_heap;  // next voxel in the bucket
   uint32_t* dj_pos;   // previous voxel in the bucket, kDjHead, kDjSettled or kNil (not reached)
 };
@@ -627,7 +629,7 @@ inline double turn_bound(const tdo_search* ctx, const Query& q, double dev) {
 inline double heuristic(const Side& s, uint32_t v, int32_t x, int32_t y, int32_t z, double res) {
   const double o = octile(s, x, y, z, res);
   if (s.hx == nullptr) return o;
-  const double e = s.hx[v];
+  const double e = static_cast<double>(s.hx[v]);
   return e > o ? e : o;
 }
 
@@ -655,7 +657,7 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   }
   double h = octile_voxel(s, n.x, n.y, n.z);
   if (q.voxel_turns && s.hx != nullptr) {
-    const double e = s.hx[n.voxel] * q.inv_res;
+    const double e = static_cast<double>(s.hx[n.voxel]) * q.inv_res;
     h = e > h ? e : h;
   }
   *h_out = static_cast<float>(h);
@@ -1146,6 +1148,8 @@ constexpr double kDjReach = 2.0;
 // Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
 // the budget).
 constexpr int kRetries = 2;
+// tdo_search_output.fallback of a search that ended in voxel states (run_pool_fallback).
+constexpr uint32_t kPoolFallback = 3u;
 constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
 
 #if defined(__SSE2__)
@@ -1201,8 +1205,8 @@ __attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double
 // is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
 // and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
 // @return false when the Dijkstra ran out without reaching voxel `other` (no path).
-bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other,
-                        double* dist) {
+bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+  double* dist = ctx->dj_dist;
   const uint32_t nvox = g->nvox;
   DjQueue qu;
   qu.next = ctx->dj_heap;
@@ -1321,6 +1325,16 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   for (uint32_t v = 0; v < nvox; ++v)
     if (qu.prev[v] != kDjSettled) dist[v] = rest;
   return true;
+}
+
+// The table of a side: each key rounded down to a float, so a lower bound stays one (+inf stays
+// +inf: an unreachable voxel).
+void store_lower_bounds(const double* dist, uint32_t nvox, float* table) {
+  for (uint32_t v = 0; v < nvox; ++v) {
+    float f = static_cast<float>(dist[v]);
+    if (static_cast<double>(f) > dist[v]) f = nextafterf(f, 0.0f);
+    table[v] = f;
+  }
 }
 
 void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
@@ -1621,11 +1635,21 @@ uint32_t open_entries(const tdo_search_config& cfg) {
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(Index)) +
          (cfg.exact_heuristic
-              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
+              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(float))  // hdist
               : 0u) +
          tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(open_entries(cfg)) * sizeof(OpenItem));
+}
+
+// The Dijkstra of exact_lower_bounds needs its keys and two links per voxel (kDjBytes) while it
+// runs, only between tries, when no search state is alive: it borrows the backward side's node
+// pool when that is large enough (max_nodes >= max_voxels / 2 with 32-byte states), else it gets
+// its own arrays. The tables the search reads keep 4 bytes per voxel and side.
+constexpr size_t kDjBytes = sizeof(double) + 2u * sizeof(uint32_t);
+bool dj_in_pool(const tdo_search_config& cfg) {
+  return static_cast<uint64_t>(cfg.max_nodes) * sizeof(Node) >=
+         static_cast<uint64_t>(cfg.max_voxels) * kDjBytes;
 }
 
 // The query's counters (expansions, open-list and state peaks, states), every try counted.
@@ -1644,8 +1668,8 @@ using namespace tdo_internal;
 extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
   if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
   return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
-         (cfg->exact_heuristic
-              ? 2u * tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * sizeof(uint32_t))
+         (cfg->exact_heuristic && !dj_in_pool(*cfg)
+              ? tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * kDjBytes)
               : 0u) +
          tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
 }
@@ -1700,19 +1724,21 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     s.hx = nullptr;
     ctx->hdist[k] = nullptr;
     if (cfg->exact_heuristic) {
-      ctx->hdist[k] =
-          static_cast<double*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(double)));
+      ctx->hdist[k] = static_cast<float*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(float)));
       if (ctx->hdist[k] == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     }
   }
+  ctx->dj_dist = nullptr;
   ctx->dj_heap = nullptr;
   ctx->dj_pos = nullptr;
   if (cfg->exact_heuristic) {
-    ctx->dj_heap =
-        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-    ctx->dj_pos =
-        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-    if (ctx->dj_heap == nullptr || ctx->dj_pos == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    // Keys first (8-byte aligned, as the pool and the arena are), then the two link arrays.
+    void* dj = dj_in_pool(*cfg) ? static_cast<void*>(ctx->side[1].nodes)
+                                : tdo_arena_alloc(arena, cfg->max_voxels * kDjBytes);
+    if (dj == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->dj_dist = static_cast<double*>(dj);
+    ctx->dj_heap = reinterpret_cast<uint32_t*>(ctx->dj_dist + cfg->max_voxels);
+    ctx->dj_pos = ctx->dj_heap + cfg->max_voxels;
   }
   ctx->path = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cfg->max_path * sizeof(tdo_voxel)));
   if (ctx->path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
@@ -1729,10 +1755,11 @@ namespace {
 bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
   if (ctx->side[0].hx != nullptr) return true;
   for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-    if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
+    if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k])) {
       report_counts(q, out);
       return false;
     }
+    store_lower_bounds(ctx->dj_dist, q.grid->nvox, ctx->hdist[k]);
     ctx->side[k].hx = ctx->hdist[k];
   }
   return true;
@@ -1801,6 +1828,31 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
   out->penalized_cost = out->cost + path_penalty(ctx, q, out->n_path, &sharp);
   out->pivots = sharp;
   return TDO_OK;
+}
+
+// The heading states filled their node pool with expansion budget left, and voxel states, one per
+// voxel and side, fit the pool: the voxel-state fallback can run. (A full open list stays a full
+// open list: max_open is a caller's choice below the pool, design s.1 "Memory and work".)
+bool pool_spent(const tdo_search* ctx, const Query& q, tdo_status st, uint32_t budget) {
+  return st == TDO_ERR_NODE_CAPACITY && q.expansions < budget && ctx->cfg.max_nodes >= q.grid->nvox;
+}
+
+// The heading states' pool ran out: search again with voxel states (the pool holds one per voxel,
+// so they reach every voxel plain A* reaches) with the rest of the budget, the input's weight and
+// terms, and the tables in h when a retry built them. tdo_search_output.fallback says so (3): the
+// plan's turn cost is not the heading search's (docs/design.md s.1, "Completeness").
+tdo_status run_pool_fallback(tdo_search* ctx, Query& q, const tdo_search_input* in, uint32_t budget,
+                             tdo_search_output* out) {
+  q.best = HUGE_VAL;
+  q.meet[0] = q.meet[1] = kNil;
+  q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
+  q.dev_terms = 1;
+  q.budget = budget;
+  q.try_share = 0u;
+  q.try_first = q.expansions;
+  const tdo_status st = run_voxel_turns(ctx, q, TDO_GRID_FIRST_OFF, out);
+  out->fallback = kPoolFallback;
+  return st;
 }
 
 }  // namespace
@@ -1872,15 +1924,15 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
   q.first_meet = in->first_meet != 0;
   q.exact_turns = !q.bidir || !q.first_meet;
-  q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
-  q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
+  q.constrained = search_constrained(in->theta_max);
+  q.d_th = search_d_th(in->d_th);
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);
   q.defer_margin = q.pivot_cost + g->desc.res;  // the dearest direct turn, one voxel edge more
   q.budget = in->max_expansions != 0 ? in->max_expansions : ctx->cfg.max_expansions;
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
-  const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
+  const bool headed = search_headed(in);
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
   if (headed && in->states == TDO_STATES_VOXEL) return run_voxel_turns(ctx, q, in->grid_first, out);
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
@@ -1918,7 +1970,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     t = 1;
   } else if (in->grid_first == TDO_GRID_FIRST_TERMS) {
     if (!build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
-    const double d = ctx->side[0].hx[q.voxel[0]];
+    const double d = static_cast<double>(ctx->side[0].hx[q.voxel[0]]);
     q.h_root = d > q.h_root ? d : q.h_root;  // heuristic() of the start
   }
   for (; t <= retries; ++t) {  // bounded: retries + 1 tries
@@ -1935,6 +1987,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     if (!retry) break;
     if (!start_retry(ctx, q, t, out)) return TDO_ERR_NO_PATH;
   }
+  if (pool_spent(ctx, q, st, budget)) return run_pool_fallback(ctx, q, in, budget, out);
   report_counts(q, out);
   if (st != TDO_OK) return st;
   return write_path(ctx, q, out);
