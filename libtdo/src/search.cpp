@@ -8,8 +8,9 @@
 //
 // The mechanisms it uses have their own files: search_state.h (index widths, states, per-voxel
 // slots and chains, the state pool, the context), search_open.h (open lists), search_tables.cpp
-// (the retry's grid-distance tables) and search_headed.h (which queries are turn-penalised). This
-// file keeps the costs, the expansions, the search loop and the retry control.
+// (the retry's grid-distance tables), search_retry.cpp (the tries, their budgets and the
+// voxel-state fallback) and search_headed.h (which queries are turn-penalised). This file keeps
+// the costs, the expansions and the search loop.
 #include "tdo/search.h"
 
 #include <math.h>
@@ -26,6 +27,7 @@
 #include "grid_internal.h"
 #include "search_headed.h"
 #include "search_open.h"
+#include "search_retry.h"
 #include "search_state.h"
 #include "search_tables.h"
 #include "vec3.h"
@@ -707,13 +709,6 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
   return TDO_OK;
 }
 
-// Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
-// the budget).
-constexpr int kRetries = 2;
-// tdo_search_output.fallback of a search that ended in voxel states (run_pool_fallback).
-constexpr uint32_t kPoolFallback = 3u;
-constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
-
 void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   Side& s = ctx->side[back];
   const tdo_voxel& v = q.v[back];
@@ -775,9 +770,6 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   }
 }
 
-// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
-constexpr uint32_t kTryMin = 20000;
-constexpr uint32_t kTryDiv = 16;
 // A try that is not the last is given up early once it has spent 1/kTryProbe of its expansions
 // without a meeting and its progress so far, extrapolated, needs more than 1/kFloodFactor of them
 // (flooding).
@@ -1125,40 +1117,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
 }
 
 namespace tdo_internal {
-namespace {
-
-// The grid-distance tables of the sides (once per query: tdo_search_run clears side.hx before
-// it): side k's distances to its target. False (the counts reported) when they show that the goal
-// cannot be reached.
-bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
-  if (ctx->side[0].hx != nullptr) return true;
-  for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-    if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k])) {
-      report_counts(q, out);
-      return false;
-    }
-    store_lower_bounds(ctx->dj_dist, q.grid->nvox, ctx->hdist[k]);
-    ctx->side[k].hx = ctx->hdist[k];
-  }
-  return true;
-}
-
-// Set up retry t + 1 of a turn-penalised search after try t: the grid-distance tables, the
-// retry's weight, no deviation terms. False (the counts reported) when the tables show that the
-// goal cannot be reached.
-bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
-  if (!build_tables(ctx, q, out)) return false;
-  q.best = HUGE_VAL;
-  q.meet[0] = q.meet[1] = kNil;
-  q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
-  // The deviation term and the turn bound aim at the straight line to the target, through walls:
-  // they would flood as the octile distance did.
-  q.dev_terms = 0;
-  out->fallback = static_cast<uint32_t>(t + 1);
-  return true;
-}
-
-}  // namespace
+namespace {}  // namespace
 }  // namespace tdo_internal
 
 namespace tdo_internal {
@@ -1193,7 +1152,7 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
   // as the heading search's first retry (weight 2, no deviation terms), TERMS with the f unchanged.
   if (grid_first != TDO_GRID_FIRST_OFF && !build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
   if (grid_first == TDO_GRID_FIRST_PLAIN) {
-    q.h_weight = q.h_weight > kRetryWeight[0] ? q.h_weight : kRetryWeight[0];
+    q.h_weight = q.h_weight > retry_weight(0) ? q.h_weight : retry_weight(0);
     q.dev_terms = 0;
   }
   const tdo_status st = run_search<false>(ctx, q);
@@ -1208,32 +1167,26 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
   return TDO_OK;
 }
 
-// The heading states filled their node pool with expansion budget left, and voxel states, one per
-// voxel and side, fit the pool: the voxel-state fallback can run. (A full open list stays a full
-// open list: max_open is a caller's choice below the pool, design s.1 "Memory and work".)
-bool pool_spent(const tdo_search* ctx, const Query& q, tdo_status st, uint32_t budget) {
-  return st == TDO_ERR_NODE_CAPACITY && q.expansions < budget && ctx->cfg.max_nodes >= q.grid->nvox;
-}
-
-// The heading states' pool ran out: search again with voxel states (the pool holds one per voxel,
-// so they reach every voxel plain A* reaches) with the rest of the budget, the input's weight and
-// terms, and the tables in h when a retry built them. tdo_search_output.fallback says so (3): the
-// plan's turn cost is not the heading search's (docs/design.md s.1, "Completeness").
-tdo_status run_pool_fallback(tdo_search* ctx, Query& q, const tdo_search_input* in, uint32_t budget,
-                             tdo_search_output* out) {
-  q.best = HUGE_VAL;
-  q.meet[0] = q.meet[1] = kNil;
-  q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
-  q.dev_terms = 1;
-  q.budget = budget;
-  q.try_share = 0u;
-  q.try_first = q.expansions;
-  const tdo_status st = run_voxel_turns(ctx, q, TDO_GRID_FIRST_OFF, out);
-  out->fallback = kPoolFallback;
-  return st;
-}
-
 }  // namespace
+}  // namespace tdo_internal
+
+namespace tdo_internal {
+inline namespace TDO_SEARCH_NS {
+
+// What search_retry.cpp calls (search_retry.h).
+tdo_status search_try(tdo_search* ctx, Query& q) { return run_search<true>(ctx, q); }
+tdo_status search_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search_output* out) {
+  return run_voxel_turns(ctx, q, grid_first, out);
+}
+tdo_status search_write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
+  return write_path(ctx, q, out);
+}
+void search_report(const Query& q, tdo_search_output* out) { report_counts(q, out); }
+double search_octile(int32_t a, int32_t b, int32_t c, double res) {
+  return octile_of(a, b, c, res);
+}
+
+}  // namespace TDO_SEARCH_NS
 }  // namespace tdo_internal
 
 namespace tdo_internal {
@@ -1321,54 +1274,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
     return wp;
   }
-  // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
-  // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
-  // a try expands more than max(kTryMin, nvox / kTryDiv) states (the first one: or is projected
-  // to, see flooding) or fills the node pool, the search
-  // starts again with the obstacle-aware heuristic (grid distances to each side's target,
-  // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
-  // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
-  // the free space. The tries share the expansion budget; the last one gets all that is left.
-  // One table for both sides (the goal's, with the landmark bound D(start) - D(v) backward) was
-  // tried and not kept: rooted at the landmark, the backward side learns nothing about the
-  // direction to the start (geb079 2.7 times the expansions; docs/performance.md).
-  const uint32_t budget = q.budget;
-  // No tables: no retry. In a corridor neither: its caller falls back to the whole grid.
-  const int retries = ctx->cfg.exact_heuristic && q.corridor == nullptr ? kRetries : 0;
-  const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
-  q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
-                       iabs(q.v[1].k - q.v[0].k), g->desc.res);
-  tdo_status st = TDO_OK;
-  // grid_first PLAIN: the octile try is skipped, the search starts as the first retry. TERMS: the
-  // first try has the tables too (its f otherwise unchanged), and its progress is measured in
-  // them.
-  int t = 0;
-  if (in->grid_first == TDO_GRID_FIRST_PLAIN) {
-    if (!start_retry(ctx, q, 0, out)) return TDO_ERR_NO_PATH;
-    t = 1;
-  } else if (in->grid_first == TDO_GRID_FIRST_TERMS) {
-    if (!build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
-    const double d = static_cast<double>(ctx->side[0].hx[q.voxel[0]]);
-    q.h_root = d > q.h_root ? d : q.h_root;  // heuristic() of the start
-  }
-  for (; t <= retries; ++t) {  // bounded: retries + 1 tries
-    const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
-    q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
-    // The flood test (flooding) runs in the first try only: the retries follow the free space.
-    q.try_share = t == 0 && t < retries ? share : 0u;
-    q.try_first = q.expansions;
-    q.h_best[0] = q.h_best[1] = q.h_root;
-    st = run_search<true>(ctx, q);
-    const bool retry =
-        t < retries && q.expansions < budget &&
-        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY || st == TDO_ERR_OPEN_CAPACITY);
-    if (!retry) break;
-    if (!start_retry(ctx, q, t, out)) return TDO_ERR_NO_PATH;
-  }
-  if (pool_spent(ctx, q, st, budget)) return run_pool_fallback(ctx, q, in, budget, out);
-  report_counts(q, out);
-  if (st != TDO_OK) return st;
-  return write_path(ctx, q, out);
+  return run_headed(ctx, q, in, out);
 }
 
 extern "C" double tdo_search_pivot_cost(double lambda, double theta_max) {
