@@ -43,8 +43,9 @@ typedef struct tdo_capacity {
   uint32_t dense_headings;  /**< 1: every voxel gets a 27-entry heading index per search direction
                                  (108 bytes per voxel and direction), so turn-penalised searches
                                  find a (voxel, heading) state in one read; 0: states of a voxel
-                                 are chained from its slot, as plain A* stores it (what
-                                 tdo_capacity_for_grid sets) */
+                                 are chained from its slot, as plain A* stores it.
+                                 tdo_capacity_for_grid sets 1 for 27 headings on grids of at most
+                                 2^16 voxels, else 0 */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the obstacle-aware
                                  retry of a turn-penalised search whose octile-guided try floods
                                  (search.h, tdo_search_output.fallback); 0: no retry.
