@@ -16,7 +16,7 @@ set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 TOOLCHAIN="$ROOT/cmake/toolchains/arm-none-eabi-cortex-m7.cmake"
-CONFIGS=(map1 map4)
+CONFIGS=(map1 map4 map5)
 
 log() { printf '[embedded] %s\n' "$*"; }
 die() {
@@ -185,12 +185,13 @@ cmd_libm() {
 cmd_all() {
   local arm="$ROOT/build-arm" host="${BUILD_DIR:-$ROOT/build}"
   cmd_build "$arm"
-  cmd_symbols "$arm"/embedded/tdo-fw-{map1,map4}.elf
+  cmd_symbols "$arm"/embedded/tdo-fw-{map1,map4,map5}.elf
   cmd_symbols_selftest "$arm/embedded/tdo-fw-symcheck-bad.elf"
   [[ -f "$host/CMakeCache.txt" ]] || die "no host build in $host: run bash scripts/build.sh first"
-  cmake --build "$host" --target tdo-demo-map1
-  # Map1 only: Map4's 36 MB arena does not fit the board's 4 MB of data RAM (docs/embedded.md).
+  cmake --build "$host" --target tdo-demo-map1 tdo-demo-map5
+  # Map1 and Map5: Map4's 20 MB arena does not fit the board's 4 MB of data RAM (docs/embedded.md).
   cmd_run "$arm/embedded/tdo-fw-map1.elf" "$host/embedded/tdo-demo-map1"
+  cmd_run "$arm/embedded/tdo-fw-map5.elf" "$host/embedded/tdo-demo-map5"
   cmd_sizes "$arm"
 }
 

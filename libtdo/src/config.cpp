@@ -14,7 +14,14 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
       static_cast<uint64_t>(nx) * static_cast<uint64_t>(ny) * static_cast<uint64_t>(nz);
   const uint64_t cap32 = 0xFFFFFFF0u;
   cap->max_voxels = static_cast<uint32_t>(n < cap32 ? n : cap32);
-  uint64_t nodes = n * (headings == 0 ? 1u : headings);
+  // The state pool of one search direction: one state per voxel covers plain A* and voxel states
+  // (design s.1, "Memory and work"). Heading states take states from the same pool as the search
+  // creates them, not 27 per voxel; a pool they fill ends in the voxel-state fallback. Small grids
+  // keep room for every heading (at most kSmallPool states), so their searches never need it.
+  constexpr uint64_t kSmallPool = 1u << 18;
+  const uint64_t h = headings == 0 ? 1u : headings;
+  uint64_t nodes = n;
+  if (h > 1u) nodes = n * h < kSmallPool ? n * h : (n > kSmallPool ? n : kSmallPool);
   if (node_cap > 0 && nodes > node_cap) nodes = node_cap;
   cap->max_nodes = static_cast<uint32_t>(nodes < cap32 ? nodes : cap32);
   // A path visits each voxel at most once; 4x the box diagonal in steps covers realistic detours
@@ -30,7 +37,11 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   // The box count is not known here (callers set max_boxes afterwards), and the bucket index needs
   // at most 64 entries per box: 0 derives max_boxes * 64 at init, which can never overflow.
   cap->max_box_refs = 0;
-  cap->dense_headings = headings >= 27u ? 1u : 0u;
+  // Per voxel the search keeps what plain A* keeps (one slot per direction, the head of the
+  // voxel's chain of heading states). Grids of at most 2^16 voxels (the paper's maps) add the dense
+  // 27-entry index (216 bytes per voxel, at most 14 MB), which saves the chain walks: Map4's
+  // search 26.1 M instructions with chains, 23.3 M with the index (docs/design.md s.1).
+  cap->dense_headings = headings >= 27u && n <= (1u << 16) ? 1u : 0u;
   // The obstacle-aware retry (24 bytes per voxel) with the turn-penalised search, whose octile
   // try can flood (docs/performance.md); plain searches never retry.
   cap->exact_heuristic = headings >= 27u ? 1u : 0u;

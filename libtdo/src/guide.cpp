@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "grid_internal.h"
+#include "search_headed.h"
 
 namespace tdo_internal {
 
@@ -143,10 +144,7 @@ void clear_corridor(Guide* gd) {
 bool applies(const Guide* gd, const tdo_search_input* in) {
   const tdo_grid* g = in->grid;
   if (gd == nullptr || g == nullptr || !g->ready) return false;
-  const bool headed = in->lambda > 0.0 || in->mu > 0.0 ||
-                      (in->theta_max > 0.0 && in->theta_max < 3.14159265358979323846) ||
-                      (in->d_th > 0.0 && in->d_th < 1.0);
-  if (!headed) return false;
+  if (!search_headed(in)) return false;
   const int32_t e = (1 << gd->cap.shift) - 1;
   const uint64_t n = static_cast<uint64_t>((g->desc.nx + e) >> gd->cap.shift) *
                      static_cast<uint64_t>((g->desc.ny + e) >> gd->cap.shift) *

@@ -5,6 +5,12 @@
 // one voxel form a chain from a per-voxel slot, so lookups, meetings and capacity stay bounded,
 // and an expansion creates states only for the children near the smallest queued f (partial
 // expansion, expand_headed), so the pools hold about as many states as the search expands.
+//
+// The mechanisms it uses have their own files: search_state.h (index widths, states, per-voxel
+// slots and chains, the state pool, the context), search_open.h (open lists), search_tables.cpp
+// (the retry's grid-distance tables), search_retry.cpp (the tries, their budgets and the
+// voxel-state fallback) and search_headed.h (which queries are turn-penalised). This file keeps
+// the costs, the expansions and the search loop.
 #include "tdo/search.h"
 
 #include <math.h>
@@ -19,189 +25,16 @@
 
 #include "directions.h"
 #include "grid_internal.h"
+#include "search_headed.h"
+#include "search_open.h"
+#include "search_retry.h"
+#include "search_state.h"
+#include "search_tables.h"
 #include "vec3.h"
 
 namespace tdo_internal {
+inline namespace TDO_SEARCH_NS {
 namespace {
-
-// Index widths. Built with TDO_SEARCH_INDEX16 (small configurations: docs/embedded.md) the search
-// stores state indices, voxel indices and per-voxel slots in 16 bits and voxel coordinates in 8:
-// a state takes 20 bytes instead of 32, an open-list item 14 instead of 16, a slot 2 instead of 4,
-// for max_nodes < 2^15 per direction, max_voxels < 2^16 and grid axes < 256 (tdo_search_init and
-// tdo_search_run check them). The code is the same for both widths; only these types change.
-#if defined(TDO_SEARCH_INDEX16)
-typedef uint16_t Index;    // state index, open-list position, per-voxel slot
-typedef uint16_t VoxelId;  // linear voxel index
-typedef uint8_t Coord;     // voxel coordinate
-#define TDO_SEARCH_PACKED(align) __attribute__((packed, aligned(align)))
-#else
-typedef uint32_t Index;
-typedef uint32_t VoxelId;
-typedef uint16_t Coord;
-#define TDO_SEARCH_PACKED(align)
-#endif
-// "No state": all ones of an Index (every index and position stays below it). The voxel arrays of
-// exact_lower_bounds use it too (voxel indices stay below it as well: kMaxVoxels).
-constexpr uint32_t kNil = static_cast<Index>(~0u);
-constexpr uint32_t kTopBit = (kNil >> 1) + 1u;  // flag bit of an Index (kSlotClosed, kDeferItem)
-constexpr uint64_t kMaxVoxels = static_cast<VoxelId>(~0u);  // max_voxels at most this
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kSqrt2 = 1.41421356237309504880;
-constexpr double kSqrt3 = 1.73205080756887729353;
-constexpr int32_t kMaxAxis = static_cast<Coord>(~0u);  // node coordinates are Coord
-// Smallest angle between two different step directions: acos(sqrt(2/3)), face to edge diagonal
-// and edge to corner diagonal (rad).
-constexpr double kMinTurn = 0.61547970867038734;
-
-struct TDO_SEARCH_PACKED(4) Node {
-  double g;         // m, cost from this side's root: length plus turn penalties
-  Index parent;     // node towards this side's root, kNil at the root
-  VoxelId voxel;    // linear voxel index
-  Index next;       // next state of the same voxel, kNil at the end of the chain
-  Index heap;       // position in the open list (or kInStack, kBucketBit | ...), kNil once closed
-  Coord x, y, z;    // voxel coordinates
-  uint8_t heading;  // forward-sense step direction into (forward) / out of (backward) the voxel
-};
-static_assert(sizeof(Node) == (sizeof(Index) == 2 ? 20 : 32), "Node layout");
-
-// node before h: the 8 bytes that end with h, read as one little-endian word and shifted right by
-// kKeyShift bits, are (h bits << (8 * sizeof(Index)) | node), the key's low half (key_of).
-struct TDO_SEARCH_PACKED(2) OpenItem {
-  double f;    // m, g + h (+ mu * deviation)
-  Index node;  // node index; smaller wins ties of f and h (deterministic allocation order)
-  float h;     // m, heuristic; smaller h wins ties of f
-};
-static_assert(sizeof(OpenItem) == (sizeof(Index) == 2 ? 14 : 16), "OpenItem layout");
-constexpr uint32_t kArity =
-    4;  // 4-ary heap: half the depth of a binary heap, children share a line
-
-// Per-voxel slot: the first state of the voxel's chain in the bits below kTopBit, kNil when the
-// voxel has none, and kSlotClosed once the voxel's only state is expanded (searches without heading
-// costs), so closed neighbours are skipped without touching the node pool. A search ends by setting
-// the slots of its states' voxels back to kNil (run_search), so no generation stamp is needed and a
-// slot takes one Index.
-constexpr uint32_t kSlotClosed = kTopBit;
-constexpr uint32_t kSlotIndex = kTopBit - 1u;
-// Open-list item that stands for the deferred children of an expanded turn-penalised state
-// (expand_headed): its f is the smallest of their f, so most are never popped.
-constexpr uint32_t kDeferItem = kTopBit;
-
-// Unidirectional A* keeps children whose f does not exceed their parent's on a small LIFO stack
-// instead of the heap: they are expanded next anyway (f <= fmin keeps A* optimal), which skips a
-// heap push and pop for most states on open ground. Full stack: the heap takes the child. The
-// turn-penalised searches hold at most 7 items there on Map1-6 and plain A* 11 on Map1, so the
-// 16-bit build (small configurations) keeps 64: 1.3 KB per context instead of 20 KB.
-constexpr uint32_t kStackCap = sizeof(Index) == 2 ? 64u : 1024u;
-constexpr uint32_t kInStack = kNil - 1u;  // Node::heap of a state on the stack
-
-// Open list of unidirectional voxel-state A* (plain A*, consistent octile heuristic): buckets by
-// floor(f / width). Only the current bucket (and every item whose bucket is not above it) is in
-// the heap `open`, ordered exactly by (f, h, node); the later buckets are doubly linked lists
-// through Node::next (next) and Node::heap (kBucketBit | previous item, or kBucketBit |
-// (kBucketHeadBase + ring slot) at the head), in a ring of kRing: no memory beyond the heap's.
-// Every item of a later bucket has a larger f than every heap item, so the pop order is the heap's.
-// Bounded ring: an item is queued while its parent, whose f lies at most at the end of the current
-// bucket, is expanded, and a step raises f by at most 2 sqrt(3) voxel edges (step length plus the
-// change of the octile distance), so it lands fewer than 2 + 2 sqrt(3) / kWidth buckets ahead;
-// decrease-key only lowers f.
-constexpr uint32_t kRing = 64;            // ring slots, a power of two > 2 + 2 sqrt(3) / kWidth
-constexpr double kWidth = 0.0625;         // bucket width per res
-constexpr uint32_t kBucketBit = kTopBit;  // Node::heap of a state in a later bucket
-constexpr uint32_t kBucketHeadBase = kTopBit - 256u;   // list head: kBucketBit | (this + ring slot)
-constexpr uint32_t kBucketMaxNodes = kBucketHeadBase;  // larger pools keep the plain heap
-static_assert((kRing & (kRing - 1u)) == 0 && kRing > 3.0 + 2.0 * kSqrt3 / kWidth,
-              "bucket ring too small for the largest f step (one bucket of rounding margin)");
-
-struct TDO_SEARCH_PACKED(2) StackItem {
-  double f;    // m, f when pushed (<= the f of every open heap state at that time)
-  Index node;  // node index
-};
-
-struct Side {
-  Index* slot;           // per voxel: see kSlotClosed
-  Index* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
-  Node* nodes;           // state pool, max_nodes
-  OpenItem* open;        // binary min-heap, max_nodes
-  uint32_t n_nodes;
-  uint32_t n_open;
-  int32_t tx, ty, tz;          // target voxel of this side's heuristic
-  StackItem stack[kStackCap];  // A* fast path (forward side only)
-  // Turn-penalised searches: per voxel a lower bound (m) of the grid distance to this side's target
-  // (exact_lower_bounds); nullptr = the octile distance alone.
-  const double* hx;
-  uint32_t n_stack;
-  double f_cur;   // f of the state being expanded
-  int use_stack;  // 1 for unidirectional A*
-  // Buckets (kBucketBit): unidirectional voxel-state A* only (forward side).
-  int bucketed;
-  uint32_t n_future;     // items in later buckets
-  uint64_t cur;          // current bucket
-  double inv_width;      // 1/voxel edge (f of voxel-state searches is in voxel edges)
-  uint32_t head[kRing];  // first item of each later bucket, kNil when empty
-};
-
-}  // namespace
-}  // namespace tdo_internal
-
-struct tdo_search {
-  tdo_search_config cfg;
-  uint32_t max_open;  // open-list items per side before TDO_ERR_OPEN_CAPACITY (see open_entries)
-  tdo_internal::Side side[2];                                           // 0 forward, 1 backward
-  tdo_voxel* path;                                                      // max_path voxels
-  double turn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // m, lambda*(angle/pi)^2
-  double turn_lambda;                       // lambda the turn table was built for
-  double step_len[tdo_internal::kNumDirs];  // m
-  int64_t block_row[9];  // linear index offsets of the 9 rows of three of a 3x3x3 block (centre)
-  double step_q[tdo_internal::kNumDirs];   // voxel edges, rounded (kSqrt2Q): voxel-state searches
-  int64_t offset[tdo_internal::kNumDirs];  // linear index offset of each step
-  double unit[tdo_internal::kNumDirs][3];  // unit vector of each step
-  uint32_t cand[tdo_internal::kNumHeadings];  // steps within theta_max of each heading
-  // by_angle[h]: the 26 directions by increasing angle from direction h (ties: smaller index)
-  uint8_t by_angle[tdo_internal::kNumDirs][tdo_internal::kNumDirs];
-  // first_sharp[h]: how many leading entries of by_angle[h] lie in cand[h] (no sharp step there)
-  uint8_t first_sharp[tdo_internal::kNumDirs];
-  double cand_theta;  // theta_max the cand table was built for
-  // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
-  // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
-  double* hdist[2];
-  uint32_t* dj_heap;  // next voxel in the bucket
-  uint32_t* dj_pos;   // previous voxel in the bucket, kDjHead, kDjSettled or kNil (not reached)
-};
-
-namespace tdo_internal {
-namespace {
-
-struct Query {
-  const tdo_grid* grid;
-  uint32_t voxel[2];  // start voxel, goal voxel
-  tdo_voxel v[2];
-  int bidir;
-  double mu;
-  double h_weight;      // >= 1
-  int first_meet;       // stop at the first meeting
-  double d_th;          // deviation threshold, 0 = off
-  double pivot_cost;    // m, surcharge of a pivot
-  double defer_margin;  // m, expand_headed: children up to this far above the next f are created
-  int constrained;      // theta_max active
-  int dev_terms;        // 1: f has the deviation term and the turn lower bound (0 in the retry)
-  int exact_turns;      // 1: the turn part of h is a lower bound (A*, bidir's optimal stop)
-  int voxel_turns;      // 1: voxel-state search with turn costs (tdo_search_input.states)
-  const tdo_search_corridor* corridor;  // confines the steps, nullptr: the whole grid
-  double inv_res;  // 1/voxel edge: metres to the voxel edges of voxel-state searches
-  uint32_t budget;
-  // Flood test of a try that is not the last (search_loop, kTryProbe): 0 = off.
-  uint32_t try_share;  // the try's expansions (max(kTryMin, nvox / kTryDiv))
-  uint32_t try_first;  // expansions before the try
-  double h_root;       // m, heuristic() of the start (its target: the goal)
-  double h_best[2];    // m, smallest heuristic() of a state each side expanded
-  // results
-  double best;
-  uint32_t meet[2];
-  uint32_t expansions;
-  uint32_t peak_open;  // largest open list (heap plus later buckets) of a side before its expansion
-  uint32_t peak_nodes;  // most states one side held at the end of a try
-  uint32_t states;      // states created, both sides, every try
-};
 
 // Offsets of the steps as a table: the voxel-state relaxation reads them instead of dividing.
 struct StepDelta {
@@ -246,10 +79,6 @@ constexpr PruneTable make_prune_table() {
 }
 constexpr PruneTable kPrune = make_prune_table();
 
-// Direction mask (bit d = direction d) to cell mask (bit c = cell c, the centre 13 clear) and back.
-constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13) << 14); }
-constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
-
 // Direction mask with bit d moved to bit dir_opposite(d) = 25 - d: a bit reversal of the 26 bits.
 constexpr uint32_t opposite_mask(uint32_t m) {
   m = ((m >> 1) & 0x55555555u) | ((m & 0x55555555u) << 1);
@@ -292,197 +121,6 @@ constexpr bool prune_table_ok() {
   return true;
 }
 static_assert(prune_table_ok(), "parent-step pruning mask");
-
-// First state of voxel v's chain (the kSlotClosed bit dropped), kNil when it has none.
-inline uint32_t slot_first(const Side& s, uint32_t v) {
-  const uint32_t i = s.slot[v];
-  return i == kNil ? kNil : (i & kSlotIndex);
-}
-
-inline void slot_set(Side& s, uint32_t v, uint32_t idx) { s.slot[v] = static_cast<Index>(idx); }
-
-// Record state idx as (voxel w, heading) in the dense index; `first` = the voxel's first state of
-// this query, whose other entries are cleared first.
-inline void index_state(Side& s, uint32_t w, int heading, uint32_t idx, bool first) {
-  if (s.heading_index == nullptr) return;
-  Index* row = s.heading_index + static_cast<size_t>(w) * kNumHeadings;
-  static_assert(kNil == static_cast<Index>(~0u), "all-ones bytes fill kNil");
-  if (first) {
-#if defined(__SSE2__)
-    // Overlapping 16-byte stores (GCC makes the memset a byte-wise rep stos here).
-    constexpr size_t kBytes = kNumHeadings * sizeof(Index);
-    static_assert(kBytes >= 16, "row of at least one store");
-    const __m128i ones = _mm_set1_epi32(-1);
-    unsigned char* p = reinterpret_cast<unsigned char*>(row);
-    for (size_t o = 0; o + 16u < kBytes; o += 16u)
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(p + o), ones);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(p + kBytes - 16u), ones);
-#else
-    memset(row, 0xFF, kNumHeadings * sizeof(Index));
-#endif
-  }
-  row[heading] = static_cast<Index>(idx);
-}
-
-// Open-list order: smaller f, then smaller h, then smaller node index. f >= 0 and h >= 0 (finite or
-// +inf), so their bit patterns order as unsigned integers: the order is that of the 128-bit integer
-// (f bits, h bits, node), compared without a data-dependent branch.
-struct Key {
-  uint64_t hi;  // bits of f
-  uint64_t lo;  // bits of h << 32 | node
-};
-
-inline Key key_of(const OpenItem& a) {
-  Key k;
-  memcpy(&k.hi, &a.f, sizeof(k.hi));
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-  // node then h in memory, h last: one load of the 8 bytes ending with h gives h << 32 | node
-  // (32-bit Index) or h << 32 | node << 16 | two bytes of f (16-bit Index), shifted out.
-  constexpr size_t kLoAt = offsetof(OpenItem, h) + sizeof(float) - sizeof(uint64_t);
-  static_assert(offsetof(OpenItem, h) == offsetof(OpenItem, node) + sizeof(Index) &&
-                    offsetof(OpenItem, node) == sizeof(double),
-                "OpenItem layout");
-  memcpy(&k.lo, reinterpret_cast<const unsigned char*>(&a) + kLoAt, sizeof(k.lo));
-  k.lo >>= 8u * (offsetof(OpenItem, node) - kLoAt);
-#else
-  uint32_t h;
-  memcpy(&h, &a.h, sizeof(h));
-  k.lo = (static_cast<uint64_t>(h) << (8u * sizeof(Index))) | a.node;
-#endif
-  return k;
-}
-
-inline bool less(const Key& a, const Key& b) {
-#if defined(__SIZEOF_INT128__)
-  __extension__ typedef unsigned __int128 U128;
-  return ((static_cast<U128>(a.hi) << 64) | a.lo) < ((static_cast<U128>(b.hi) << 64) | b.lo);
-#else
-  return (a.hi < b.hi) | ((a.hi == b.hi) & (a.lo < b.lo));
-#endif
-}
-
-inline bool before(const OpenItem& a, const OpenItem& b) { return less(key_of(a), key_of(b)); }
-
-inline void place(Side& s, uint32_t i, const OpenItem& it) {
-  s.open[i] = it;
-  if ((it.node & kDeferItem) == 0) s.nodes[it.node].heap = static_cast<Index>(i);
-}
-
-// Put item `it` at position i (a hole, or its old place) and move it up to where it belongs. The
-// item comes in registers: storing its fields and reading them back as one key would stall on
-// store-to-load forwarding.
-void sift_up(Side& s, uint32_t i, const OpenItem& it) {
-  const Key k = key_of(it);
-  while (i > 0) {
-    const uint32_t p = (i - 1u) / kArity;
-    if (!less(k, key_of(s.open[p]))) break;
-    place(s, i, s.open[p]);
-    i = p;
-  }
-  place(s, i, it);
-}
-
-// Index of the smallest of the kArity items from `first` (all present), chosen by selects.
-inline uint32_t min_of_four(const OpenItem* open, uint32_t first) {
-  const uint32_t a =
-      first + static_cast<uint32_t>(less(key_of(open[first + 1u]), key_of(open[first])));
-  const uint32_t b =
-      first + 2u + static_cast<uint32_t>(less(key_of(open[first + 3u]), key_of(open[first + 2u])));
-  const uint32_t m = 0u - static_cast<uint32_t>(less(key_of(open[b]), key_of(open[a])));
-  return a ^ ((a ^ b) & m);
-}
-
-// Remove the smallest item: the hole it leaves goes down to a leaf along the smaller children
-// (no comparison with the item that fills it), then the last item fills the hole and sifts up,
-// which it rarely does far (it came from the bottom).
-uint32_t pop(Side& s) {
-  static_assert(kArity == 4, "min_of_four");
-  const uint32_t top = s.open[0].node;
-  const uint32_t n = --s.n_open;
-  if (n > 0) {
-    uint32_t i = 0;
-    for (;;) {
-      const uint32_t first = kArity * i + 1u;
-      if (first >= n) break;
-      uint32_t c;
-      if (first + kArity <= n) {
-        c = min_of_four(s.open, first);
-      } else {
-        c = first;
-        for (uint32_t j = first + 1u; j < n; ++j)
-          if (before(s.open[j], s.open[c])) c = j;
-      }
-      place(s, i, s.open[c]);
-      i = c;
-    }
-    const OpenItem last = s.open[n];
-    sift_up(s, i, last);
-  }
-  if ((top & kDeferItem) == 0) s.nodes[top].heap = kNil;
-  return top;
-}
-
-inline uint64_t bucket_of(const Side& s, double f) {
-  return static_cast<uint64_t>(f * s.inv_width);
-}
-
-// Queue item `it` (not queued yet): into the heap when its bucket is not above the current one,
-// else at the head of its bucket's list.
-inline void enqueue(Side& s, const OpenItem& it) {
-  if (!s.bucketed) {
-    sift_up(s, s.n_open++, it);
-    return;
-  }
-  const uint64_t b = bucket_of(s, it.f);
-  // b - cur < kRing always holds (see kRing); the heap keeps the order if it ever did not.
-  if (b <= s.cur || b - s.cur >= kRing) {
-    sift_up(s, s.n_open++, it);
-    return;
-  }
-  const uint32_t r = static_cast<uint32_t>(b & (kRing - 1u));
-  const uint32_t h = s.head[r];
-  s.nodes[it.node].next = static_cast<Index>(h);
-  s.nodes[it.node].heap = static_cast<Index>(kBucketBit | (kBucketHeadBase + r));
-  if (h != kNil) s.nodes[h].heap = static_cast<Index>(kBucketBit | it.node);
-  s.head[r] = it.node;
-  ++s.n_future;
-}
-
-// Take item i out of its bucket list.
-inline void unlink(Side& s, uint32_t i) {
-  const uint32_t p = s.nodes[i].heap & ~kBucketBit, n = s.nodes[i].next;
-  if (p >= kBucketHeadBase)
-    s.head[p - kBucketHeadBase] = n;
-  else
-    s.nodes[p].next = static_cast<Index>(n);
-  if (n != kNil) s.nodes[n].heap = static_cast<Index>(kBucketBit | p);
-  --s.n_future;
-}
-
-// The heap is empty: make the next non-empty bucket current and build its heap (f and h computed
-// as push() computes them, so the same bits). Bounded: the later buckets lie within kRing.
-template <typename Prio>
-void advance(Side& s, Prio prio) {
-  for (uint32_t k = 0; k < kRing && s.n_future > 0; ++k) {
-    ++s.cur;
-    const uint32_t r = static_cast<uint32_t>(s.cur & (kRing - 1u));
-    uint32_t i = s.head[r];
-    if (i == kNil) continue;
-    s.head[r] = kNil;
-    while (i != kNil) {  // bounded by the items queued
-      const uint32_t after = s.nodes[i].next;
-      OpenItem it;
-      float h;
-      it.node = static_cast<Index>(i);
-      it.f = prio(s.nodes[i], &h);
-      it.h = h;
-      sift_up(s, s.n_open++, it);
-      --s.n_future;
-      i = after;
-    }
-    return;
-  }
-}
 
 // A hint to load the cache line at p (GCC drops __builtin_prefetch here, so x86 gets the
 // instruction itself; a prefetch never faults).
@@ -627,7 +265,7 @@ inline double turn_bound(const tdo_search* ctx, const Query& q, double dev) {
 inline double heuristic(const Side& s, uint32_t v, int32_t x, int32_t y, int32_t z, double res) {
   const double o = octile(s, x, y, z, res);
   if (s.hx == nullptr) return o;
-  const double e = s.hx[v];
+  const double e = static_cast<double>(s.hx[v]);
   return e > o ? e : o;
 }
 
@@ -655,7 +293,7 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   }
   double h = octile_voxel(s, n.x, n.y, n.z);
   if (q.voxel_turns && s.hx != nullptr) {
-    const double e = s.hx[n.voxel] * q.inv_res;
+    const double e = static_cast<double>(s.hx[n.voxel]) * q.inv_res;
     h = e > h ? e : h;
   }
   *h_out = static_cast<float>(h);
@@ -775,36 +413,6 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
   }
 }
 
-// Allocate the state (w, heading) reached from ui over a step of (dx, dy, dz) voxels at cost ng,
-// chained before `next` (the voxel's previous first state, kNil for none). kNil: the pool is full.
-// u: a copy of state ui.
-inline uint32_t new_state(const tdo_search* ctx, Side& s, uint32_t ui, const Node& u, uint32_t w,
-                          double ng, int dx, int dy, int dz, int heading, uint32_t next) {
-  if (s.n_nodes >= ctx->cfg.max_nodes) return kNil;
-  const uint32_t idx = s.n_nodes++;
-  Node& n = s.nodes[idx];
-  n.g = ng;
-  n.parent = static_cast<Index>(ui);
-  n.voxel = static_cast<VoxelId>(w);
-  n.next = static_cast<Index>(next);
-  n.x = static_cast<Coord>(u.x + dx);
-  n.y = static_cast<Coord>(u.y + dy);
-  n.z = static_cast<Coord>(u.z + dz);
-  n.heading = static_cast<uint8_t>(heading);
-  return idx;
-}
-
-// State (w, heading) of a turn-penalised side, kNil when it has none.
-inline uint32_t find_state(const Side& s, uint32_t w, int heading) {
-  uint32_t idx = slot_first(s, w);
-  if (s.heading_index != nullptr) {
-    if (idx != kNil) idx = s.heading_index[static_cast<size_t>(w) * kNumHeadings + heading];
-  } else {
-    while (idx != kNil && s.nodes[idx].heading != heading) idx = s.nodes[idx].next;
-  }
-  return idx;
-}
-
 // Turn-penalised searches: offer state (w, heading) at cost ng, priority f and heuristic h
 // (priority_headed or priority_at of these fields) with parent ui over forward-sense step `step`
 // (-1: a pivot, the same voxel): create it, or lower its cost. Voxel-state searches use
@@ -841,7 +449,6 @@ inline tdo_status relax(tdo_search* ctx, Query& q, int back, uint32_t ui, const 
   return TDO_OK;
 }
 
-constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 constexpr uint32_t kAllCells =
     (1u << kNumHeadings) - 1u;  // a corridor cell with every neighbour in
 
@@ -1102,227 +709,6 @@ tdo_status expand_headed(tdo_search* ctx, Query& q, int back, uint32_t ui, doubl
   return TDO_OK;
 }
 
-// The Dijkstra queue: buckets of key width kDjWidth * res, a ring of kDjRing of them, each a
-// doubly linked list of voxels (next in ctx->dj_heap, previous in ctx->dj_pos). Every step is at
-// least res long, so a voxel whose key lies in the lowest non-empty bucket cannot be lowered by any
-// other queued voxel (Dinitz): a bucket is settled in any order with the keys a heap would give,
-// and the settled set and the keys are those of the heap's order. A step adds at most sqrt(3) res,
-// so the keys in the queue span fewer than 4 buckets and a ring of 8 holds them apart.
-constexpr uint32_t kDjRing = 8;
-constexpr double kDjWidth = 1.0 - 1e-6;       // bucket width per res (below 1: rounding margin)
-constexpr uint32_t kDjHead = 0xFFFFFFFDu;     // dj_pos of the first voxel of a bucket's list
-constexpr uint32_t kDjSettled = 0xFFFFFFFEu;  // dj_pos of a settled voxel
-
-struct DjQueue {
-  uint32_t* next;
-  uint32_t* prev;
-  uint32_t head[kDjRing];
-  uint32_t queued;
-  double inv_width;  // 1/m
-
-  uint64_t bucket(double d) const { return static_cast<uint64_t>(d * inv_width); }
-  void insert(uint32_t v, uint64_t b) {
-    uint32_t& h = head[b & (kDjRing - 1u)];
-    next[v] = h;
-    prev[v] = kDjHead;
-    if (h != kNil) prev[h] = v;
-    h = v;
-    ++queued;
-  }
-  void unlink(uint32_t v, uint64_t b) {
-    if (prev[v] == kDjHead)
-      head[b & (kDjRing - 1u)] = next[v];
-    else
-      next[prev[v]] = next[v];
-    if (next[v] != kNil) prev[next[v]] = prev[v];
-    --queued;
-  }
-};
-
-// The Dijkstra stops once its smallest key exceeds kDjReach times the distance of the other root
-// (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
-// key it stopped at is still a lower bound of every unsettled voxel's distance.
-constexpr double kDjReach = 2.0;
-// Heuristic weights of the retries with the obstacle-aware heuristic (the last gets the rest of
-// the budget).
-constexpr int kRetries = 2;
-constexpr double kRetryWeight[kRetries] = {2.0, 10.0};
-
-#if defined(__SSE2__)
-// Step lengths (m) of the cells of each row of three of a 3x3x3 block, as the two overlapping
-// pairs (x = -1, 0) and (x = 0, +1) the Dijkstra compares; the centre and the second copy of the
-// middle cell are +inf, so their tests always fail.
-struct RowLengths {
-  alignas(16) double lo[9][2];
-  alignas(16) double hi[9][2];
-  alignas(32) double quad[9][4];  // the row's three cells and the next voxel (+inf), AVX2
-};
-
-RowLengths row_lengths(const tdo_search* ctx) {
-  RowLengths t;
-  for (int k = 0; k < 9; ++k) {
-    for (int x = 0; x < 3; ++x) {
-      const int c = 3 * k + x;
-      const double len = c == 13 ? HUGE_VAL : ctx->step_len[dir_of_cell(c)];
-      if (x < 2) t.lo[k][x] = len;
-      if (x > 0) t.hi[k][x - 1] = x == 1 ? HUGE_VAL : len;
-      t.quad[k][x] = len;
-    }
-    t.quad[k][3] = HUGE_VAL;
-  }
-  return t;
-}
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define TDO_DJ_AVX2 1
-// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
-// time (the row's three and the next voxel, whose length is +inf). The same additions and
-// comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
-__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
-                                                                    const int64_t* rows,
-                                                                    const RowLengths& lens,
-                                                                    double du) {
-  const __m256d vdu = _mm256_set1_pd(du);
-  uint32_t cells = 0;
-#pragma GCC unroll 9
-  for (int k = 0; k < 9; ++k) {
-    const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
-    const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(at_u + rows[k] - 1), _CMP_LT_OQ);
-    cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
-  }
-  return cells;
-}
-#endif
-#endif
-
-// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
-// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
-// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
-// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
-// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
-// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
-bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other,
-                        double* dist) {
-  const uint32_t nvox = g->nvox;
-  DjQueue qu;
-  qu.next = ctx->dj_heap;
-  qu.prev = ctx->dj_pos;
-  for (uint32_t k = 0; k < kDjRing; ++k) qu.head[k] = kNil;
-  qu.queued = 0;
-  qu.inv_width = 1.0 / (kDjWidth * g->desc.res);
-  for (uint32_t v = 0; v < nvox; ++v) {
-    dist[v] = HUGE_VAL;
-    qu.prev[v] = kNil;
-  }
-  dist[root] = 0.0;
-  qu.insert(root, 0u);
-#if defined(__SSE2__)
-  const RowLengths lens = row_lengths(ctx);
-  // Voxels whose whole 3x3x3 block of linear indices lies in [0, nvox).
-  const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
-  const uint32_t inner_lo = static_cast<uint32_t>(reach);
-  // (reach + 1: the AVX2 test reads one voxel past the block)
-  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
-#if defined(TDO_DJ_AVX2)
-  const bool avx2 = __builtin_cpu_supports("avx2");
-#else
-  const bool avx2 = false;  // no AVX2 path in this build (clang, other targets): the SSE2 loop
-#endif
-  int64_t rows[9];
-  for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
-#endif
-  double limit = HUGE_VAL;
-  bool reached = false;
-  uint64_t cur = 0;  // current bucket
-  while (qu.queued > 0) {
-    uint32_t u = qu.head[cur & (kDjRing - 1u)];
-    if (u == kNil) {
-      ++cur;
-      continue;
-    }
-    bool over = false;  // a voxel of this bucket is beyond the limit: so is every later one
-    while (u != kNil) {
-      const uint32_t after = qu.next[u];
-      const double du = dist[u];
-      if (du > limit) {
-        over = true;
-        u = after;
-        continue;
-      }
-      qu.unlink(u, cur);
-      qu.prev[u] = kDjSettled;
-      if (u == other) {
-        reached = true;
-        limit = kDjReach * du;
-      }
-      // The cost test comes first: a settled neighbour fails it too (its key lies at most one
-      // bucket, under res, above du, and a step adds at least res), so most steps end after one
-      // load; the settled test after it only guards the list being walked.
-      const auto step = [&](int e) {
-        const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
-        const double nd = du + ctx->step_len[e];
-        if (!(nd < dist[w])) return;
-        const uint32_t pw = qu.prev[w];
-        if (pw == kDjSettled) return;
-        if (pw != kNil) {
-          const uint64_t bw = qu.bucket(dist[w]);
-          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
-          qu.unlink(w, bw);
-        }
-        dist[w] = nd;
-        const uint64_t b = qu.bucket(nd);
-        qu.insert(w, b > cur ? b : cur + 1u);
-      };
-      const uint32_t moves = g->moves[u];
-#if defined(__SSE2__)
-      if (u >= inner_lo && u < inner_hi) {
-        // The cost tests of the 27 cells of u's block two at a time: each row of three cells is
-        // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
-        // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
-        // step order: a step changes the key of its own voxel alone, so the tests stay true.
-        uint32_t cells = 0;
-#if defined(TDO_DJ_AVX2)
-        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
-#endif
-        const __m128d vdu = _mm_set1_pd(du);
-#pragma GCC unroll 9
-        for (int k = 0; k < 9 && !avx2; ++k) {
-          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
-          const int lo = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
-          const int hi = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
-          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
-        }
-        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
-      } else
-#endif
-          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
-#pragma GCC unroll 26
-        for (int e = 0; e < kNumDirs; ++e) step(e);
-      } else {
-        for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
-      }
-      // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
-      // a path's summed cost. No later test changes (a settled key fails every cost test).
-      dist[u] = du * (1.0 - 1e-12);
-      u = after;
-    }
-    if (over) break;
-    ++cur;
-  }
-  if (!reached) return false;
-  // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
-  // the queue ran empty they are not connected to the root and keep HUGE_VAL.
-  if (qu.queued == 0) return true;
-  double rest = HUGE_VAL;
-  for (uint32_t k = 0; k < kDjRing; ++k)
-    for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
-  for (uint32_t v = 0; v < nvox; ++v)
-    if (qu.prev[v] != kDjSettled) dist[v] = rest;
-  return true;
-}
-
 void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   Side& s = ctx->side[back];
   const tdo_voxel& v = q.v[back];
@@ -1384,9 +770,6 @@ inline void prefetch_block(const tdo_search* ctx, const Query& q, const Side& s,
   }
 }
 
-// Every try of a turn-penalised search but the last gets max(kTryMin, nvox / kTryDiv) expansions.
-constexpr uint32_t kTryMin = 20000;
-constexpr uint32_t kTryDiv = 16;
 // A try that is not the last is given up early once it has spent 1/kTryProbe of its expansions
 // without a meeting and its progress so far, extrapolated, needs more than 1/kFloodFactor of them
 // (flooding).
@@ -1621,11 +1004,21 @@ uint32_t open_entries(const tdo_search_config& cfg) {
 size_t side_bytes(const tdo_search_config& cfg) {
   return tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(Index)) +
          (cfg.exact_heuristic
-              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(double))  // hdist
+              ? tdo_arena_round(static_cast<size_t>(cfg.max_voxels) * sizeof(float))  // hdist
               : 0u) +
          tdo_arena_round(heading_index_bytes(cfg)) +
          tdo_arena_round(static_cast<size_t>(cfg.max_nodes) * sizeof(Node)) +
          tdo_arena_round(static_cast<size_t>(open_entries(cfg)) * sizeof(OpenItem));
+}
+
+// The Dijkstra of exact_lower_bounds needs its keys and two links per voxel (kDjBytes) while it
+// runs, only between tries, when no search state is alive: it borrows the backward side's node
+// pool when that is large enough (max_nodes >= max_voxels / 2 with 32-byte states), else it gets
+// its own arrays. The tables the search reads keep 4 bytes per voxel and side.
+constexpr size_t kDjBytes = sizeof(double) + 2u * sizeof(uint32_t);
+bool dj_in_pool(const tdo_search_config& cfg) {
+  return static_cast<uint64_t>(cfg.max_nodes) * sizeof(Node) >=
+         static_cast<uint64_t>(cfg.max_voxels) * kDjBytes;
 }
 
 // The query's counters (expansions, open-list and state peaks, states), every try counted.
@@ -1637,6 +1030,7 @@ void report_counts(const Query& q, tdo_search_output* out) {
 }
 
 }  // namespace
+}  // namespace TDO_SEARCH_NS
 }  // namespace tdo_internal
 
 using namespace tdo_internal;
@@ -1644,8 +1038,8 @@ using namespace tdo_internal;
 extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
   if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
   return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
-         (cfg->exact_heuristic
-              ? 2u * tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * sizeof(uint32_t))
+         (cfg->exact_heuristic && !dj_in_pool(*cfg)
+              ? tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * kDjBytes)
               : 0u) +
          tdo_arena_round(static_cast<size_t>(cfg->max_path) * sizeof(tdo_voxel));
 }
@@ -1700,19 +1094,21 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     s.hx = nullptr;
     ctx->hdist[k] = nullptr;
     if (cfg->exact_heuristic) {
-      ctx->hdist[k] =
-          static_cast<double*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(double)));
+      ctx->hdist[k] = static_cast<float*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(float)));
       if (ctx->hdist[k] == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     }
   }
+  ctx->dj_dist = nullptr;
   ctx->dj_heap = nullptr;
   ctx->dj_pos = nullptr;
   if (cfg->exact_heuristic) {
-    ctx->dj_heap =
-        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-    ctx->dj_pos =
-        static_cast<uint32_t*>(tdo_arena_alloc(arena, cfg->max_voxels * sizeof(uint32_t)));
-    if (ctx->dj_heap == nullptr || ctx->dj_pos == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    // Keys first (8-byte aligned, as the pool and the arena are), then the two link arrays.
+    void* dj = dj_in_pool(*cfg) ? static_cast<void*>(ctx->side[1].nodes)
+                                : tdo_arena_alloc(arena, cfg->max_voxels * kDjBytes);
+    if (dj == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->dj_dist = static_cast<double*>(dj);
+    ctx->dj_heap = reinterpret_cast<uint32_t*>(ctx->dj_dist + cfg->max_voxels);
+    ctx->dj_pos = ctx->dj_heap + cfg->max_voxels;
   }
   ctx->path = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cfg->max_path * sizeof(tdo_voxel)));
   if (ctx->path == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
@@ -1721,39 +1117,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
 }
 
 namespace tdo_internal {
-namespace {
-
-// The grid-distance tables of the sides (once per query: tdo_search_run clears side.hx before
-// it): side k's distances to its target. False (the counts reported) when they show that the goal
-// cannot be reached.
-bool build_tables(tdo_search* ctx, Query& q, tdo_search_output* out) {
-  if (ctx->side[0].hx != nullptr) return true;
-  for (int k = 0; k < (q.bidir ? 2 : 1); ++k) {
-    if (!exact_lower_bounds(ctx, q.grid, q.voxel[1 - k], q.voxel[k], ctx->hdist[k])) {
-      report_counts(q, out);
-      return false;
-    }
-    ctx->side[k].hx = ctx->hdist[k];
-  }
-  return true;
-}
-
-// Set up retry t + 1 of a turn-penalised search after try t: the grid-distance tables, the
-// retry's weight, no deviation terms. False (the counts reported) when the tables show that the
-// goal cannot be reached.
-bool start_retry(tdo_search* ctx, Query& q, int t, tdo_search_output* out) {
-  if (!build_tables(ctx, q, out)) return false;
-  q.best = HUGE_VAL;
-  q.meet[0] = q.meet[1] = kNil;
-  q.h_weight = q.h_weight > kRetryWeight[t] ? q.h_weight : kRetryWeight[t];
-  // The deviation term and the turn bound aim at the straight line to the target, through walls:
-  // they would flood as the octile distance did.
-  q.dev_terms = 0;
-  out->fallback = static_cast<uint32_t>(t + 1);
-  return true;
-}
-
-}  // namespace
+namespace {}  // namespace
 }  // namespace tdo_internal
 
 namespace tdo_internal {
@@ -1788,7 +1152,7 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
   // as the heading search's first retry (weight 2, no deviation terms), TERMS with the f unchanged.
   if (grid_first != TDO_GRID_FIRST_OFF && !build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
   if (grid_first == TDO_GRID_FIRST_PLAIN) {
-    q.h_weight = q.h_weight > kRetryWeight[0] ? q.h_weight : kRetryWeight[0];
+    q.h_weight = q.h_weight > retry_weight(0) ? q.h_weight : retry_weight(0);
     q.dev_terms = 0;
   }
   const tdo_status st = run_search<false>(ctx, q);
@@ -1804,6 +1168,25 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
 }
 
 }  // namespace
+}  // namespace tdo_internal
+
+namespace tdo_internal {
+inline namespace TDO_SEARCH_NS {
+
+// What search_retry.cpp calls (search_retry.h).
+tdo_status search_try(tdo_search* ctx, Query& q) { return run_search<true>(ctx, q); }
+tdo_status search_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search_output* out) {
+  return run_voxel_turns(ctx, q, grid_first, out);
+}
+tdo_status search_write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
+  return write_path(ctx, q, out);
+}
+void search_report(const Query& q, tdo_search_output* out) { report_counts(q, out); }
+double search_octile(int32_t a, int32_t b, int32_t c, double res) {
+  return octile_of(a, b, c, res);
+}
+
+}  // namespace TDO_SEARCH_NS
 }  // namespace tdo_internal
 
 namespace tdo_internal {
@@ -1872,15 +1255,15 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   q.h_weight = in->h_weight > 1.0 ? in->h_weight : 1.0;
   q.first_meet = in->first_meet != 0;
   q.exact_turns = !q.bidir || !q.first_meet;
-  q.constrained = in->theta_max > 0.0 && in->theta_max < kPi;
-  q.d_th = in->d_th > 0.0 && in->d_th < 1.0 ? in->d_th : 0.0;
+  q.constrained = search_constrained(in->theta_max);
+  q.d_th = search_d_th(in->d_th);
   q.pivot_cost = tdo_search_pivot_cost(in->lambda, in->theta_max);
   q.defer_margin = q.pivot_cost + g->desc.res;  // the dearest direct turn, one voxel edge more
   q.budget = in->max_expansions != 0 ? in->max_expansions : ctx->cfg.max_expansions;
   q.best = HUGE_VAL;
   q.meet[0] = q.meet[1] = kNil;
   prepare_tables(ctx, g, in->lambda, q.constrained ? in->theta_max : 0.0);
-  const bool headed = in->lambda > 0.0 || in->mu > 0.0 || q.constrained || q.d_th > 0.0;
+  const bool headed = search_headed(in);
   for (int k = 0; k < 2; ++k) ctx->side[k].hx = nullptr;
   if (headed && in->states == TDO_STATES_VOXEL) return run_voxel_turns(ctx, q, in->grid_first, out);
   if (!headed) {  // plain A* and bidirectional A*: the octile distance, nothing else
@@ -1891,53 +1274,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
     out->penalized_cost = out->cost;  // no penalties (q.best counts rounded voxel edges)
     return wp;
   }
-  // Turn-penalised search, first with the octile heuristic and the deviation term. They know no
-  // walls, so in front of one the (voxel, heading) states flood the whole region behind it. When
-  // a try expands more than max(kTryMin, nvox / kTryDiv) states (the first one: or is projected
-  // to, see flooding) or fills the node pool, the search
-  // starts again with the obstacle-aware heuristic (grid distances to each side's target,
-  // exact_lower_bounds) weighted by kRetryWeight, ordered by g + w h alone: bounded-suboptimal
-  // (with the optimal stopping rule the penalised cost is at most w times the best), but it follows
-  // the free space. The tries share the expansion budget; the last one gets all that is left.
-  // One table for both sides (the goal's, with the landmark bound D(start) - D(v) backward) was
-  // tried and not kept: rooted at the landmark, the backward side learns nothing about the
-  // direction to the start (geb079 2.7 times the expansions; docs/performance.md).
-  const uint32_t budget = q.budget;
-  // No tables: no retry. In a corridor neither: its caller falls back to the whole grid.
-  const int retries = ctx->cfg.exact_heuristic && q.corridor == nullptr ? kRetries : 0;
-  const uint32_t share = g->nvox / kTryDiv > kTryMin ? g->nvox / kTryDiv : kTryMin;
-  q.h_root = octile_of(iabs(q.v[1].i - q.v[0].i), iabs(q.v[1].j - q.v[0].j),
-                       iabs(q.v[1].k - q.v[0].k), g->desc.res);
-  tdo_status st = TDO_OK;
-  // grid_first PLAIN: the octile try is skipped, the search starts as the first retry. TERMS: the
-  // first try has the tables too (its f otherwise unchanged), and its progress is measured in
-  // them.
-  int t = 0;
-  if (in->grid_first == TDO_GRID_FIRST_PLAIN) {
-    if (!start_retry(ctx, q, 0, out)) return TDO_ERR_NO_PATH;
-    t = 1;
-  } else if (in->grid_first == TDO_GRID_FIRST_TERMS) {
-    if (!build_tables(ctx, q, out)) return TDO_ERR_NO_PATH;
-    const double d = ctx->side[0].hx[q.voxel[0]];
-    q.h_root = d > q.h_root ? d : q.h_root;  // heuristic() of the start
-  }
-  for (; t <= retries; ++t) {  // bounded: retries + 1 tries
-    const uint64_t cut = static_cast<uint64_t>(q.expansions) + share;
-    q.budget = t < retries && cut < budget ? static_cast<uint32_t>(cut) : budget;
-    // The flood test (flooding) runs in the first try only: the retries follow the free space.
-    q.try_share = t == 0 && t < retries ? share : 0u;
-    q.try_first = q.expansions;
-    q.h_best[0] = q.h_best[1] = q.h_root;
-    st = run_search<true>(ctx, q);
-    const bool retry =
-        t < retries && q.expansions < budget &&
-        (st == TDO_ERR_BUDGET || st == TDO_ERR_NODE_CAPACITY || st == TDO_ERR_OPEN_CAPACITY);
-    if (!retry) break;
-    if (!start_retry(ctx, q, t, out)) return TDO_ERR_NO_PATH;
-  }
-  report_counts(q, out);
-  if (st != TDO_OK) return st;
-  return write_path(ctx, q, out);
+  return run_headed(ctx, q, in, out);
 }
 
 extern "C" double tdo_search_pivot_cost(double lambda, double theta_max) {

@@ -190,6 +190,15 @@ TEST(Capacity, GivenAGrid_WhenCapacityForGrid_ThenVoxelsAndNodesMatchTheDocument
   EXPECT_EQ(cap.max_voxels, 1000u);
   EXPECT_EQ(cap.max_nodes, 27000u);
 
+  EXPECT_EQ(cap.dense_headings, 1u) << "small grids keep the dense heading index";
+
+  // Large grids: plain A*'s pool (one state per voxel) and per-voxel storage (no dense index).
+  tdo_capacity_for_grid(&cap, 128, 128, 64, 0.0, 27u, 0u);
+  EXPECT_EQ(cap.max_nodes, 128u * 128u * 64u);
+  EXPECT_EQ(cap.dense_headings, 0u);
+  tdo_capacity_for_grid(&cap, 64, 64, 32, 0.0, 27u, 0u);
+  EXPECT_EQ(cap.max_nodes, 1u << 18) << "2^18 states at least once 27 per voxel exceed it";
+
   tdo_capacity_for_grid(&cap, 10, 20, 5, 0.0, 27u, 5000u);
   EXPECT_EQ(cap.max_nodes, 5000u) << "node_cap caps max_nodes";
   tdo_capacity_for_grid(&cap, 10, 20, 5, 0.0, 1u, 5000u);

@@ -999,6 +999,59 @@ TEST(SearchCapacity, GivenATinyNodePool_WhenSearchingFar_ThenNodeCapacity) {
     }
 }
 
+// The state budget: a pool of one state per voxel (plain A*'s) is too small for the heading states
+// of a constrained search on an open grid. With a pool of the grid's voxels the search ends in
+// voxel states (fallback 3) and finds a path wherever plain A* does; a pool below the voxels stops
+// with node_capacity and reports how far it got (states, peak, expansions), never a path.
+TEST(SearchCapacity, GivenAHeadingPoolTooSmall_WhenSearching_ThenVoxelStatesOrNodeCapacity) {
+  Rng rng(77);
+  int fell_back = 0, stopped = 0;
+  for (int round = 0; round < 40; ++round) {
+    const Case c = random_case(rng, 12, 6);
+    const uint32_t nvox = static_cast<uint32_t>(c.map.size());
+    TestPlanner ref(make_cap(nvox, nvox, 1000));
+    ASSERT_EQ(ref.status(), TDO_OK);
+    ASSERT_EQ(tdo_test::load_voxels(ref.grid(), c.map), TDO_OK);
+    const Result astar = run(ref.search(), make_input(ref.grid(), c.ps, c.pg, TDO_SEARCH_ASTAR));
+    for (tdo_search_kind kind : kKinds) {
+      tdo_search_input in = make_input(ref.grid(), c.ps, c.pg, kind, 50.0, 20.0);
+      in.theta_max = 0.25 * 3.14159265358979323846;
+      const Result big = [&] {
+        TestPlanner pl(make_cap(nvox, 27u * nvox, 1000));
+        EXPECT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+        in.grid = pl.grid();
+        return run(pl.search(), in);
+      }();
+      if (big.status != TDO_OK || big.out.peak_nodes <= 2u) continue;
+      for (uint32_t pool : {nvox, big.out.peak_nodes - 1u}) {
+        if (pool < 2u || (pool == nvox && big.out.peak_nodes <= nvox)) continue;
+        TestPlanner pl(make_cap(nvox, pool, 1000));
+        ASSERT_EQ(pl.status(), TDO_OK);
+        ASSERT_EQ(tdo_test::load_voxels(pl.grid(), c.map), TDO_OK);
+        in.grid = pl.grid();
+        const Result r = run(pl.search(), in);
+        SCOPED_TRACE(::testing::Message() << "round " << round << " pool " << pool << " of " << nvox
+                                          << " voxels, heading peak " << big.out.peak_nodes);
+        if (pool >= nvox) {
+          ASSERT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+          EXPECT_EQ(astar.status, TDO_OK);
+          EXPECT_EQ(r.out.fallback, 3u);
+          EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
+          ++fell_back;
+        } else {
+          EXPECT_EQ(r.status, TDO_ERR_NODE_CAPACITY) << tdo_status_str(r.status);
+          EXPECT_EQ(r.out.peak_nodes, pool);
+          EXPECT_GT(r.out.expansions, 0u);
+          EXPECT_GE(r.out.states, pool);
+          ++stopped;
+        }
+      }
+    }
+  }
+  EXPECT_GE(fell_back, 5);
+  EXPECT_GE(stopped, 20);
+}
+
 // A capacity the search reports it needs (peak_open for max_open, peak_nodes for max_nodes) is
 // exactly that: with the capacity at the peak the result is the unlimited one bit for bit, one less
 // stops with the capacity's status (the planners live in exactly footprint-sized blocks, so ASan
@@ -1038,6 +1091,11 @@ uint32_t check_reported_peaks(bool nodes_not_open) {
             EXPECT_TRUE(identical(full, r));
             EXPECT_EQ(nodes_not_open ? r.out.peak_nodes : r.out.peak_open, peak);
             EXPECT_EQ(r.out.states, full.out.states);
+          } else if (nodes_not_open && lambda > 0.0 && limit >= c.map.size()) {
+            // A pool that holds every voxel: the heading states' overflow ends in voxel states.
+            EXPECT_EQ(r.status, TDO_OK) << tdo_status_str(r.status);
+            EXPECT_EQ(r.out.fallback, 3u);
+            EXPECT_TRUE(tdo_test::valid_path(c.map, r.out, c.s, c.g));
           } else {
             EXPECT_EQ(r.status, nodes_not_open ? TDO_ERR_NODE_CAPACITY : TDO_ERR_OPEN_CAPACITY)
                 << tdo_status_str(r.status);

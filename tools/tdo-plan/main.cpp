@@ -292,14 +292,15 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
   if (nvox > static_cast<double>(vcap) || cfg.cap.max_voxels > vcap) {
-    // The map does not fit: configure the capacity anyway and let the library name the overflow.
-    cfg.cap.max_voxels = vcap;
-    const uint64_t nodes = static_cast<uint64_t>(vcap) * headings;
+    // The map does not fit: let the library name the overflow, in a planner of one voxel (one of
+    // --max-voxels would be carved and cleared for nothing: the search's slots alone are 8 bytes
+    // per voxel).
+    cfg.cap.max_voxels = 1u;
+    const uint64_t nodes = headings;
     cfg.cap.max_nodes =
         static_cast<uint32_t>(std::min<uint64_t>({nodes, cfg.cap.max_nodes, 0xFFFFFFF0u}));
     if (cfg.cap.max_nodes == 0) cfg.cap.max_nodes = 1;
-    cfg.cap.max_path = std::min<uint32_t>(cfg.cap.max_path == 0 ? vcap : cfg.cap.max_path, vcap);
-    if (cfg.cap.max_path == 0) cfg.cap.max_path = 1;
+    cfg.cap.max_path = 1u;
     cfg.cap.max_expansions = cfg.cap.max_nodes;
   }
   p->footprint = tdo_planner_footprint(&cfg);
@@ -322,7 +323,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
     throw BadInput{std::string(tdo_status_str(st)) + ": map " + map.path + " has " +
                    std::to_string(map.desc.nx) + " x " + std::to_string(map.desc.ny) + " x " +
                    std::to_string(map.desc.nz) + " = " + fmt(nvox, 15) +
-                   " voxels, more than the capacity of " + std::to_string(cfg.cap.max_voxels) +
+                   " voxels, more than the capacity of " + std::to_string(vcap) +
                    " (--max-voxels); planning on it needs an arena of " +
                    std::to_string(fit_bytes) + " bytes"};
   }
@@ -612,7 +613,9 @@ void print_search(const Options& o, const tdo_search_output& sr) {
               " in one: --max-nodes)\n",
               sr.states, sr.peak_nodes);
   std::printf("open_list_peak   %" PRIu32 " (per direction; --max-open)\n", sr.peak_open);
-  if (sr.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
+  if (sr.fallback == 3)  // tdo_search_output.fallback (search.h): the heading pool ran out
+    std::printf("search_try       voxel states (the heading states filled --max-nodes)\n");
+  else if (sr.fallback > 0)  // tdo_search_output.fallback (search.h: the retries' weights)
     std::printf("search_try       retry %" PRIu32 " (%s: grid-distance heuristic)\n", sr.fallback,
                 o.retry == "first"         ? "no octile try, --retry first"
                 : o.retry == "first-terms" ? "after the first try, --retry first-terms"

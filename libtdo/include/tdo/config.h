@@ -22,8 +22,12 @@ typedef struct tdo_capacity {
   uint32_t max_boxes;       /**< obstacle boxes kept for exact distance queries (48 bytes each) */
   uint32_t max_nodes;       /**< search states per direction (32 bytes each, plus 16 for the open
                                  list while max_open = 0; 20 and 14 in the 16-bit index build
-                                 tdo_index16, see search.h): at most max_voxels without heading
-                                 costs, up to 27x that with them */
+                                 tdo_index16, see search.h): the state budget. max_voxels
+                                 covers plain A*; heading states take states as they are created,
+                                 and when they fill the pool the search ends in voxel states
+                                 (tdo_search_output.fallback 3), which max_voxels covers.
+                                 tdo_capacity_for_grid: max_voxels, for 27 headings
+                                 min(27 max_voxels, max(max_voxels, 2^18)) */
   uint32_t max_path;        /**< voxels in one grid path (4 + 24 bytes each) */
   uint32_t max_clear_cells; /**< offsets in the clearance stencil: (2K+1)^3 with
                                  K = ceil(clearance/res + 0.5) covers a clearance (12 bytes each) */
@@ -40,7 +44,9 @@ typedef struct tdo_capacity {
   uint32_t dense_headings;  /**< 1: every voxel gets a 27-entry heading index per search direction
                                  (108 bytes per voxel and direction), so turn-penalised searches
                                  find a (voxel, heading) state in one read; 0: states of a voxel
-                                 are chained (compact, slower with penalties) */
+                                 are chained from its slot, as plain A* stores it.
+                                 tdo_capacity_for_grid sets 1 for 27 headings on grids of at most
+                                 2^16 voxels, else 0 */
   uint32_t exact_heuristic; /**< 1: grid-distance tables (24 bytes per voxel) for the obstacle-aware
                                  retry of a turn-penalised search whose octile-guided try floods
                                  (search.h, tdo_search_output.fallback); 0: no retry.

@@ -62,9 +62,11 @@ typedef struct tdo_search tdo_search;
 /** Capacities of one search context. */
 typedef struct tdo_search_config {
   uint32_t max_voxels;      /**< largest grid it will search */
-  uint32_t max_nodes;       /**< states per direction: < 2^31, or < 2^15 in the 16-bit index build
-                                 (library tdo_index16, which also needs max_voxels < 2^16 and grid
-                                 axes < 256); beyond: TDO_ERR_INVALID_ARGUMENT at init */
+  uint32_t max_nodes;       /**< state pool per direction: < 2^31, or < 2^15 in the 16-bit index
+                                 build (library tdo_index16, which also needs max_voxels < 2^16
+                                 and grid axes < 256); beyond: TDO_ERR_INVALID_ARGUMENT at init.
+                                 Heading states take states as they are created; max_voxels
+                                 covers plain A* and voxel states (tdo_search_output.fallback 3) */
   uint32_t max_path;        /**< voxels in the returned path */
   uint32_t max_expansions;  /**< default budget when the input gives 0 */
   uint32_t dense_headings;  /**< 1: a 27-entry heading index per voxel (108 bytes per voxel and
@@ -140,8 +142,12 @@ typedef struct tdo_search_output {
                               or 10 (the try before flooded: more than max(20000, voxels / 16)
                               expansions, progress towards the targets too slow to finish within
                               half of them (first try only), or a full node pool; with
-                              grid_first the octile try is skipped, so at least 1). expansions
-                              counts every try */
+                              grid_first the octile try is skipped, so at least 1). 3 = the
+                              heading states filled the node pool (max_nodes) in every try,
+                              and voxel states (tdo_state_space) found the path with the rest of
+                              the budget: a plan whenever plain A* has one, at a turn cost that
+                              is not the heading search's (needs max_nodes >= the grid's voxels;
+                              else the pool's status). expansions counts every try */
   uint32_t guide;        /**< set by the planner (tdo_capacity.guide_shift): 0 = no coarse guide,
                               1 = found in the guide's corridor, 2 = the corridor held no path and
                               the whole grid was searched (docs/design.md s.1) */

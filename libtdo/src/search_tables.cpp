@@ -1,0 +1,252 @@
+// The grid-distance tables of the turn-penalised search's retry (docs/design.md s.1, "Retry with
+// grid distances").
+#include "search_tables.h"
+
+#include <math.h>
+#include <stddef.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
+
+#include "directions.h"
+#include "grid_internal.h"
+#include "search_state.h"
+
+namespace tdo_internal {
+inline namespace TDO_SEARCH_NS {
+namespace {
+
+// The Dijkstra queue: buckets of key width kDjWidth * res, a ring of kDjRing of them, each a
+// doubly linked list of voxels (next in ctx->dj_heap, previous in ctx->dj_pos). Every step is at
+// least res long, so a voxel whose key lies in the lowest non-empty bucket cannot be lowered by any
+// other queued voxel (Dinitz): a bucket is settled in any order with the keys a heap would give,
+// and the settled set and the keys are those of the heap's order. A step adds at most sqrt(3) res,
+// so the keys in the queue span fewer than 4 buckets and a ring of 8 holds them apart.
+constexpr uint32_t kDjRing = 8;
+constexpr double kDjWidth = 1.0 - 1e-6;       // bucket width per res (below 1: rounding margin)
+constexpr uint32_t kDjHead = 0xFFFFFFFDu;     // dj_pos of the first voxel of a bucket's list
+constexpr uint32_t kDjSettled = 0xFFFFFFFEu;  // dj_pos of a settled voxel
+
+struct DjQueue {
+  uint32_t* next;
+  uint32_t* prev;
+  uint32_t head[kDjRing];
+  uint32_t queued;
+  double inv_width;  // 1/m
+
+  uint64_t bucket(double d) const { return static_cast<uint64_t>(d * inv_width); }
+  void insert(uint32_t v, uint64_t b) {
+    uint32_t& h = head[b & (kDjRing - 1u)];
+    next[v] = h;
+    prev[v] = kDjHead;
+    if (h != kNil) prev[h] = v;
+    h = v;
+    ++queued;
+  }
+  void unlink(uint32_t v, uint64_t b) {
+    if (prev[v] == kDjHead)
+      head[b & (kDjRing - 1u)] = next[v];
+    else
+      next[prev[v]] = next[v];
+    if (next[v] != kNil) prev[next[v]] = prev[v];
+    --queued;
+  }
+};
+
+// The Dijkstra stops once its smallest key exceeds kDjReach times the distance of the other root
+// (or settles everything): the turn-penalised searches rarely leave that ball, and outside it the
+// key it stopped at is still a lower bound of every unsettled voxel's distance.
+constexpr double kDjReach = 2.0;
+
+#if defined(__SSE2__)
+// Step lengths (m) of the cells of each row of three of a 3x3x3 block, as the two overlapping
+// pairs (x = -1, 0) and (x = 0, +1) the Dijkstra compares; the centre and the second copy of the
+// middle cell are +inf, so their tests always fail.
+struct RowLengths {
+  alignas(16) double lo[9][2];
+  alignas(16) double hi[9][2];
+  alignas(32) double quad[9][4];  // the row's three cells and the next voxel (+inf), AVX2
+};
+
+RowLengths row_lengths(const tdo_search* ctx) {
+  RowLengths t;
+  for (int k = 0; k < 9; ++k) {
+    for (int x = 0; x < 3; ++x) {
+      const int c = 3 * k + x;
+      const double len = c == 13 ? HUGE_VAL : ctx->step_len[dir_of_cell(c)];
+      if (x < 2) t.lo[k][x] = len;
+      if (x > 0) t.hi[k][x - 1] = x == 1 ? HUGE_VAL : len;
+      t.quad[k][x] = len;
+    }
+    t.quad[k][3] = HUGE_VAL;
+  }
+  return t;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TDO_DJ_AVX2 1
+// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
+// time (the row's three and the next voxel, whose length is +inf). The same additions and
+// comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
+__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
+                                                                    const int64_t* rows,
+                                                                    const RowLengths& lens,
+                                                                    double du) {
+  const __m256d vdu = _mm256_set1_pd(du);
+  uint32_t cells = 0;
+#pragma GCC unroll 9
+  for (int k = 0; k < 9; ++k) {
+    const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
+    const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(at_u + rows[k] - 1), _CMP_LT_OQ);
+    cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
+  }
+  return cells;
+}
+#endif
+#endif
+
+}  // namespace
+
+// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
+// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
+// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
+// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
+// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
+// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
+bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+  double* dist = ctx->dj_dist;
+  const uint32_t nvox = g->nvox;
+  DjQueue qu;
+  qu.next = ctx->dj_heap;
+  qu.prev = ctx->dj_pos;
+  for (uint32_t k = 0; k < kDjRing; ++k) qu.head[k] = kNil;
+  qu.queued = 0;
+  qu.inv_width = 1.0 / (kDjWidth * g->desc.res);
+  for (uint32_t v = 0; v < nvox; ++v) {
+    dist[v] = HUGE_VAL;
+    qu.prev[v] = kNil;
+  }
+  dist[root] = 0.0;
+  qu.insert(root, 0u);
+#if defined(__SSE2__)
+  const RowLengths lens = row_lengths(ctx);
+  // Voxels whose whole 3x3x3 block of linear indices lies in [0, nvox).
+  const int64_t reach = ctx->block_row[8] + 1;  // largest index offset of the block
+  const uint32_t inner_lo = static_cast<uint32_t>(reach);
+  // (reach + 1: the AVX2 test reads one voxel past the block)
+  const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
+#if defined(TDO_DJ_AVX2)
+  const bool avx2 = __builtin_cpu_supports("avx2");
+#else
+  const bool avx2 = false;  // no AVX2 path in this build (clang, other targets): the SSE2 loop
+#endif
+  int64_t rows[9];
+  for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
+#endif
+  double limit = HUGE_VAL;
+  bool reached = false;
+  uint64_t cur = 0;  // current bucket
+  while (qu.queued > 0) {
+    uint32_t u = qu.head[cur & (kDjRing - 1u)];
+    if (u == kNil) {
+      ++cur;
+      continue;
+    }
+    bool over = false;  // a voxel of this bucket is beyond the limit: so is every later one
+    while (u != kNil) {
+      const uint32_t after = qu.next[u];
+      const double du = dist[u];
+      if (du > limit) {
+        over = true;
+        u = after;
+        continue;
+      }
+      qu.unlink(u, cur);
+      qu.prev[u] = kDjSettled;
+      if (u == other) {
+        reached = true;
+        limit = kDjReach * du;
+      }
+      // The cost test comes first: a settled neighbour fails it too (its key lies at most one
+      // bucket, under res, above du, and a step adds at least res), so most steps end after one
+      // load; the settled test after it only guards the list being walked.
+      const auto step = [&](int e) {
+        const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
+        const double nd = du + ctx->step_len[e];
+        if (!(nd < dist[w])) return;
+        const uint32_t pw = qu.prev[w];
+        if (pw == kDjSettled) return;
+        if (pw != kNil) {
+          const uint64_t bw = qu.bucket(dist[w]);
+          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
+          qu.unlink(w, bw);
+        }
+        dist[w] = nd;
+        const uint64_t b = qu.bucket(nd);
+        qu.insert(w, b > cur ? b : cur + 1u);
+      };
+      const uint32_t moves = g->moves[u];
+#if defined(__SSE2__)
+      if (u >= inner_lo && u < inner_hi) {
+        // The cost tests of the 27 cells of u's block two at a time: each row of three cells is
+        // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
+        // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
+        // step order: a step changes the key of its own voxel alone, so the tests stay true.
+        uint32_t cells = 0;
+#if defined(TDO_DJ_AVX2)
+        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
+#endif
+        const __m128d vdu = _mm_set1_pd(du);
+#pragma GCC unroll 9
+        for (int k = 0; k < 9 && !avx2; ++k) {
+          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
+          const int lo = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
+          const int hi = _mm_movemask_pd(
+              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
+          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
+        }
+        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+      } else
+#endif
+          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+#pragma GCC unroll 26
+        for (int e = 0; e < kNumDirs; ++e) step(e);
+      } else {
+        for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+      }
+      // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
+      // a path's summed cost. No later test changes (a settled key fails every cost test).
+      dist[u] = du * (1.0 - 1e-12);
+      u = after;
+    }
+    if (over) break;
+    ++cur;
+  }
+  if (!reached) return false;
+  // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
+  // the queue ran empty they are not connected to the root and keep HUGE_VAL.
+  if (qu.queued == 0) return true;
+  double rest = HUGE_VAL;
+  for (uint32_t k = 0; k < kDjRing; ++k)
+    for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
+  for (uint32_t v = 0; v < nvox; ++v)
+    if (qu.prev[v] != kDjSettled) dist[v] = rest;
+  return true;
+}
+
+// The table of a side: each key rounded down to a float, so a lower bound stays one (+inf stays
+// +inf: an unreachable voxel).
+void store_lower_bounds(const double* dist, uint32_t nvox, float* table) {
+  for (uint32_t v = 0; v < nvox; ++v) {
+    float f = static_cast<float>(dist[v]);
+    if (static_cast<double>(f) > dist[v]) f = nextafterf(f, 0.0f);
+    table[v] = f;
+  }
+}
+
+}  // namespace TDO_SEARCH_NS
+}  // namespace tdo_internal
