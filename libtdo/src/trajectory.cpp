@@ -60,8 +60,8 @@ constexpr double kLineAcc = 0.99;       // tangential acceleration on straight p
 constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
 constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
 constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
-constexpr double kJerkGeo = 0.92;       // of each part: the curvature terms at the ceiling
-constexpr double kCurveAccLat = 0.9;    // lateral acceleration at the ceiling (of a_max)
+constexpr double kJerkGeo = 0.98;       // of each part: the curvature terms at the ceiling
+constexpr double kCurveAccLat = 0.96;   // lateral acceleration at the ceiling (of a_max)
 constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
 constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
 constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
@@ -110,6 +110,7 @@ inline bool positive(double v) { return isfinite(v) && v > 0.0; }
  *  ceiling and tangential limits. */
 struct Plateau {
   uint32_t seg;   // index of the path segment
+  uint32_t head;  // first plateau of its move (filled per profile build)
   double off;     // m, arclength inside the segment where the plateau starts
   double s0;      // m, path arclength at its start
   double len;     // m
@@ -117,6 +118,7 @@ struct Plateau {
   double dkappa;  // 1/m^2, curvature-rate bound
   double cap;     // m/s, min(v_max, v_limit)
   int near_jump;  // 1 when a boundary of it has a curvature jump (smaller jerk budget)
+  uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
   // Filled per profile build:
   double level;  // m/s, speed ceiling
@@ -198,22 +200,6 @@ double scurve_dist(double a, double b, double acc, double jerk) {
   const double lo = dmin(a, b), hi = dmax(a, b);
   const SCurve c = scurve(hi - lo, acc, jerk);
   return 0.5 * (lo + hi) * (2.0 * c.tj + c.ta);
-}
-
-/** m/s, highest speed in [v0, cap] reachable from v0 within distance d. */
-double reach(double v0, double d, double cap, double acc, double jerk) {
-  if (!(cap > v0)) return cap;
-  if (scurve_dist(v0, cap, acc, jerk) <= d) return cap;
-  double lo = v0, hi = cap;  // lo always reachable
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (scurve_dist(v0, mid, acc, jerk) <= d)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -628,6 +614,28 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Profile (per refinement round).
 
+/** Tangential acceleration and jerk limits of a plateau for speeds up to v (<= its ceiling):
+ *  what the budgets leave at v (plateau_limits), so a move whose peak is below the ceiling may
+ *  change its speed faster. Both fall as v grows, so the limits at a move's peak hold at every
+ *  speed of the move. */
+void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, double* jerk) {
+  const double jb =
+      (p.near_jump ? kJumpJerk : (p.kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
+  if (!(p.kappa > 0.0)) {
+    *acc = kLineAcc * lim.a_max * p.scale;
+    *jerk = jb * p.scale;
+    return;
+  }
+  const double k = p.kappa, dk = p.dkappa;
+  const double v3 = v * v * v;
+  const double lat = k * v * v;
+  const double circle = kAccCircle * lim.a_max;
+  *jerk = (kJerkT * jb - k * k * v3) * p.scale;
+  double a = dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat)));
+  if (v > 0.0) a = dmin(a, (kJerkN * jb - dk * v3) / (3.0 * k * v));
+  *acc = a * p.scale;
+}
+
 /** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale.
  *
  *  On a planar curve the jerk is (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N, so its
@@ -639,27 +647,16 @@ void plateau_limits(Plateau* p, const Limits& lim) {
   const double jb =
       (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   double level = p->cap;
-  if (!(p->kappa > 0.0)) {
-    p->level = level * p->scale;
-    p->acc = kLineAcc * lim.a_max * p->scale;
-    p->jerk = jb * p->scale;
-    return;
+  if (p->kappa > 0.0) {
+    const double k = p->kappa, dk = p->dkappa;
+    // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
+    level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
+    // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
+    level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
+    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * kJerkN * jb / dk));
   }
-  const double k = p->kappa, dk = p->dkappa;
-  // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
-  level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
-  // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
-  level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
-  if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * kJerkN * jb / dk));
-  level *= p->scale;
-  const double v3 = level * level * level;
-  const double lat = k * level * level;
-  const double circle = kAccCircle * lim.a_max;
-  p->level = level;
-  p->jerk = (kJerkT * jb - k * k * v3) * p->scale;
-  p->acc = dmin(dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat))),
-                (kJerkN * jb - dk * v3) / (3.0 * k * level)) *
-           p->scale;
+  p->level = level * p->scale;
+  plateau_at(*p, lim, p->level, &p->acc, &p->jerk);
 }
 
 /** Appends a phase; false when the profile capacity is exhausted. */
@@ -706,66 +703,181 @@ bool align_stop(tdo_traj* ctx, Cursor* c, double dt) {
   return advance(ctx, c, dwell, 0.0);
 }
 
+/** Limits of a move: the plateaus [k, next) flown as one accelerate / cruise / decelerate profile
+ *  with zero acceleration only at its ends. Its ceiling, acceleration and jerk are the lowest of
+ *  its plateaus', which keep every plateau's own budgets at any speed up to its ceiling. */
+struct Move {
+  double len, level, acc, jerk;
+};
+
+Move move_at(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v) {
+  const Plateau* pl = ctx->plateaus;
+  Move m{0.0, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  const uint32_t e = pl[k].next;
+  for (uint32_t i = k; i < e; ++i) {  // bounded by n_plateaus
+    double acc, jerk;
+    plateau_at(pl[i], lim, dmin(v, pl[i].level), &acc, &jerk);
+    m.level = dmin(m.level, pl[i].level);
+    m.acc = dmin(m.acc, acc);
+    m.jerk = dmin(m.jerk, jerk);
+  }
+  m.len = e < ctx->n_plateaus ? pl[e].s0 - pl[k].s0 : ctx->total - pl[k].s0;
+  return m;
+}
+
+/** Ceiling of the move starting at plateau k. */
+double move_level(const tdo_traj* ctx, uint32_t k) {
+  double level = HUGE_VAL;
+  for (uint32_t i = k; i < ctx->plateaus[k].next; ++i) level = dmin(level, ctx->plateaus[i].level);
+  return level;
+}
+
+/** m/s, highest speed in [v0, ceiling] reachable from v0 within the move starting at plateau k,
+ *  with the move's limits at that speed (the distance grows with the speed). */
+double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0) {
+  const Move top = move_at(ctx, lim, k, HUGE_VAL);
+  const double cap = top.level;
+  if (!(cap > v0)) return cap;
+  const auto dist = [&](double v1) {
+    const Move m = move_at(ctx, lim, k, v1);
+    return scurve_dist(v0, v1, m.acc, m.jerk);
+  };
+  if (dist(cap) <= top.len) return cap;
+  double lo = v0, hi = cap;  // lo always reachable
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (dist(mid) <= top.len)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
+ *  v1 within its length, with the move's limits at that peak. */
+double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
+  const auto need = [&](double vp) {
+    const Move m = move_at(ctx, lim, k, vp);
+    return scurve_dist(v0, vp, m.acc, m.jerk) + scurve_dist(vp, v1, m.acc, m.jerk) - m.len;
+  };
+  double lo = dmax(v0, v1), hi = move_level(ctx, k);
+  if (need(hi) <= 0.0) return hi;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (need(mid) <= 0.0)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/** s, duration of an S-curve between speeds a and b. */
+double scurve_time(double a, double b, double acc, double jerk) {
+  const SCurve c = scurve(fabs(b - a), acc, jerk);
+  return 2.0 * c.tj + c.ta;
+}
+
+/** Boundary speeds of the current moves (forward and backward passes: every pair of neighbouring
+ *  move ends is joined by one S-curve inside the move); returns the flight time of the moves. */
+double move_speeds(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  Boundary* bd = ctx->bounds;
+  // Boundary speeds: caps, scaled with the neighbouring plateaus, no higher than either move's
+  // ceiling.
+  for (uint32_t k = 0; k <= n; ++k) {
+    double scale = 1.0, v = HUGE_VAL;
+    if (k > 0) {
+      scale = dmin(scale, pl[k - 1].scale);
+      v = dmin(v, move_level(ctx, pl[k - 1].head));
+    }
+    if (k < n) {
+      scale = dmin(scale, pl[k].scale);
+      v = dmin(v, move_level(ctx, pl[k].head));
+    }
+    bd[k].v = dmin(v, bd[k].cap * scale);
+  }
+  // (The backward pass only lowers speeds that exceed what the next one allows, which keeps the
+  // forward condition.)
+  for (uint32_t k = 0; k < n; k = pl[k].next) {
+    const uint32_t e = pl[k].next;
+    bd[e].v = dmin(bd[e].v, move_reach(ctx, lim, k, bd[k].v));
+  }
+  for (uint32_t e = n; e > 0;) {
+    const uint32_t k = pl[e - 1].head;
+    bd[k].v = dmin(bd[k].v, move_reach(ctx, lim, k, bd[e].v));
+    e = k;
+  }
+  double total = 0.0;
+  for (uint32_t k = 0; k < n; k = pl[k].next) {
+    const double v0 = bd[k].v, v1 = bd[pl[k].next].v, vp = move_peak(ctx, lim, k, v0, v1);
+    const Move m = move_at(ctx, lim, k, vp);
+    const double ramps = scurve_dist(v0, vp, m.acc, m.jerk) + scurve_dist(vp, v1, m.acc, m.jerk);
+    total += scurve_time(v0, vp, m.acc, m.jerk) + scurve_time(vp, v1, m.acc, m.jerk);
+    if (m.len > ramps && vp > 0.0) total += (m.len - ramps) / vp;
+  }
+  return total;
+}
+
+/** Joins plateaus k-1 and k into one move when boundary k has no cap of its own (no stop, kink
+ *  or curvature jump) and the flight gets shorter; one sweep over the boundaries in order, so at
+ *  most n_plateaus + 1 evaluations of move_speeds. */
+void choose_moves(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  for (uint32_t k = 0; k < n; ++k) {
+    pl[k].head = k;
+    pl[k].next = k + 1u;
+  }
+  // A moving start's braking line keeps its own move (it must stop from the start speed).
+  const uint32_t first = ctx->moving && ctx->entry.speed > 0.0 ? 2u : 1u;
+  double best = move_speeds(ctx, lim);
+  for (uint32_t k = first; k < n; ++k) {
+    if (ctx->bounds[k].cap < HUGE_VAL) continue;
+    const uint32_t h = pl[k - 1].head, e = pl[k].next;
+    pl[h].next = e;
+    for (uint32_t i = k; i < e; ++i) pl[i].head = h;
+    const double t = move_speeds(ctx, lim);
+    if (t < best) {
+      best = t;
+      continue;
+    }
+    pl[h].next = k;  // undo
+    for (uint32_t i = k; i < e; ++i) pl[i].head = k;
+  }
+  move_speeds(ctx, lim);
+}
+
 /** Builds the constant-jerk pieces. TDO_ERR_SAMPLE_CAPACITY when they do not fit. */
 tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   const uint32_t n = ctx->n_plateaus;
   Plateau* pl = ctx->plateaus;
   Boundary* bd = ctx->bounds;
   for (uint32_t k = 0; k < n; ++k) plateau_limits(&pl[k], lim);
-  // Boundary speeds: caps, scaled with the neighbours, no higher than either ceiling.
-  for (uint32_t k = 0; k <= n; ++k) {
-    double scale = 1.0, v = HUGE_VAL;
-    if (k > 0) {
-      scale = dmin(scale, pl[k - 1].scale);
-      v = dmin(v, pl[k - 1].level);
-    }
-    if (k < n) {
-      scale = dmin(scale, pl[k].scale);
-      v = dmin(v, pl[k].level);
-    }
-    bd[k].v = dmin(v, bd[k].cap * scale);
-  }
-  // Forward then backward pass: every pair of neighbouring boundary speeds is joined by one
-  // S-curve inside the plateau between them (the backward pass only lowers speeds that exceed
-  // what the next one allows, which keeps the forward condition).
-  for (uint32_t k = 0; k < n; ++k)
-    bd[k + 1].v = dmin(bd[k + 1].v, reach(bd[k].v, pl[k].len, pl[k].level, pl[k].acc, pl[k].jerk));
-  for (uint32_t k = n; k > 0; --k)
-    bd[k - 1].v = dmin(
-        bd[k - 1].v, reach(bd[k].v, pl[k - 1].len, pl[k - 1].level, pl[k - 1].acc, pl[k - 1].jerk));
+  choose_moves(ctx, lim);
   // A moving start keeps its speed: the braking line (tdo_traj_entry.brake) lets every later
   // boundary be reached from it, so a lower speed here means the path broke that promise.
   if (ctx->moving && n > 0 && !(bd[0].v >= ctx->entry.speed)) return TDO_ERR_INFEASIBLE;
   ctx->n_phases = 0;
   Cursor c{ctx->moving ? ctx->entry.ramp : 0.0, 0.0, 0.0, 0.0};
-  for (uint32_t k = 0; k < n; ++k) {
+  for (uint32_t k = 0; k < n; k = pl[k].next) {
     Plateau& p = pl[k];
-    const double v0 = bd[k].v, v1 = bd[k + 1].v;
-    const auto need = [&](double vp) {
-      return scurve_dist(v0, vp, p.acc, p.jerk) + scurve_dist(vp, v1, p.acc, p.jerk);
-    };
-    double lo = dmax(v0, v1), hi = p.level;
-    if (need(hi) <= p.len) {
-      lo = hi;
-    } else {
-      for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi)) break;
-        if (need(mid) <= p.len)
-          lo = mid;
-        else
-          hi = mid;
-      }
-    }
-    p.peak = lo;
-    c.s = p.s0;  // anchor every plateau at its exact start
+    const double v0 = bd[k].v, v1 = bd[p.next].v;
+    p.peak = move_peak(ctx, lim, k, v0, v1);
+    const Move m = move_at(ctx, lim, k, p.peak);
+    c.s = p.s0;  // anchor every move at its exact start
     c.v = v0;
     c.a = 0.0;
-    if (!speed_change(ctx, &c, p.peak, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
-    const double cruise = p.len - need(p.peak);
+    if (!speed_change(ctx, &c, p.peak, m.acc, m.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    const double cruise =
+        m.len - scurve_dist(v0, p.peak, m.acc, m.jerk) - scurve_dist(p.peak, v1, m.acc, m.jerk);
     if (cruise > 0.0 && p.peak > 0.0 && !advance(ctx, &c, cruise / p.peak, 0.0))
       return TDO_ERR_SAMPLE_CAPACITY;
-    if (!speed_change(ctx, &c, v1, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    if (!speed_change(ctx, &c, v1, m.acc, m.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
     if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
   }
   if (ctx->n_phases == 0) return TDO_ERR_INFEASIBLE;  // cannot happen for a positive length
