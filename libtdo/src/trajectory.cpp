@@ -60,6 +60,7 @@ constexpr double kLineAcc = 0.99;       // tangential acceleration on straight p
 constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
 constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
 constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
+constexpr double kShareFloor = 0.35;    // least share of either part (jerk_shares)
 constexpr double kJerkGeo = 0.98;       // of each part: the curvature terms at the ceiling
 constexpr double kCurveAccLat = 0.96;   // lateral acceleration at the ceiling (of a_max)
 constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
@@ -614,6 +615,19 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Profile (per refinement round).
 
+/** Shares of the jerk budget for its tangential and normal parts on a curved plateau (squares
+ *  summing to 1): along the curvature terms kappa^2 v^3 and dkappa/ds v^3 at any one speed, so
+ *  the ceiling uses the whole budget, but neither below kShareFloor, which leaves room for
+ *  speed changes. */
+void jerk_shares(const Plateau& p, double* t, double* nn) {
+  const double wt = p.kappa * p.kappa, wn = p.dkappa, w = sqrt(wt * wt + wn * wn);
+  double a = w > 0.0 ? dmax(kShareFloor, wt / w) : kJerkT;
+  double b = w > 0.0 ? dmax(kShareFloor, wn / w) : kJerkN;
+  const double r = sqrt(a * a + b * b);
+  *t = a / r;
+  *nn = b / r;
+}
+
 /** Tangential acceleration and jerk limits of a plateau for speeds up to v (<= its ceiling):
  *  what the budgets leave at v (plateau_limits), so a move whose peak is below the ceiling may
  *  change its speed faster. Both fall as v grows, so the limits at a move's peak hold at every
@@ -627,12 +641,14 @@ void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, doub
     return;
   }
   const double k = p.kappa, dk = p.dkappa;
+  double st, sn;
+  jerk_shares(p, &st, &sn);
   const double v3 = v * v * v;
   const double lat = k * v * v;
   const double circle = kAccCircle * lim.a_max;
-  *jerk = (kJerkT * jb - k * k * v3) * p.scale;
+  *jerk = (st * jb - k * k * v3) * p.scale;
   double a = dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat)));
-  if (v > 0.0) a = dmin(a, (kJerkN * jb - dk * v3) / (3.0 * k * v));
+  if (v > 0.0) a = dmin(a, (sn * jb - dk * v3) / (3.0 * k * v));
   *acc = a * p.scale;
 }
 
@@ -652,8 +668,10 @@ void plateau_limits(Plateau* p, const Limits& lim) {
     // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
     level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
     // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
-    level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
-    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * kJerkN * jb / dk));
+    double st, sn;
+    jerk_shares(*p, &st, &sn);
+    level = dmin(level, cbrt(kJerkGeo * st * jb / (k * k)));
+    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * sn * jb / dk));
   }
   p->level = level * p->scale;
   plateau_at(*p, lim, p->level, &p->acc, &p->jerk);
