@@ -28,6 +28,8 @@
 
 #include <math.h>
 #include <string.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "tdo/traj_profile.h"
 #if defined(__SSE2__)
@@ -55,15 +57,15 @@ constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre
 constexpr double kClearanceEvalMargin = 0.05;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
-constexpr double kLineShare = 0.95;     // tangential jerk on straight plateaus
+constexpr double kLineShare = 0.99;     // tangential jerk on straight plateaus
 constexpr double kLineAcc = 0.99;       // tangential acceleration on straight plateaus
-constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
+constexpr double kAccCircle = 0.99;     // total acceleration on curved plateaus (friction circle)
 constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
 constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
 constexpr double kShareFloor = 0.35;    // least share of either part (jerk_shares)
 constexpr double kJerkGeo = 0.98;       // of each part: the curvature terms at the ceiling
 constexpr double kCurveAccLat = 0.96;   // lateral acceleration at the ceiling (of a_max)
-constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
+constexpr double kCurveJerk = 0.99;     // total jerk on curved plateaus
 constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
 constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
 constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
@@ -897,6 +899,11 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
       return TDO_ERR_SAMPLE_CAPACITY;
     if (!speed_change(ctx, &c, v1, m.acc, m.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
     if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
+  }
+  if (getenv("TDO_DBG")) {
+    for (uint32_t k = 0; k < n; ++k)
+      fprintf(stderr, "P%u seg%u head%u s0=%.3f len=%.3f k=%.3f dk=%.3f cap=%.2f lvl=%.3f b=%.3f peak=%.3f\n", k, pl[k].seg, pl[k].head, pl[k].s0, pl[k].len, pl[k].kappa, pl[k].dkappa, pl[k].cap, pl[k].level, bd[k].v, pl[k].peak);
+    fprintf(stderr, "end t=%.3f phases=%u\n", c.t, ctx->n_phases);
   }
   if (ctx->n_phases == 0) return TDO_ERR_INFEASIBLE;  // cannot happen for a positive length
   return TDO_OK;
