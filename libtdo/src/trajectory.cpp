@@ -723,51 +723,73 @@ bool align_stop(tdo_traj* ctx, Cursor* c, double dt) {
   return advance(ctx, c, dwell, 0.0);
 }
 
-/** Limits of a move: the plateaus [k, next) flown as one accelerate / cruise / decelerate profile
- *  with zero acceleration only at its ends. Its ceiling, acceleration and jerk are the lowest of
- *  its plateaus', which keep every plateau's own budgets at any speed up to its ceiling. */
-struct Move {
-  double len, level, acc, jerk;
+/** A move: the plateaus [k, next) flown as one accelerate / cruise / decelerate profile with zero
+ *  acceleration only at its ends, so the acceleration runs on through the boundaries inside it.
+ *  Its cruise speed stays under every plateau's ceiling; each of its two speed changes has the
+ *  lowest acceleration and jerk limits of the plateaus it covers, at its top speed (move_ramp). */
+struct Ramp {
+  double acc;   // m/s^2, tangential acceleration limit
+  double jerk;  // m/s^3, tangential jerk limit
+  double dist;  // m, length of the S-curve
 };
 
-Move move_at(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v) {
-  const Plateau* pl = ctx->plateaus;
-  Move m{0.0, HUGE_VAL, HUGE_VAL, HUGE_VAL};
-  const uint32_t e = pl[k].next;
-  for (uint32_t i = k; i < e; ++i) {  // bounded by n_plateaus
-    double acc, jerk;
-    plateau_at(pl[i], lim, dmin(v, pl[i].level), &acc, &jerk);
-    m.level = dmin(m.level, pl[i].level);
-    m.acc = dmin(m.acc, acc);
-    m.jerk = dmin(m.jerk, jerk);
-  }
-  m.len = e < ctx->n_plateaus ? pl[e].s0 - pl[k].s0 : ctx->total - pl[k].s0;
-  return m;
-}
-
-/** Ceiling of the move starting at plateau k. */
+/** m/s, the ceiling of the move starting at plateau k: the lowest of its plateaus' and of its
+ *  inner boundaries' caps. */
 double move_level(const tdo_traj* ctx, uint32_t k) {
+  const Plateau* pl = ctx->plateaus;
   double level = HUGE_VAL;
-  for (uint32_t i = k; i < ctx->plateaus[k].next; ++i) level = dmin(level, ctx->plateaus[i].level);
+  for (uint32_t i = k; i < pl[k].next; ++i) {
+    level = dmin(level, pl[i].level);
+    // The cap of an inner boundary (a tiny tangent kink), scaled with its plateaus.
+    if (i > k) level = dmin(level, ctx->bounds[i].cap * dmin(pl[i - 1u].scale, pl[i].scale));
+  }
   return level;
 }
 
-/** m/s, highest speed in [v0, ceiling] reachable from v0 within the move starting at plateau k,
- *  with the move's limits at that speed (the distance grows with the speed). */
-double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0) {
-  const Move top = move_at(ctx, lim, k, HUGE_VAL);
-  const double cap = top.level;
+/** m, length of the move starting at plateau k. */
+double move_len(const tdo_traj* ctx, uint32_t k) {
+  const uint32_t e = ctx->plateaus[k].next;
+  return e < ctx->n_plateaus ? ctx->plateaus[e].s0 - ctx->plateaus[k].s0
+                             : ctx->total - ctx->plateaus[k].s0;
+}
+
+/** The S-curve between speeds a and b at the start (from_end 0) or at the end (1) of the move
+ *  starting at plateau k: plateaus are taken in from that end until they cover its length under
+ *  their limits at max(a, b) (the length only grows as plateaus join; at most the move's). A
+ *  length beyond the move's means the change does not fit. */
+Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, double b,
+               int from_end) {
+  const Plateau* pl = ctx->plateaus;
+  const uint32_t e = pl[k].next;
+  const double top = dmax(a, b);
+  Ramp r{HUGE_VAL, HUGE_VAL, 0.0};
+  double covered = 0.0;
+  for (uint32_t q = 0; q < e - k; ++q) {
+    const Plateau& p = pl[from_end ? e - 1u - q : k + q];
+    double acc, jerk;
+    plateau_at(p, lim, dmin(top, p.level), &acc, &jerk);
+    r.acc = dmin(r.acc, acc);
+    r.jerk = dmin(r.jerk, jerk);
+    covered += p.len;
+    r.dist = scurve_dist(a, b, r.acc, r.jerk);
+    if (r.dist <= covered) break;
+  }
+  return r;
+}
+
+/** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
+ *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
+ *  (from_end 1). The length grows with the speed, so bisection finds it. */
+double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
+  const double cap = move_level(ctx, k), len = move_len(ctx, k);
   if (!(cap > v0)) return cap;
-  const auto dist = [&](double v1) {
-    const Move m = move_at(ctx, lim, k, v1);
-    return scurve_dist(v0, v1, m.acc, m.jerk);
-  };
-  if (dist(cap) <= top.len) return cap;
+  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
+  if (fits(cap)) return cap;
   double lo = v0, hi = cap;  // lo always reachable
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (dist(mid) <= top.len)
+    if (fits(mid))
       lo = mid;
     else
       hi = mid;
@@ -776,18 +798,18 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0)
 }
 
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
- *  v1 within its length, with the move's limits at that peak. */
+ *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
 double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
-  const auto need = [&](double vp) {
-    const Move m = move_at(ctx, lim, k, vp);
-    return scurve_dist(v0, vp, m.acc, m.jerk) + scurve_dist(vp, v1, m.acc, m.jerk) - m.len;
+  const double len = move_len(ctx, k);
+  const auto fits = [&](double vp) {
+    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist <= len;
   };
   double lo = dmax(v0, v1), hi = move_level(ctx, k);
-  if (need(hi) <= 0.0) return hi;
+  if (fits(hi)) return hi;
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (need(mid) <= 0.0)
+    if (fits(mid))
       lo = mid;
     else
       hi = mid;
@@ -825,49 +847,76 @@ double move_speeds(tdo_traj* ctx, const Limits& lim) {
   // forward condition.)
   for (uint32_t k = 0; k < n; k = pl[k].next) {
     const uint32_t e = pl[k].next;
-    bd[e].v = dmin(bd[e].v, move_reach(ctx, lim, k, bd[k].v));
+    bd[e].v = dmin(bd[e].v, move_reach(ctx, lim, k, bd[k].v, 0));
   }
   for (uint32_t e = n; e > 0;) {
     const uint32_t k = pl[e - 1].head;
-    bd[k].v = dmin(bd[k].v, move_reach(ctx, lim, k, bd[e].v));
+    bd[k].v = dmin(bd[k].v, move_reach(ctx, lim, k, bd[e].v, 1));
     e = k;
   }
   double total = 0.0;
   for (uint32_t k = 0; k < n; k = pl[k].next) {
     const double v0 = bd[k].v, v1 = bd[pl[k].next].v, vp = move_peak(ctx, lim, k, v0, v1);
-    const Move m = move_at(ctx, lim, k, vp);
-    const double ramps = scurve_dist(v0, vp, m.acc, m.jerk) + scurve_dist(vp, v1, m.acc, m.jerk);
-    total += scurve_time(v0, vp, m.acc, m.jerk) + scurve_time(vp, v1, m.acc, m.jerk);
-    if (m.len > ramps && vp > 0.0) total += (m.len - ramps) / vp;
+    const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
+    const double len = move_len(ctx, k), ramps = up.dist + down.dist;
+    total += scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
+    if (len > ramps && vp > 0.0) total += (len - ramps) / vp;
   }
   return total;
 }
 
-/** Joins plateaus k-1 and k into one move when boundary k has no cap of its own (no stop, kink
- *  or curvature jump) and the flight gets shorter; one sweep over the boundaries in order, so at
- *  most n_plateaus + 1 evaluations of move_speeds. */
+/** Splits the move holding boundary k (inside it) at k; returns its first plateau. */
+uint32_t split_move(Plateau* pl, uint32_t k) {
+  const uint32_t h = pl[k].head, e = pl[h].next;
+  pl[h].next = k;
+  pl[k].next = e;
+  for (uint32_t i = k; i < e; ++i) pl[i].head = k;
+  return h;
+}
+
+/** Joins the move ending at boundary k with the one starting there. */
+void join_moves(Plateau* pl, uint32_t k) {
+  const uint32_t h = pl[k - 1u].head, e = pl[k].next;
+  pl[h].next = e;
+  for (uint32_t i = k; i < e; ++i) pl[i].head = h;
+}
+
+/** Moves: at first one per stretch between boundaries with a cap of their own (stops, kinks,
+ *  curvature jumps; a moving start's braking line keeps its own move, it must stop from the start
+ *  speed); then one sweep splits a move at an inner boundary and one joins two moves at a
+ *  boundary without a cap, each only where the flight gets shorter (move_speeds; at most
+ *  2 n_plateaus + 1 evaluations). */
 void choose_moves(tdo_traj* ctx, const Limits& lim) {
   const uint32_t n = ctx->n_plateaus;
   Plateau* pl = ctx->plateaus;
-  for (uint32_t k = 0; k < n; ++k) {
-    pl[k].head = k;
-    pl[k].next = k + 1u;
-  }
-  // A moving start's braking line keeps its own move (it must stop from the start speed).
   const uint32_t first = ctx->moving && ctx->entry.speed > 0.0 ? 2u : 1u;
+  const auto free = [&](uint32_t k) {
+    return k >= first && ctx->bounds[k].cap > 0.0 && !(pl[k - 1u].near_jump && pl[k].near_jump);
+  };
+  uint32_t h = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (k > 0 && !free(k)) h = k;
+    pl[k].head = h;
+  }
+  for (uint32_t k = n; k > 0; --k) pl[k - 1u].next = k == n || !free(k) ? k : pl[k].next;
   double best = move_speeds(ctx, lim);
-  for (uint32_t k = first; k < n; ++k) {
-    if (ctx->bounds[k].cap < HUGE_VAL) continue;
-    const uint32_t h = pl[k - 1].head, e = pl[k].next;
-    pl[h].next = e;
-    for (uint32_t i = k; i < e; ++i) pl[i].head = h;
+  for (uint32_t k = 1; k < n; ++k) {
+    if (pl[k].head == k) continue;  // already a move boundary
+    split_move(pl, k);
     const double t = move_speeds(ctx, lim);
-    if (t < best) {
+    if (t < best)
       best = t;
-      continue;
-    }
-    pl[h].next = k;  // undo
-    for (uint32_t i = k; i < e; ++i) pl[i].head = k;
+    else
+      join_moves(pl, k);
+  }
+  for (uint32_t k = 1; k < n; ++k) {
+    if (pl[k].head != k || !free(k)) continue;
+    join_moves(pl, k);
+    const double t = move_speeds(ctx, lim);
+    if (t < best)
+      best = t;
+    else
+      split_move(pl, k);
   }
   move_speeds(ctx, lim);
 }
@@ -888,16 +937,16 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
     Plateau& p = pl[k];
     const double v0 = bd[k].v, v1 = bd[p.next].v;
     p.peak = move_peak(ctx, lim, k, v0, v1);
-    const Move m = move_at(ctx, lim, k, p.peak);
+    const Ramp up = move_ramp(ctx, lim, k, v0, p.peak, 0);
+    const Ramp down = move_ramp(ctx, lim, k, p.peak, v1, 1);
     c.s = p.s0;  // anchor every move at its exact start
     c.v = v0;
     c.a = 0.0;
-    if (!speed_change(ctx, &c, p.peak, m.acc, m.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
-    const double cruise =
-        m.len - scurve_dist(v0, p.peak, m.acc, m.jerk) - scurve_dist(p.peak, v1, m.acc, m.jerk);
+    if (!speed_change(ctx, &c, p.peak, up.acc, up.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    const double cruise = move_len(ctx, k) - up.dist - down.dist;
     if (cruise > 0.0 && p.peak > 0.0 && !advance(ctx, &c, cruise / p.peak, 0.0))
       return TDO_ERR_SAMPLE_CAPACITY;
-    if (!speed_change(ctx, &c, v1, m.acc, m.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    if (!speed_change(ctx, &c, v1, down.acc, down.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
     if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
   }
   if (getenv("TDO_DBG")) {
