@@ -28,8 +28,6 @@
 
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #include "tdo/traj_profile.h"
 #if defined(__SSE2__)
@@ -79,7 +77,8 @@ constexpr uint32_t kPiecesPerPlateau =
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
-constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
+constexpr uint32_t kMoveWindow = 2;  // moves on either side that judge a change (choose_moves)
+constexpr int kBisections = 40;        // bisection steps (speed resolution ~ 2^-40 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
@@ -823,46 +822,70 @@ double scurve_time(double a, double b, double acc, double jerk) {
   return 2.0 * c.tj + c.ta;
 }
 
-/** Boundary speeds of the current moves (forward and backward passes: every pair of neighbouring
- *  move ends is joined by one S-curve inside the move); returns the flight time of the moves. */
-double move_speeds(tdo_traj* ctx, const Limits& lim) {
-  const uint32_t n = ctx->n_plateaus;
+/** m/s, the highest speed boundary k may have: its cap, scaled with the neighbouring plateaus,
+ *  and the ceilings of the moves on either side. */
+double boundary_top(const tdo_traj* ctx, uint32_t k) {
+  const Plateau* pl = ctx->plateaus;
+  double scale = 1.0, v = HUGE_VAL;
+  if (k > 0) {
+    scale = dmin(scale, pl[k - 1].scale);
+    v = dmin(v, move_level(ctx, pl[k - 1].head));
+  }
+  if (k < ctx->n_plateaus) {
+    scale = dmin(scale, pl[k].scale);
+    v = dmin(v, move_level(ctx, pl[k].head));
+  }
+  return dmin(v, ctx->bounds[k].cap * scale);
+}
+
+/** s, flight time of the move starting at plateau k between its boundary speeds. */
+double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k) {
+  const Boundary* bd = ctx->bounds;
+  const double v0 = bd[k].v, v1 = bd[ctx->plateaus[k].next].v;
+  const double vp = move_peak(ctx, lim, k, v0, v1);
+  const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
+  const double len = move_len(ctx, k), ramps = up.dist + down.dist;
+  double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
+  if (len > ramps && vp > 0.0) t += (len - ramps) / vp;
+  return t;
+}
+
+/** Speeds of the boundaries strictly between the moves from plateau h to plateau e (h and e are
+ *  move boundaries) by forward and backward passes: every pair of neighbouring move ends is
+ *  joined by one S-curve inside the move (the backward pass only lowers speeds that exceed what
+ *  the next one allows, which keeps the forward condition). With `keep` the speeds at h and e
+ *  stay and the result is HUGE_VAL when they do not fit; otherwise they are lowered as needed.
+ *  Returns the flight time of those moves. */
+double window_speeds(tdo_traj* ctx, const Limits& lim, uint32_t h, uint32_t e, int keep) {
   Plateau* pl = ctx->plateaus;
   Boundary* bd = ctx->bounds;
-  // Boundary speeds: caps, scaled with the neighbouring plateaus, no higher than either move's
-  // ceiling.
-  for (uint32_t k = 0; k <= n; ++k) {
-    double scale = 1.0, v = HUGE_VAL;
-    if (k > 0) {
-      scale = dmin(scale, pl[k - 1].scale);
-      v = dmin(v, move_level(ctx, pl[k - 1].head));
-    }
-    if (k < n) {
-      scale = dmin(scale, pl[k].scale);
-      v = dmin(v, move_level(ctx, pl[k].head));
-    }
-    bd[k].v = dmin(v, bd[k].cap * scale);
+  for (uint32_t k = pl[h].next; k < e; k = pl[k].next) bd[k].v = boundary_top(ctx, k);
+  if (keep && (bd[h].v > boundary_top(ctx, h) || bd[e].v > boundary_top(ctx, e))) return HUGE_VAL;
+  for (uint32_t k = h; k < e; k = pl[k].next) {
+    const uint32_t x = pl[k].next;
+    const double r = move_reach(ctx, lim, k, bd[k].v, 0);
+    if (keep && x == e && bd[x].v > r) return HUGE_VAL;
+    bd[x].v = dmin(bd[x].v, r);
   }
-  // (The backward pass only lowers speeds that exceed what the next one allows, which keeps the
-  // forward condition.)
-  for (uint32_t k = 0; k < n; k = pl[k].next) {
-    const uint32_t e = pl[k].next;
-    bd[e].v = dmin(bd[e].v, move_reach(ctx, lim, k, bd[k].v, 0));
-  }
-  for (uint32_t e = n; e > 0;) {
-    const uint32_t k = pl[e - 1].head;
-    bd[k].v = dmin(bd[k].v, move_reach(ctx, lim, k, bd[e].v, 1));
-    e = k;
+  for (uint32_t x = e; x > h;) {
+    const uint32_t k = pl[x - 1].head;
+    const double r = move_reach(ctx, lim, k, bd[x].v, 1);
+    if (keep && k == h && bd[k].v > r) return HUGE_VAL;
+    bd[k].v = dmin(bd[k].v, r);
+    x = k;
   }
   double total = 0.0;
-  for (uint32_t k = 0; k < n; k = pl[k].next) {
-    const double v0 = bd[k].v, v1 = bd[pl[k].next].v, vp = move_peak(ctx, lim, k, v0, v1);
-    const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
-    const double len = move_len(ctx, k), ramps = up.dist + down.dist;
-    total += scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
-    if (len > ramps && vp > 0.0) total += (len - ramps) / vp;
-  }
+  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k);
   return total;
+}
+
+/** Boundary speeds of all moves (window_speeds over the whole path, from rest or the entry
+ *  speed to rest); returns the flight time. */
+double move_speeds(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  ctx->bounds[0].v = boundary_top(ctx, 0);
+  ctx->bounds[n].v = boundary_top(ctx, n);
+  return window_speeds(ctx, lim, 0, n, 0);
 }
 
 /** Splits the move holding boundary k (inside it) at k; returns its first plateau. */
@@ -881,11 +904,39 @@ void join_moves(Plateau* pl, uint32_t k) {
   for (uint32_t i = k; i < e; ++i) pl[i].head = h;
 }
 
-/** Moves: at first one per stretch between boundaries with a cap of their own (stops, kinks,
- *  curvature jumps; a moving start's braking line keeps its own move, it must stop from the start
- *  speed); then one sweep splits a move at an inner boundary and one joins two moves at a
- *  boundary without a cap, each only where the flight gets shorter (move_speeds; at most
- *  2 n_plateaus + 1 evaluations). */
+/** One sweep over the segment joints: splits a move at an inner joint (`split`) or joins two
+ *  moves at a joint that allows it (`free`), only where the flight of the moves it touches and
+ *  kMoveWindow moves on either side gets shorter (the speeds at the ends of that window kept);
+ *  2 evaluations of that window per joint. */
+template <typename Free>
+void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  for (uint32_t k = 1; k < n; ++k) {
+    const bool inner = pl[k].head != k;
+    if (pl[k].seg == pl[k - 1u].seg || (split ? !inner : (inner || !free(k)))) continue;
+    uint32_t a = pl[k - 1u].head, b = pl[pl[k].head].next;
+    for (uint32_t w = 0; w < kMoveWindow && a > 0; ++w) a = pl[a - 1u].head;
+    for (uint32_t w = 0; w < kMoveWindow && b < n; ++w) b = pl[b].next;
+    const double before = window_speeds(ctx, lim, a, b, 1);
+    if (split)
+      split_move(pl, k);
+    else
+      join_moves(pl, k);
+    if (window_speeds(ctx, lim, a, b, 1) < before) continue;
+    if (split)
+      join_moves(pl, k);
+    else
+      split_move(pl, k);
+    window_speeds(ctx, lim, a, b, 1);
+  }
+}
+
+/** Moves: at first one per stretch between boundaries that need zero acceleration (stops,
+ *  tangent kinks above kKinkStop, curvature jumps; a moving start's braking line keeps its own
+ *  move, it must stop from the start speed), then a sweep that splits them at segment joints and
+ *  one that joins them again, each change kept where it shortens the flight. Leaves the boundary
+ *  speeds of the chosen moves (move_speeds). */
 void choose_moves(tdo_traj* ctx, const Limits& lim) {
   const uint32_t n = ctx->n_plateaus;
   Plateau* pl = ctx->plateaus;
@@ -893,31 +944,15 @@ void choose_moves(tdo_traj* ctx, const Limits& lim) {
   const auto free = [&](uint32_t k) {
     return k >= first && ctx->bounds[k].cap > 0.0 && !(pl[k - 1u].near_jump && pl[k].near_jump);
   };
-  uint32_t h = 0;
+  uint32_t head = 0;
   for (uint32_t k = 0; k < n; ++k) {
-    if (k > 0 && !free(k)) h = k;
-    pl[k].head = h;
+    if (k > 0 && !free(k)) head = k;
+    pl[k].head = head;
   }
   for (uint32_t k = n; k > 0; --k) pl[k - 1u].next = k == n || !free(k) ? k : pl[k].next;
-  double best = move_speeds(ctx, lim);
-  for (uint32_t k = 1; k < n; ++k) {
-    if (pl[k].head == k) continue;  // already a move boundary
-    split_move(pl, k);
-    const double t = move_speeds(ctx, lim);
-    if (t < best)
-      best = t;
-    else
-      join_moves(pl, k);
-  }
-  for (uint32_t k = 1; k < n; ++k) {
-    if (pl[k].head != k || !free(k)) continue;
-    join_moves(pl, k);
-    const double t = move_speeds(ctx, lim);
-    if (t < best)
-      best = t;
-    else
-      split_move(pl, k);
-  }
+  move_speeds(ctx, lim);
+  sweep_moves(ctx, lim, 1, free);
+  sweep_moves(ctx, lim, 0, free);
   move_speeds(ctx, lim);
 }
 
@@ -948,11 +983,6 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
       return TDO_ERR_SAMPLE_CAPACITY;
     if (!speed_change(ctx, &c, v1, down.acc, down.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
     if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
-  }
-  if (getenv("TDO_DBG")) {
-    for (uint32_t k = 0; k < n; ++k)
-      fprintf(stderr, "P%u seg%u head%u s0=%.3f len=%.3f k=%.3f dk=%.3f cap=%.2f lvl=%.3f b=%.3f peak=%.3f\n", k, pl[k].seg, pl[k].head, pl[k].s0, pl[k].len, pl[k].kappa, pl[k].dkappa, pl[k].cap, pl[k].level, bd[k].v, pl[k].peak);
-    fprintf(stderr, "end t=%.3f phases=%u\n", c.t, ctx->n_phases);
   }
   if (ctx->n_phases == 0) return TDO_ERR_INFEASIBLE;  // cannot happen for a positive length
   return TDO_OK;
