@@ -51,7 +51,7 @@ constexpr double kNearPi = 1e-6;         // rad; deflections within this of pi a
 constexpr double kDuplicate = 1e-9;      // m; consecutive waypoints closer than this are merged
 constexpr double kMergeRel = 1e-9;       // lines shorter than this (relative, >= 1 m) are dropped
 constexpr double kShrink = 0.6;          // radius factor per clearance shrink step
-constexpr uint32_t kShrinkSteps = 4u;   // halvings of a shrink step (corner_time > 0)
+constexpr uint32_t kShrinkSteps = 4u;    // halvings of a shrink step (corner_time > 0)
 constexpr double kDefaultMinRadius = 0.05;  // of R_min, when the input gives 0
 constexpr double kAbsMinRadius = 1e-6;      // m; no corner radius below this, whatever the input
 constexpr double kClearTolerance = 0.005;   // m; conservativeness allowed to the Bezier check

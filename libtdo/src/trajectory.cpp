@@ -77,7 +77,7 @@ constexpr uint32_t kPiecesPerPlateau =
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
-constexpr uint32_t kMoveWindow = 2;  // moves on either side that judge a change (choose_moves)
+constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
 constexpr int kBisections = 40;        // bisection steps (speed resolution ~ 2^-40 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid

@@ -739,8 +739,9 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
           std::printf("va_optimum_s     %.2f (v/a optimum along this path; flight/optimum %.3f)\n",
                       opt.time_s, ratio);
         if (optimum && opt.time_s > 0.0)
-          std::printf("jerk_bound_s     %.2f (no flight within j_max is faster; bound/optimum %.3f)\n",
-                      opt.jerk_bound_s, opt.jerk_bound_s / opt.time_s);
+          std::printf(
+              "jerk_bound_s     %.2f (no flight within j_max is faster; bound/optimum %.3f)\n",
+              opt.jerk_bound_s, opt.jerk_bound_s / opt.time_s);
       }
     }
     print_search(o, res.search);

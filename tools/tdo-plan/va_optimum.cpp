@@ -33,7 +33,6 @@ double tangential(double a_max, double kappa, double v) {
   return an >= a_max ? 0.0 : std::sqrt(a_max * a_max - an * an);
 }
 
-
 /** s, rest-to-rest time of the forward/backward pass over the points at arclengths s with
  *  curvatures kappa, speed limits lim and total acceleration a_max. */
 double pass_time(const std::vector<double>& s, const std::vector<double>& kappa,
