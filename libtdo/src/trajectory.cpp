@@ -7,14 +7,16 @@
 // constant speed ceiling (the minimum over it of v_max, the segment's v_limit,
 // sqrt(a_lat / kappa) and the lateral-jerk bounds) and its own tangential acceleration and jerk
 // limits, chosen so that the total acceleration (friction circle) and the tangential and normal
-// parts of the jerk (plateau_limits) stay inside a_max and j_max. The
-// boundaries between plateaus are the critical points: the vehicle passes them with zero
-// tangential acceleration at a boundary speed no higher than either neighbour's ceiling (0 at the
-// ends, at stop points and at tangent kinks; lower where the curvature jumps, because the finite
-// differences at dt turn a curvature jump into a jerk of about v^2 dkappa / dt). Forward and
-// backward passes make the boundary speeds mutually reachable with jerk-limited S-curves
-// (closed-form distance, bisection on the reachable speed); inside each plateau the profile is
-// accelerate (S-curve) / cruise / decelerate (S-curve) with the peak found by bisection. The
+// parts of the jerk (plateau_limits, plateau_at: the limits at the speed flown) stay inside
+// a_max and j_max. Consecutive plateaus form moves (choose_moves): each move is flown as
+// accelerate (S-curve) / cruise / decelerate (S-curve), so its acceleration is zero only at its
+// two ends and runs on through the plateau boundaries inside it; it cruises below the lowest
+// ceiling of its plateaus, and each S-curve takes the limits of the plateaus it covers
+// (move_ramp). Moves always end at the path's ends, at stop points, at tangent kinks and at
+// curvature jumps (the finite differences at dt turn a curvature jump into a jerk of about
+// v^2 dkappa / dt, so the speed there is capped); elsewhere they end where that is faster.
+// Forward and backward passes make the move ends' speeds mutually reachable (closed-form S-curve
+// distance, bisection on the reachable speed); the peak of each move is found by bisection. The
 // result is a list of constant-jerk pieces in time, so s(t) is an exact piecewise cubic.
 //
 // Why this passes the finite-difference checks: the second and third differences of the sampled
@@ -78,7 +80,7 @@ constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
 constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
-constexpr int kBisections = 40;        // bisection steps (speed resolution ~ 2^-40 of the range)
+constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^-30 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
@@ -124,9 +126,9 @@ struct Plateau {
   double scale;   // refinement factor, 1 at first
   // Filled per profile build:
   double level;  // m/s, speed ceiling
-  double acc;    // m/s^2, tangential acceleration limit
-  double jerk;   // m/s^3, tangential jerk limit
-  double peak;   // m/s, peak speed of its accelerate/cruise/decelerate profile
+  double acc;    // m/s^2, tangential acceleration limit at the ceiling (moves use plateau_at)
+  double jerk;   // m/s^3, tangential jerk limit at the ceiling
+  double peak;   // m/s, on the first plateau of a move: the move's peak speed
 };
 
 /** The boundary before plateau k (k = n_plateaus is the end of the path). */
