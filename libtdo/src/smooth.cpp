@@ -51,6 +51,7 @@ constexpr double kNearPi = 1e-6;         // rad; deflections within this of pi a
 constexpr double kDuplicate = 1e-9;      // m; consecutive waypoints closer than this are merged
 constexpr double kMergeRel = 1e-9;       // lines shorter than this (relative, >= 1 m) are dropped
 constexpr double kShrink = 0.6;          // radius factor per clearance shrink step
+constexpr uint32_t kShrinkSteps = 4u;    // halvings of a shrink step (corner_time > 0)
 constexpr double kDefaultMinRadius = 0.05;  // of R_min, when the input gives 0
 constexpr double kAbsMinRadius = 1e-6;      // m; no corner radius below this, whatever the input
 constexpr double kClearTolerance = 0.005;   // m; conservativeness allowed to the Bezier check
@@ -460,6 +461,7 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
     k.shrunk = 1u;
   }
   int ok = 0;
+  double r_fail = 0.0;  // m, the last radius that did not keep the clearance (0: none)
   for (uint32_t attempt = 0; attempt <= max_shrinks; ++attempt) {
     if (!(r >= r_floor)) break;
     k.r = r;
@@ -468,8 +470,26 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
       ok = 1;
       break;
     }
+    r_fail = r;
     r *= kShrink;
     k.shrunk = 1u;
+  }
+  // Time-oriented corners (corner_time > 0): a shrunk corner takes the largest radius between the
+  // one that keeps the clearance and the one that did not, to kShrinkSteps halvings of the ratio
+  // (a larger corner changes its curvature more slowly, so it is flown faster).
+  if (ok && r_fail > 0.0 && in.corner_time > 0.0) {
+    double lo = k.r, hi = r_fail;
+    for (uint32_t step = 0; step < kShrinkSteps; ++step) {
+      const double mid = sqrt(lo * hi);
+      k.r = mid;
+      k.t = dmin(k.tau * mid, room);
+      if (corner_clear(in, k, c[i - 1u], margin, checks))
+        lo = mid;
+      else
+        hi = mid;
+    }
+    k.r = lo;
+    k.t = dmin(k.tau * lo, room);
   }
   if (!ok) {
     k.kind = kCornerStop;

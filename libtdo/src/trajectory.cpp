@@ -7,14 +7,16 @@
 // constant speed ceiling (the minimum over it of v_max, the segment's v_limit,
 // sqrt(a_lat / kappa) and the lateral-jerk bounds) and its own tangential acceleration and jerk
 // limits, chosen so that the total acceleration (friction circle) and the tangential and normal
-// parts of the jerk (plateau_limits) stay inside a_max and j_max. The
-// boundaries between plateaus are the critical points: the vehicle passes them with zero
-// tangential acceleration at a boundary speed no higher than either neighbour's ceiling (0 at the
-// ends, at stop points and at tangent kinks; lower where the curvature jumps, because the finite
-// differences at dt turn a curvature jump into a jerk of about v^2 dkappa / dt). Forward and
-// backward passes make the boundary speeds mutually reachable with jerk-limited S-curves
-// (closed-form distance, bisection on the reachable speed); inside each plateau the profile is
-// accelerate (S-curve) / cruise / decelerate (S-curve) with the peak found by bisection. The
+// parts of the jerk (plateau_limits, plateau_at: the limits at the speed flown) stay inside
+// a_max and j_max. Consecutive plateaus form moves (choose_moves): each move is flown as
+// accelerate (S-curve) / cruise / decelerate (S-curve), so its acceleration is zero only at its
+// two ends and runs on through the plateau boundaries inside it; it cruises below the lowest
+// ceiling of its plateaus, and each S-curve takes the limits of the plateaus it covers
+// (move_ramp). Moves always end at the path's ends, at stop points, at tangent kinks and at
+// curvature jumps (the finite differences at dt turn a curvature jump into a jerk of about
+// v^2 dkappa / dt, so the speed there is capped); elsewhere they end where that is faster.
+// Forward and backward passes make the move ends' speeds mutually reachable (closed-form S-curve
+// distance, bisection on the reachable speed); the peak of each move is found by bisection. The
 // result is a list of constant-jerk pieces in time, so s(t) is an exact piecewise cubic.
 //
 // Why this passes the finite-difference checks: the second and third differences of the sampled
@@ -55,14 +57,15 @@ constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre
 constexpr double kClearanceEvalMargin = 0.05;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
-constexpr double kLineShare = 0.95;     // tangential jerk on straight plateaus
+constexpr double kLineShare = 0.99;     // tangential jerk on straight plateaus
 constexpr double kLineAcc = 0.99;       // tangential acceleration on straight plateaus
-constexpr double kAccCircle = 0.98;     // total acceleration on curved plateaus (friction circle)
+constexpr double kAccCircle = 0.99;     // total acceleration on curved plateaus (friction circle)
 constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
 constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
-constexpr double kJerkGeo = 0.92;       // of each part: the curvature terms at the ceiling
-constexpr double kCurveAccLat = 0.9;    // lateral acceleration at the ceiling (of a_max)
-constexpr double kCurveJerk = 0.97;     // total jerk on curved plateaus
+constexpr double kShareFloor = 0.35;    // least share of either part (jerk_shares)
+constexpr double kJerkGeo = 0.98;       // of each part: the curvature terms at the ceiling
+constexpr double kCurveAccLat = 0.96;   // lateral acceleration at the ceiling (of a_max)
+constexpr double kCurveJerk = 0.99;     // total jerk on curved plateaus
 constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
 constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
 constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
@@ -76,7 +79,8 @@ constexpr uint32_t kPiecesPerPlateau =
 constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
 // Profile.
-constexpr int kBisections = 64;        // bisection steps (speed resolution ~ 2^-64 of the range)
+constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
+constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^-30 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
@@ -110,6 +114,7 @@ inline bool positive(double v) { return isfinite(v) && v > 0.0; }
  *  ceiling and tangential limits. */
 struct Plateau {
   uint32_t seg;   // index of the path segment
+  uint32_t head;  // first plateau of its move (filled per profile build)
   double off;     // m, arclength inside the segment where the plateau starts
   double s0;      // m, path arclength at its start
   double len;     // m
@@ -117,12 +122,13 @@ struct Plateau {
   double dkappa;  // 1/m^2, curvature-rate bound
   double cap;     // m/s, min(v_max, v_limit)
   int near_jump;  // 1 when a boundary of it has a curvature jump (smaller jerk budget)
+  uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
   // Filled per profile build:
   double level;  // m/s, speed ceiling
-  double acc;    // m/s^2, tangential acceleration limit
-  double jerk;   // m/s^3, tangential jerk limit
-  double peak;   // m/s, peak speed of its accelerate/cruise/decelerate profile
+  double acc;    // m/s^2, tangential acceleration limit at the ceiling (moves use plateau_at)
+  double jerk;   // m/s^3, tangential jerk limit at the ceiling
+  double peak;   // m/s, on the first plateau of a move: the move's peak speed
 };
 
 /** The boundary before plateau k (k = n_plateaus is the end of the path). */
@@ -198,22 +204,6 @@ double scurve_dist(double a, double b, double acc, double jerk) {
   const double lo = dmin(a, b), hi = dmax(a, b);
   const SCurve c = scurve(hi - lo, acc, jerk);
   return 0.5 * (lo + hi) * (2.0 * c.tj + c.ta);
-}
-
-/** m/s, highest speed in [v0, cap] reachable from v0 within distance d. */
-double reach(double v0, double d, double cap, double acc, double jerk) {
-  if (!(cap > v0)) return cap;
-  if (scurve_dist(v0, cap, acc, jerk) <= d) return cap;
-  double lo = v0, hi = cap;  // lo always reachable
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (scurve_dist(v0, mid, acc, jerk) <= d)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -628,6 +618,43 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Profile (per refinement round).
 
+/** Shares of the jerk budget for its tangential and normal parts on a curved plateau (squares
+ *  summing to 1): along the curvature terms kappa^2 v^3 and dkappa/ds v^3 at any one speed, so
+ *  the ceiling uses the whole budget, but neither below kShareFloor, which leaves room for
+ *  speed changes. */
+void jerk_shares(const Plateau& p, double* t, double* nn) {
+  const double wt = p.kappa * p.kappa, wn = p.dkappa, w = sqrt(wt * wt + wn * wn);
+  double a = w > 0.0 ? dmax(kShareFloor, wt / w) : kJerkT;
+  double b = w > 0.0 ? dmax(kShareFloor, wn / w) : kJerkN;
+  const double r = sqrt(a * a + b * b);
+  *t = a / r;
+  *nn = b / r;
+}
+
+/** Tangential acceleration and jerk limits of a plateau for speeds up to v (<= its ceiling):
+ *  what the budgets leave at v (plateau_limits), so a move whose peak is below the ceiling may
+ *  change its speed faster. Both fall as v grows, so the limits at a move's peak hold at every
+ *  speed of the move. */
+void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, double* jerk) {
+  const double jb =
+      (p.near_jump ? kJumpJerk : (p.kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
+  if (!(p.kappa > 0.0)) {
+    *acc = kLineAcc * lim.a_max * p.scale;
+    *jerk = jb * p.scale;
+    return;
+  }
+  const double k = p.kappa, dk = p.dkappa;
+  double st, sn;
+  jerk_shares(p, &st, &sn);
+  const double v3 = v * v * v;
+  const double lat = k * v * v;
+  const double circle = kAccCircle * lim.a_max;
+  *jerk = (st * jb - k * k * v3) * p.scale;
+  double a = dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat)));
+  if (v > 0.0) a = dmin(a, (sn * jb - dk * v3) / (3.0 * k * v));
+  *acc = a * p.scale;
+}
+
 /** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale.
  *
  *  On a planar curve the jerk is (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N, so its
@@ -639,27 +666,18 @@ void plateau_limits(Plateau* p, const Limits& lim) {
   const double jb =
       (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   double level = p->cap;
-  if (!(p->kappa > 0.0)) {
-    p->level = level * p->scale;
-    p->acc = kLineAcc * lim.a_max * p->scale;
-    p->jerk = jb * p->scale;
-    return;
+  if (p->kappa > 0.0) {
+    const double k = p->kappa, dk = p->dkappa;
+    // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
+    level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
+    // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
+    double st, sn;
+    jerk_shares(*p, &st, &sn);
+    level = dmin(level, cbrt(kJerkGeo * st * jb / (k * k)));
+    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * sn * jb / dk));
   }
-  const double k = p->kappa, dk = p->dkappa;
-  // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
-  level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
-  // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
-  level = dmin(level, cbrt(kJerkGeo * kJerkT * jb / (k * k)));
-  if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * kJerkN * jb / dk));
-  level *= p->scale;
-  const double v3 = level * level * level;
-  const double lat = k * level * level;
-  const double circle = kAccCircle * lim.a_max;
-  p->level = level;
-  p->jerk = (kJerkT * jb - k * k * v3) * p->scale;
-  p->acc = dmin(dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat))),
-                (kJerkN * jb - dk * v3) / (3.0 * k * level)) *
-           p->scale;
+  p->level = level * p->scale;
+  plateau_at(*p, lim, p->level, &p->acc, &p->jerk);
 }
 
 /** Appends a phase; false when the profile capacity is exhausted. */
@@ -706,66 +724,266 @@ bool align_stop(tdo_traj* ctx, Cursor* c, double dt) {
   return advance(ctx, c, dwell, 0.0);
 }
 
+/** A move: the plateaus [k, next) flown as one accelerate / cruise / decelerate profile with zero
+ *  acceleration only at its ends, so the acceleration runs on through the boundaries inside it.
+ *  Its cruise speed stays under every plateau's ceiling; each of its two speed changes has the
+ *  lowest acceleration and jerk limits of the plateaus it covers, at its top speed (move_ramp). */
+struct Ramp {
+  double acc;   // m/s^2, tangential acceleration limit
+  double jerk;  // m/s^3, tangential jerk limit
+  double dist;  // m, length of the S-curve
+};
+
+/** m/s, the ceiling of the move starting at plateau k: the lowest of its plateaus' and of its
+ *  inner boundaries' caps. */
+double move_level(const tdo_traj* ctx, uint32_t k) {
+  const Plateau* pl = ctx->plateaus;
+  double level = HUGE_VAL;
+  for (uint32_t i = k; i < pl[k].next; ++i) {
+    level = dmin(level, pl[i].level);
+    // The cap of an inner boundary (a tiny tangent kink), scaled with its plateaus.
+    if (i > k) level = dmin(level, ctx->bounds[i].cap * dmin(pl[i - 1u].scale, pl[i].scale));
+  }
+  return level;
+}
+
+/** m, length of the move starting at plateau k. */
+double move_len(const tdo_traj* ctx, uint32_t k) {
+  const uint32_t e = ctx->plateaus[k].next;
+  return e < ctx->n_plateaus ? ctx->plateaus[e].s0 - ctx->plateaus[k].s0
+                             : ctx->total - ctx->plateaus[k].s0;
+}
+
+/** The S-curve between speeds a and b at the start (from_end 0) or at the end (1) of the move
+ *  starting at plateau k: plateaus are taken in from that end until they cover its length under
+ *  their limits at max(a, b) (the length only grows as plateaus join; at most the move's). A
+ *  length beyond the move's means the change does not fit. */
+Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, double b,
+               int from_end) {
+  const Plateau* pl = ctx->plateaus;
+  const uint32_t e = pl[k].next;
+  const double top = dmax(a, b);
+  Ramp r{HUGE_VAL, HUGE_VAL, 0.0};
+  double covered = 0.0;
+  for (uint32_t q = 0; q < e - k; ++q) {
+    const Plateau& p = pl[from_end ? e - 1u - q : k + q];
+    double acc, jerk;
+    plateau_at(p, lim, dmin(top, p.level), &acc, &jerk);
+    r.acc = dmin(r.acc, acc);
+    r.jerk = dmin(r.jerk, jerk);
+    covered += p.len;
+    r.dist = scurve_dist(a, b, r.acc, r.jerk);
+    if (r.dist <= covered) break;
+  }
+  return r;
+}
+
+/** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
+ *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
+ *  (from_end 1). The length grows with the speed, so bisection finds it. */
+double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
+  const double cap = move_level(ctx, k), len = move_len(ctx, k);
+  if (!(cap > v0)) return cap;
+  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
+  if (fits(cap)) return cap;
+  double lo = v0, hi = cap;  // lo always reachable
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (fits(mid))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
+ *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
+double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
+  const double len = move_len(ctx, k);
+  const auto fits = [&](double vp) {
+    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist <= len;
+  };
+  double lo = dmax(v0, v1), hi = move_level(ctx, k);
+  if (fits(hi)) return hi;
+  for (int i = 0; i < kBisections; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (fits(mid))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/** s, duration of an S-curve between speeds a and b. */
+double scurve_time(double a, double b, double acc, double jerk) {
+  const SCurve c = scurve(fabs(b - a), acc, jerk);
+  return 2.0 * c.tj + c.ta;
+}
+
+/** m/s, the highest speed boundary k may have: its cap, scaled with the neighbouring plateaus,
+ *  and the ceilings of the moves on either side. */
+double boundary_top(const tdo_traj* ctx, uint32_t k) {
+  const Plateau* pl = ctx->plateaus;
+  double scale = 1.0, v = HUGE_VAL;
+  if (k > 0) {
+    scale = dmin(scale, pl[k - 1].scale);
+    v = dmin(v, move_level(ctx, pl[k - 1].head));
+  }
+  if (k < ctx->n_plateaus) {
+    scale = dmin(scale, pl[k].scale);
+    v = dmin(v, move_level(ctx, pl[k].head));
+  }
+  return dmin(v, ctx->bounds[k].cap * scale);
+}
+
+/** s, flight time of the move starting at plateau k between its boundary speeds. */
+double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k) {
+  const Boundary* bd = ctx->bounds;
+  const double v0 = bd[k].v, v1 = bd[ctx->plateaus[k].next].v;
+  const double vp = move_peak(ctx, lim, k, v0, v1);
+  const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
+  const double len = move_len(ctx, k), ramps = up.dist + down.dist;
+  double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
+  if (len > ramps && vp > 0.0) t += (len - ramps) / vp;
+  return t;
+}
+
+/** Speeds of the boundaries strictly between the moves from plateau h to plateau e (h and e are
+ *  move boundaries) by forward and backward passes: every pair of neighbouring move ends is
+ *  joined by one S-curve inside the move (the backward pass only lowers speeds that exceed what
+ *  the next one allows, which keeps the forward condition). With `keep` the speeds at h and e
+ *  stay and the result is HUGE_VAL when they do not fit; otherwise they are lowered as needed.
+ *  Returns the flight time of those moves. */
+double window_speeds(tdo_traj* ctx, const Limits& lim, uint32_t h, uint32_t e, int keep) {
+  Plateau* pl = ctx->plateaus;
+  Boundary* bd = ctx->bounds;
+  for (uint32_t k = pl[h].next; k < e; k = pl[k].next) bd[k].v = boundary_top(ctx, k);
+  if (keep && (bd[h].v > boundary_top(ctx, h) || bd[e].v > boundary_top(ctx, e))) return HUGE_VAL;
+  for (uint32_t k = h; k < e; k = pl[k].next) {
+    const uint32_t x = pl[k].next;
+    const double r = move_reach(ctx, lim, k, bd[k].v, 0);
+    if (keep && x == e && bd[x].v > r) return HUGE_VAL;
+    bd[x].v = dmin(bd[x].v, r);
+  }
+  for (uint32_t x = e; x > h;) {
+    const uint32_t k = pl[x - 1].head;
+    const double r = move_reach(ctx, lim, k, bd[x].v, 1);
+    if (keep && k == h && bd[k].v > r) return HUGE_VAL;
+    bd[k].v = dmin(bd[k].v, r);
+    x = k;
+  }
+  double total = 0.0;
+  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k);
+  return total;
+}
+
+/** Boundary speeds of all moves (window_speeds over the whole path, from rest or the entry
+ *  speed to rest); returns the flight time. */
+double move_speeds(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  ctx->bounds[0].v = boundary_top(ctx, 0);
+  ctx->bounds[n].v = boundary_top(ctx, n);
+  return window_speeds(ctx, lim, 0, n, 0);
+}
+
+/** Splits the move holding boundary k (inside it) at k; returns its first plateau. */
+uint32_t split_move(Plateau* pl, uint32_t k) {
+  const uint32_t h = pl[k].head, e = pl[h].next;
+  pl[h].next = k;
+  pl[k].next = e;
+  for (uint32_t i = k; i < e; ++i) pl[i].head = k;
+  return h;
+}
+
+/** Joins the move ending at boundary k with the one starting there. */
+void join_moves(Plateau* pl, uint32_t k) {
+  const uint32_t h = pl[k - 1u].head, e = pl[k].next;
+  pl[h].next = e;
+  for (uint32_t i = k; i < e; ++i) pl[i].head = h;
+}
+
+/** One sweep over the segment joints: splits a move at an inner joint (`split`) or joins two
+ *  moves at a joint that allows it (`free`), only where the flight of the moves it touches and
+ *  kMoveWindow moves on either side gets shorter (the speeds at the ends of that window kept);
+ *  2 evaluations of that window per joint. */
+template <typename Free>
+void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  for (uint32_t k = 1; k < n; ++k) {
+    const bool inner = pl[k].head != k;
+    if (pl[k].seg == pl[k - 1u].seg || (split ? !inner : (inner || !free(k)))) continue;
+    uint32_t a = pl[k - 1u].head, b = pl[pl[k].head].next;
+    for (uint32_t w = 0; w < kMoveWindow && a > 0; ++w) a = pl[a - 1u].head;
+    for (uint32_t w = 0; w < kMoveWindow && b < n; ++w) b = pl[b].next;
+    const double before = window_speeds(ctx, lim, a, b, 1);
+    if (split)
+      split_move(pl, k);
+    else
+      join_moves(pl, k);
+    if (window_speeds(ctx, lim, a, b, 1) < before) continue;
+    if (split)
+      join_moves(pl, k);
+    else
+      split_move(pl, k);
+    window_speeds(ctx, lim, a, b, 1);
+  }
+}
+
+/** Moves: at first one per stretch between boundaries that need zero acceleration (stops,
+ *  tangent kinks above kKinkStop, curvature jumps; a moving start's braking line keeps its own
+ *  move, it must stop from the start speed), then a sweep that splits them at segment joints and
+ *  one that joins them again, each change kept where it shortens the flight. Leaves the boundary
+ *  speeds of the chosen moves (move_speeds). */
+void choose_moves(tdo_traj* ctx, const Limits& lim) {
+  const uint32_t n = ctx->n_plateaus;
+  Plateau* pl = ctx->plateaus;
+  const uint32_t first = ctx->moving && ctx->entry.speed > 0.0 ? 2u : 1u;
+  const auto free = [&](uint32_t k) {
+    return k >= first && ctx->bounds[k].cap > 0.0 && !(pl[k - 1u].near_jump && pl[k].near_jump);
+  };
+  uint32_t head = 0;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (k > 0 && !free(k)) head = k;
+    pl[k].head = head;
+  }
+  for (uint32_t k = n; k > 0; --k) pl[k - 1u].next = k == n || !free(k) ? k : pl[k].next;
+  move_speeds(ctx, lim);
+  sweep_moves(ctx, lim, 1, free);
+  sweep_moves(ctx, lim, 0, free);
+  move_speeds(ctx, lim);
+}
+
 /** Builds the constant-jerk pieces. TDO_ERR_SAMPLE_CAPACITY when they do not fit. */
 tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   const uint32_t n = ctx->n_plateaus;
   Plateau* pl = ctx->plateaus;
   Boundary* bd = ctx->bounds;
   for (uint32_t k = 0; k < n; ++k) plateau_limits(&pl[k], lim);
-  // Boundary speeds: caps, scaled with the neighbours, no higher than either ceiling.
-  for (uint32_t k = 0; k <= n; ++k) {
-    double scale = 1.0, v = HUGE_VAL;
-    if (k > 0) {
-      scale = dmin(scale, pl[k - 1].scale);
-      v = dmin(v, pl[k - 1].level);
-    }
-    if (k < n) {
-      scale = dmin(scale, pl[k].scale);
-      v = dmin(v, pl[k].level);
-    }
-    bd[k].v = dmin(v, bd[k].cap * scale);
-  }
-  // Forward then backward pass: every pair of neighbouring boundary speeds is joined by one
-  // S-curve inside the plateau between them (the backward pass only lowers speeds that exceed
-  // what the next one allows, which keeps the forward condition).
-  for (uint32_t k = 0; k < n; ++k)
-    bd[k + 1].v = dmin(bd[k + 1].v, reach(bd[k].v, pl[k].len, pl[k].level, pl[k].acc, pl[k].jerk));
-  for (uint32_t k = n; k > 0; --k)
-    bd[k - 1].v = dmin(
-        bd[k - 1].v, reach(bd[k].v, pl[k - 1].len, pl[k - 1].level, pl[k - 1].acc, pl[k - 1].jerk));
+  choose_moves(ctx, lim);
   // A moving start keeps its speed: the braking line (tdo_traj_entry.brake) lets every later
   // boundary be reached from it, so a lower speed here means the path broke that promise.
   if (ctx->moving && n > 0 && !(bd[0].v >= ctx->entry.speed)) return TDO_ERR_INFEASIBLE;
   ctx->n_phases = 0;
   Cursor c{ctx->moving ? ctx->entry.ramp : 0.0, 0.0, 0.0, 0.0};
-  for (uint32_t k = 0; k < n; ++k) {
+  for (uint32_t k = 0; k < n; k = pl[k].next) {
     Plateau& p = pl[k];
-    const double v0 = bd[k].v, v1 = bd[k + 1].v;
-    const auto need = [&](double vp) {
-      return scurve_dist(v0, vp, p.acc, p.jerk) + scurve_dist(vp, v1, p.acc, p.jerk);
-    };
-    double lo = dmax(v0, v1), hi = p.level;
-    if (need(hi) <= p.len) {
-      lo = hi;
-    } else {
-      for (int i = 0; i < kBisections; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        if (!(mid > lo && mid < hi)) break;
-        if (need(mid) <= p.len)
-          lo = mid;
-        else
-          hi = mid;
-      }
-    }
-    p.peak = lo;
-    c.s = p.s0;  // anchor every plateau at its exact start
+    const double v0 = bd[k].v, v1 = bd[p.next].v;
+    p.peak = move_peak(ctx, lim, k, v0, v1);
+    const Ramp up = move_ramp(ctx, lim, k, v0, p.peak, 0);
+    const Ramp down = move_ramp(ctx, lim, k, p.peak, v1, 1);
+    c.s = p.s0;  // anchor every move at its exact start
     c.v = v0;
     c.a = 0.0;
-    if (!speed_change(ctx, &c, p.peak, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
-    const double cruise = p.len - need(p.peak);
+    if (!speed_change(ctx, &c, p.peak, up.acc, up.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    const double cruise = move_len(ctx, k) - up.dist - down.dist;
     if (cruise > 0.0 && p.peak > 0.0 && !advance(ctx, &c, cruise / p.peak, 0.0))
       return TDO_ERR_SAMPLE_CAPACITY;
-    if (!speed_change(ctx, &c, v1, p.acc, p.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
+    if (!speed_change(ctx, &c, v1, down.acc, down.jerk)) return TDO_ERR_SAMPLE_CAPACITY;
     if (!(v1 > 0.0) && !align_stop(ctx, &c, lim.dt)) return TDO_ERR_SAMPLE_CAPACITY;
   }
   if (ctx->n_phases == 0) return TDO_ERR_INFEASIBLE;  // cannot happen for a positive length

@@ -602,7 +602,7 @@ tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) 
   std::vector<tdo_vec3> pts;
   pts.reserve(res.n_samples);
   for (uint32_t i = 0; i < res.n_samples; ++i) pts.push_back(res.samples[i].p);
-  return tdo_tools::va_optimum(pts, o.params.v_max, o.params.a_max);
+  return tdo_tools::va_optimum(pts, o.params.v_max, o.params.a_max, 0.02, o.params.j_max);
 }
 
 /** One query: plan, print JSON or a summary. */
@@ -698,6 +698,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     if (optimum)
       j["va_optimum"] = {{"time_s", opt.time_s},
                          {"ratio", ratio},
+                         {"jerk_bound_s", opt.jerk_bound_s},
                          {"length_m", opt.length_m},
                          {"refinements", res.refinements}};
     if (st == TDO_OK || planned) j["search_cost"] = res.search.cost;
@@ -734,6 +735,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
         if (optimum)
           std::printf("va_optimum_s     %.2f (v/a optimum along this path; flight/optimum %.3f)\n",
                       opt.time_s, ratio);
+        if (optimum && opt.time_s > 0.0)
+          std::printf(
+              "jerk_bound_s     %.2f (no flight within j_max is faster; bound/optimum %.3f)\n",
+              opt.jerk_bound_s, opt.jerk_bound_s / opt.time_s);
       }
     }
     print_search(o, res.search);

@@ -33,6 +33,7 @@ def row(name, j):
     o = j.get("va_optimum", {})
     return {"name": name, "status": j["status"], "flight": m.get("flight_time_s", float("nan")),
             "opt": o.get("time_s", float("nan")), "ratio": o.get("ratio", float("nan")),
+            "bound": o.get("jerk_bound_s", float("nan")),
             "length": m.get("length_m", float("nan")), "turns": m.get("turns", -1),
             "viol": f.get("violations_total", -1), "energy": m.get("energy", float("nan")),
             "smooth": m.get("smoothness", float("nan")),
@@ -40,18 +41,21 @@ def row(name, j):
 
 
 def table(rows):
-    print("| query | status | flight s | v/a optimum s | ratio | length m | turns | FD violations "
-          "| energy m^2/s^3 | smoothness |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("| query | status | flight s | v/a optimum s | ratio | jerk bound s | bound / optimum "
+          "| length m | turns | FD violations | energy m^2/s^3 | smoothness |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         print(f"| {r['name']} | {r['status']} | {r['flight']:.2f} | {r['opt']:.2f} | "
-              f"{r['ratio']:.3f} | {r['length']:.2f} | {r['turns']} | {r['viol']} | "
+              f"{r['ratio']:.3f} | {r['bound']:.2f} | {r['bound'] / r['opt']:.3f} | "
+              f"{r['length']:.2f} | {r['turns']} | {r['viol']} | "
               f"{r['energy']:.2f} | {r['smooth']:.3f} |")
     ok = [r for r in rows if r["status"] == "ok"]
     ratios = [r["ratio"] for r in ok] or [float("nan")]
     print()
+    bounds = [r["bound"] / r["opt"] for r in ok] or [float("nan")]
     print(f"{len(ok)}/{len(rows)} ok; ratio median {statistics.median(ratios):.3f}, "
-          f"worst {max(ratios):.3f}; total flight {sum(r['flight'] for r in ok):.2f} s "
+          f"worst {max(ratios):.3f}; jerk bound / optimum median "
+          f"{statistics.median(bounds):.3f}; total flight {sum(r['flight'] for r in ok):.2f} s "
           f"(optimum {sum(r['opt'] for r in ok):.2f} s); total length "
           f"{sum(r['length'] for r in ok):.2f} m; turns {sum(r['turns'] for r in ok)}; "
           f"FD violations {sum(max(r['viol'], 0) for r in rows)}; refinement rounds "
