@@ -236,15 +236,8 @@ void PlannerNode::on_map_update(const void* data, std::size_t size) {
 }
 
 void PlannerNode::request_map(const char* why) {
-  tdo::map_request_t r{};
-  r.utime = wall_utime();
-  r.seq = map_request_seq_++;
-  r.program = "tdo-planner";
-  r.vehicle_id = cfg_.vehicle_id;
-  r.map_id = map_id();
-  r.last_seq = updates_.last_seq();
-  r.reason = why;
-  bus_->publish(cfg_.map_request_channel, r);
+  bus_->publish(cfg_.map_request_channel,
+                make_map_request("tdo-planner", cfg_.vehicle_id, updates_, why, &map_request_seq_));
   ++counters_.map_requests;
   next_map_request_ = std::chrono::steady_clock::now() + steady_seconds(1.0);
 }
