@@ -22,6 +22,14 @@ if(TARGET tdo::sim_node)
   tdo_set_warnings(tdo_chain_tests)
   gtest_discover_tests(tdo_chain_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
                        PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
+  # Replanning: a wall published across the route mid-flight (test_replan.cpp).
+  add_executable(tdo_replan_tests test_replan.cpp)
+  target_link_libraries(tdo_replan_tests PRIVATE tdo::planner_node tdo::avoid_node tdo::sim_node
+                                                 GTest::gtest_main)
+  target_compile_definitions(tdo_replan_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
+  tdo_set_warnings(tdo_replan_tests)
+  gtest_discover_tests(tdo_replan_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                       PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
 endif()
 
 # The programs: --help, a bad option, a bounded memq:// run, a bad URL, SIGINT/SIGTERM.
