@@ -52,6 +52,14 @@ struct tdo_apf {
   uint32_t steps;
   int arrived_reported;
   int braked;  // the safety filter changed the previous step's command
+  // Staged next plan (tdo_apf_switch; arrays only with cfg.switching).
+  tdo_sample* next_samples;
+  double* next_arc;
+  int next_ready;
+  uint32_t next_n;
+  double next_dt;      // s
+  double next_switch;  // s, active plan's trajectory time aligned with the next plan's 0
+  const tdo_grid* next_grid;
 };
 
 namespace {
@@ -587,9 +595,11 @@ extern "C" size_t tdo_apf_footprint(const tdo_apf_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_movers == 0u ||
       cfg->nearest_window == 0u || cfg->max_samples > 0x7FFFFFFFu)
     return 0;
+  if (cfg->switching > 1u) return 0;
   const size_t ns = cfg->max_samples;
-  return tdo_arena_round(sizeof(tdo_apf)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
-         tdo_arena_round(ns * sizeof(double));
+  const size_t plans = cfg->switching != 0u ? 2u : 1u;
+  return tdo_arena_round(sizeof(tdo_apf)) +
+         plans * (tdo_arena_round(ns * sizeof(tdo_sample)) + tdo_arena_round(ns * sizeof(double)));
 }
 
 extern "C" tdo_status tdo_apf_init(tdo_apf** out, tdo_arena* arena, const tdo_apf_config* cfg) {
@@ -601,9 +611,47 @@ extern "C" tdo_status tdo_apf_init(tdo_apf** out, tdo_arena* arena, const tdo_ap
   c->samples = arena_array<tdo_sample>(arena, cfg->max_samples);
   c->arc = arena_array<double>(arena, cfg->max_samples);
   if (c->samples == nullptr || c->arc == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  c->next_samples = nullptr;
+  c->next_arc = nullptr;
+  c->next_ready = 0;
+  if (cfg->switching != 0u) {
+    c->next_samples = arena_array<tdo_sample>(arena, cfg->max_samples);
+    c->next_arc = arena_array<double>(arena, cfg->max_samples);
+    if (c->next_samples == nullptr || c->next_arc == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+  }
   *out = c;
   return TDO_OK;
 }
+
+namespace {
+
+// Samples uniform in time from 0 (1e-6 relative) with finite p, v, a; *dt their period (0 for
+// fewer than 2 samples).
+bool samples_ok(const tdo_sample* samples, uint32_t n, double* dt) {
+  *dt = 0.0;
+  if (n < 2u) return true;
+  const double sdt = samples[1].t - samples[0].t;
+  if (!(fabs(samples[0].t) <= 1e-9) || !positive(sdt)) return false;
+  for (uint32_t i = 0; i < n; ++i) {
+    const tdo_sample& s = samples[i];
+    const double expect = static_cast<double>(i) * sdt;
+    if (!isfinite(s.t) || fabs(s.t - expect) > 1e-6 * (expect > 1.0 ? expect : 1.0) ||
+        !finite3(s.p) || !finite3(s.v) || !finite3(s.a))
+      return false;
+  }
+  *dt = sdt;
+  return true;
+}
+
+// Copy n samples and their arclengths along the polyline.
+void copy_samples(const tdo_sample* src, uint32_t n, tdo_sample* dst, double* arc) {
+  if (n == 0u) return;
+  memcpy(dst, src, static_cast<size_t>(n) * sizeof(tdo_sample));
+  arc[0] = 0.0;
+  for (uint32_t i = 1; i < n; ++i) arc[i] = arc[i - 1u] + norm(sub(dst[i].p, dst[i - 1u].p));
+}
+
+}  // namespace
 
 extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
                                     const tdo_apf_task* task) {
@@ -622,28 +670,12 @@ extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
     return TDO_ERR_MAP_NOT_READY;
   const uint32_t n = task->n_samples;
   double sdt = 0.0;
-  if (n >= 2u) {
-    sdt = task->samples[1].t - task->samples[0].t;
-    if (!(fabs(task->samples[0].t) <= 1e-9) || !positive(sdt)) return TDO_ERR_INVALID_ARGUMENT;
-    for (uint32_t i = 0; i < n; ++i) {
-      const tdo_sample& s = task->samples[i];
-      const double expect = static_cast<double>(i) * sdt;
-      if (!isfinite(s.t) || fabs(s.t - expect) > 1e-6 * (expect > 1.0 ? expect : 1.0) ||
-          !finite3(s.p) || !finite3(s.v) || !finite3(s.a))
-        return TDO_ERR_INVALID_ARGUMENT;
-    }
-  }
-  if (n > 0u) memcpy(c->samples, task->samples, static_cast<size_t>(n) * sizeof(tdo_sample));
+  if (!samples_ok(task->samples, n, &sdt)) return TDO_ERR_INVALID_ARGUMENT;
+  copy_samples(task->samples, n, c->samples, c->arc);
   c->n = n;
   c->sample_dt = sdt;
-  if (n >= 2u) {
-    c->arc[0] = 0.0;
-    for (uint32_t i = 1; i < n; ++i)
-      c->arc[i] = c->arc[i - 1u] + norm(sub(c->samples[i].p, c->samples[i - 1u].p));
-    c->t_end = static_cast<double>(n - 1u) * sdt;
-  } else {
-    c->t_end = 0.0;
-  }
+  c->t_end = n >= 2u ? static_cast<double>(n - 1u) * sdt : 0.0;
+  c->next_ready = 0;
   c->prm = *prm;
   c->goal = eapf ? c->samples[n - 1u].p : task->goal;
   c->grid = task->grid;
@@ -672,6 +704,26 @@ extern "C" tdo_status tdo_apf_reset(tdo_apf* c, const tdo_apf_params* prm,
   c->arrived_reported = 0;
   c->braked = 0;
   c->ready = 1;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_apf_switch(tdo_apf* c, const tdo_apf_task* task, double t_switch) {
+  if (c == nullptr || task == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready || c->cfg.switching == 0u) return TDO_ERR_NOT_CONFIGURED;
+  if (c->prm.kind != TDO_FOLLOWER_EAPF || !non_negative(t_switch) || task->samples == nullptr ||
+      task->n_samples < 2u)
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (task->n_samples > c->cfg.max_samples) return TDO_ERR_SAMPLE_CAPACITY;
+  if (task->grid != nullptr && !(tdo_grid_clearance(task->grid) >= 0.0))
+    return TDO_ERR_MAP_NOT_READY;
+  double sdt = 0.0;
+  if (!samples_ok(task->samples, task->n_samples, &sdt)) return TDO_ERR_INVALID_ARGUMENT;
+  copy_samples(task->samples, task->n_samples, c->next_samples, c->next_arc);
+  c->next_n = task->n_samples;
+  c->next_dt = sdt;
+  c->next_switch = t_switch;
+  c->next_grid = task->grid;
+  c->next_ready = 1;
   return TDO_OK;
 }
 
@@ -725,6 +777,36 @@ uint32_t advance_clock(tdo_apf* c, const tdo_vehicle_state* state, bool eapf) {
   }
   c->prev_t = state->t;
   return events;
+}
+
+// The staged plan takes over once the reference time reaches its switch time (or the active
+// plan's end): the clock moves to the new plan at clock - t_switch. Returns the step's events.
+uint32_t take_staged_plan(tdo_apf* c) {
+  if (!c->next_ready) return 0u;
+  const double at = c->next_switch < c->t_end ? c->next_switch : c->t_end;
+  if (c->tau + c->prm.lookahead < at && c->tau < c->t_end) return 0u;
+  tdo_sample* s = c->samples;
+  double* arc = c->arc;
+  c->samples = c->next_samples;
+  c->arc = c->next_arc;
+  c->next_samples = s;
+  c->next_arc = arc;
+  c->next_ready = 0;
+  c->n = c->next_n;
+  c->sample_dt = c->next_dt;
+  c->t_end = static_cast<double>(c->n - 1u) * c->sample_dt;
+  c->goal = c->samples[c->n - 1u].p;
+  c->grid = c->next_grid;
+  c->tau -= c->next_switch;
+  if (c->tau > c->t_end) c->tau = c->t_end;
+  double seg = c->tau > 0.0 ? floor(c->tau / c->sample_dt) : 0.0;
+  if (seg > static_cast<double>(c->n - 2u)) seg = static_cast<double>(c->n - 2u);
+  c->near_seg = static_cast<uint32_t>(seg);
+  c->near_t = seg * c->sample_dt;
+  c->mode = TDO_APF_MODE_TRACK;
+  c->fails_in_row = 0u;
+  c->arrived_reported = 0;
+  return TDO_APF_EVENT_SWITCHED;
 }
 
 // Opens a new progress window of the local-minimum detector at the vehicle's state.
@@ -864,6 +946,7 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   memset(out, 0, sizeof(*out));
 
   uint32_t events = advance_clock(c, state, eapf);
+  events |= take_staged_plan(c);
   const double ref_time = ref_time_of(c);
 
   // Field.
@@ -877,6 +960,7 @@ extern "C" tdo_status tdo_apf_run(tdo_apf* c, const tdo_apf_input* in, tdo_apf_o
   const double goal_dist = norm(sub(state->p, c->goal));
   if (goal_dist < c->best_goal) c->best_goal = goal_dist;
   const double progress = eapf ? near.arc : c->goal_d0 - c->best_goal;
+  if ((events & TDO_APF_EVENT_SWITCHED) != 0u) restart_window(c, state, progress);
   if (terms->mover_pred_gap < prm.d_0) events |= TDO_APF_EVENT_REPULSED;
   c->win_f = add(c->win_f, terms->f_total);
   ++c->win_n;

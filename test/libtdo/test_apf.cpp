@@ -26,8 +26,9 @@ struct Follower {
   tdo_arena arena{};
   tdo_apf* apf = nullptr;
   tdo_status init_status = TDO_ERR_INVALID_ARGUMENT;
-  explicit Follower(uint32_t samples, uint32_t movers = 8u, uint32_t window = 100000u) {
-    tdo_apf_config cfg{samples, movers, window};
+  explicit Follower(uint32_t samples, uint32_t movers = 8u, uint32_t window = 100000u,
+                    uint32_t switching = 0u) {
+    tdo_apf_config cfg{samples, movers, window, switching};
     mem.assign(tdo_apf_footprint(&cfg), 0u);
     tdo_arena_init(&arena, mem.data(), mem.size());
     init_status = tdo_apf_init(&apf, &arena, &cfg);
@@ -105,14 +106,14 @@ TEST(Apf, DefaultsAreValid) {
 }
 
 TEST(Apf, FootprintAndInit) {
-  tdo_apf_config bad{1u, 1u, 1u};
+  tdo_apf_config bad{1u, 1u, 1u, 0u};
   EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
-  bad = tdo_apf_config{10u, 0u, 1u};
+  bad = tdo_apf_config{10u, 0u, 1u, 0u};
   EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
-  bad = tdo_apf_config{10u, 1u, 0u};
+  bad = tdo_apf_config{10u, 1u, 0u, 0u};
   EXPECT_EQ(tdo_apf_footprint(&bad), 0u);
   EXPECT_EQ(tdo_apf_footprint(nullptr), 0u);
-  tdo_apf_config cfg{100u, 4u, 10u};
+  tdo_apf_config cfg{100u, 4u, 10u, 0u};
   const size_t fp = tdo_apf_footprint(&cfg);
   ASSERT_GT(fp, 100u * sizeof(tdo_sample));
   std::vector<unsigned char> mem(fp);
@@ -635,6 +636,103 @@ TEST(Apf, EapfAvoidsACrossingMoverDeterministically) {
   EXPECT_LE(jx, 10.0 * 1.01);
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(tdo_vehicle_state)), 0);
+}
+
+// GIVEN a follower configured without switching, or not reset, or a classical APF WHEN a plan is
+// staged THEN each is refused by name; GIVEN one with switching THEN bad samples, a negative
+// switch time and too many samples are named and the active plan stays.
+TEST(Apf, SwitchRefusalsAreNamed) {
+  const auto traj = arc_trajectory(12.0, 0.01);
+  const uint32_t n = static_cast<uint32_t>(traj.size());
+  tdo_apf_params p;
+  tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+  tdo_apf_task task{traj.data(), n, traj.back().p, nullptr, 0.0};
+  Follower plain(n);
+  ASSERT_EQ(plain.init_status, TDO_OK);
+  EXPECT_EQ(tdo_apf_switch(plain.apf, &task, 1.0), TDO_ERR_NOT_CONFIGURED);  // not reset
+  ASSERT_EQ(tdo_apf_reset(plain.apf, &p, &task), TDO_OK);
+  EXPECT_EQ(tdo_apf_switch(plain.apf, &task, 1.0), TDO_ERR_NOT_CONFIGURED);  // no switching
+  Follower f(n, 8u, 100000u, 1u);
+  ASSERT_EQ(f.init_status, TDO_OK);
+  tdo_apf_config c1{n, 8u, 100000u, 1u}, c0{n, 8u, 100000u, 0u}, c2{n, 8u, 100000u, 2u};
+  EXPECT_GT(tdo_apf_footprint(&c1), tdo_apf_footprint(&c0) + n * sizeof(tdo_sample));
+  EXPECT_EQ(tdo_apf_footprint(&c2), 0u);
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  EXPECT_EQ(tdo_apf_switch(f.apf, &task, -1.0), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_apf_switch(f.apf, &task, std::nan("")), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_apf_switch(nullptr, &task, 1.0), TDO_ERR_INVALID_ARGUMENT);
+  std::vector<tdo_sample> bad = traj;
+  bad[5].t += 0.003;
+  tdo_apf_task tb{bad.data(), n, traj.back().p, nullptr, 0.0};
+  EXPECT_EQ(tdo_apf_switch(f.apf, &tb, 1.0), TDO_ERR_INVALID_ARGUMENT);
+  std::vector<tdo_sample> longer = arc_trajectory(13.0, 0.01);
+  tdo_apf_task tl{longer.data(), static_cast<uint32_t>(longer.size()), longer.back().p, nullptr,
+                  0.0};
+  EXPECT_EQ(tdo_apf_switch(f.apf, &tl, 1.0), TDO_ERR_SAMPLE_CAPACITY);
+  tdo_apf_params_default(&p, TDO_FOLLOWER_APF);
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  EXPECT_EQ(tdo_apf_switch(f.apf, &task, 1.0), TDO_ERR_INVALID_ARGUMENT);
+  // None of the refused calls staged anything: an E-APF run of the whole arc never switches.
+  tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+  ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+  EXPECT_EQ(tdo_apf_switch(f.apf, &tb, 0.0), TDO_ERR_INVALID_ARGUMENT);
+  tdo_vehicle_state s{};
+  s.p = traj[0].p;
+  for (int k = 0; k < 700; ++k) {
+    tdo_apf_input in{s, nullptr, 0u};
+    tdo_apf_output out;
+    ASSERT_EQ(tdo_apf_run(f.apf, &in, &out), TDO_OK);
+    EXPECT_EQ(out.events & TDO_APF_EVENT_SWITCHED, 0u);
+    s.t = out.setpoint.t;
+    s.p = out.setpoint.p;
+    s.v = out.setpoint.v;
+    s.a = out.setpoint.a;
+  }
+}
+
+// GIVEN E-APF flying a straight plan over an empty grid WHEN a wall across the plan arrives by a
+// map update (tdo_grid_apply_update on the follower's grid) mid-flight and nothing replans THEN
+// the static safety filter stops the vehicle before the wall: it never comes within
+// vehicle_radius + safety_margin of it (independent box distance). Without the update the same
+// flight passes through where the wall is (so the update is what stopped it).
+TEST(Apf, SafetyFilterSeesObstaclesFromMapUpdates) {
+  const auto traj = line_trajectory({3.0, 10.0, 2.0}, {17.0, 10.0, 2.0}, 9.0, 0.01);
+  const tdo_box wall{{11.0, 5.0, 0.0}, {12.0, 15.0, 6.0}};
+  double closest[2] = {HUGE_VAL, HUGE_VAL};
+  for (int with_update = 0; with_update < 2; ++with_update) {
+    TestPlanner tp(small_cap());
+    make_grid(&tp, {});
+    Follower f(static_cast<uint32_t>(traj.size()), 1u, 200u);
+    ASSERT_EQ(f.init_status, TDO_OK);
+    tdo_apf_params p;
+    tdo_apf_params_default(&p, TDO_FOLLOWER_EAPF);
+    tdo_apf_task task{traj.data(), static_cast<uint32_t>(traj.size()), traj.back().p, tp.grid(),
+                      0.0};
+    ASSERT_EQ(tdo_apf_reset(f.apf, &p, &task), TDO_OK);
+    tdo_vehicle_state s{};
+    s.p = traj[0].p;
+    for (int k = 0; k < 700; ++k) {
+      if (k == 100 && with_update) {  // t = 2 s, the vehicle near x = 4.5, 6 m before the wall
+        tdo_grid_update u{};
+        u.boxes = &wall;
+        u.n_boxes = 1u;
+        ASSERT_EQ(tdo_grid_apply_update(tp.grid(), &u, nullptr), TDO_OK);
+      }
+      tdo_apf_input in{s, nullptr, 0u};
+      tdo_apf_output out;
+      ASSERT_EQ(tdo_apf_run(f.apf, &in, &out), TDO_OK);
+      s.t = out.setpoint.t;
+      s.p = out.setpoint.p;
+      s.v = out.setpoint.v;
+      s.a = out.setpoint.a;
+      closest[with_update] =
+          std::fmin(closest[with_update], norm3(sub3(s.p, box_closest(wall, s.p))));
+    }
+  }
+  EXPECT_LE(closest[0], 0.0) << "without the update the vehicle flies through the wall's place";
+  tdo_apf_params d;
+  tdo_apf_params_default(&d, TDO_FOLLOWER_EAPF);
+  EXPECT_GE(closest[1], d.vehicle_radius + d.safety_margin - 1e-9);
 }
 
 }  // namespace

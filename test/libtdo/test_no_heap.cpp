@@ -390,7 +390,7 @@ tdo_sample g_line[1201];  // 12 s along a straight line at 0.01 s
 int fly_follower_armed(const tdo_grid* grid) {
   tdo_arena arena;
   tdo_arena_init(&arena, g_follow_arena, sizeof g_follow_arena);
-  const tdo_apf_config acfg{1201u, 4u, 200u};
+  const tdo_apf_config acfg{1201u, 4u, 200u, 0u};
   const tdo_sim_config scfg{4u};
   tdo_apf* apf = nullptr;
   tdo_sim* sim = nullptr;

@@ -161,6 +161,8 @@ typedef struct tdo_apf_config {
                                 per-step work) */
   uint32_t nearest_window; /**< samples searched per step for the nearest trajectory point,
                                 forward and backward of the last one (>= 1; e.g. 2 s / sample dt) */
+  uint32_t switching;      /**< 1: room for a staged next plan of max_samples (tdo_apf_switch;
+                                doubles the sample storage); 0: none (switch refused) */
 } tdo_apf_config;
 
 /** Opaque follower context; carved from the caller's arena. */
@@ -173,7 +175,11 @@ typedef struct tdo_apf_task {
   uint32_t n_samples;        /**< count (E-APF: >= 2; at most max_samples) */
   tdo_vec3 goal;             /**< m, world frame; E-APF ignores it and uses the last sample */
   const tdo_grid* grid;      /**< finished grid of the static map, or NULL for no static
-                                  repulsion; must stay alive and unchanged while stepping */
+                                  repulsion; must stay alive while stepping. It is read at every
+                                  step, so changes made between steps by tdo_grid_apply_update
+                                  (obstacles that arrived by map updates) are seen by the
+                                  repulsion, the wall terms and the safety filter from the next
+                                  step on */
   double t0;                 /**< s, vehicle-clock time that corresponds to trajectory t = 0 */
 } tdo_apf_task;
 
@@ -195,6 +201,7 @@ typedef enum tdo_apf_mode {
 #define TDO_APF_EVENT_REPULSED 0x40u      /**< a mover is within its influence distance */
 #define TDO_APF_EVENT_SAFETY 0x80u        /**< the static safety filter changed the command */
 #define TDO_APF_EVENT_EVADE 0x100u        /**< mover evasion replaced the field's command */
+#define TDO_APF_EVENT_SWITCHED 0x200u     /**< the staged plan took over (tdo_apf_switch) */
 
 /** The potential-field terms at one state (tdo_apf_eval, and part of every step's output). */
 typedef struct tdo_apf_terms {
@@ -260,6 +267,31 @@ tdo_status tdo_apf_init(tdo_apf** ctx, tdo_arena* arena, const tdo_apf_config* c
  *         steps return TDO_ERR_NOT_CONFIGURED.
  */
 tdo_status tdo_apf_reset(tdo_apf* ctx, const tdo_apf_params* params, const tdo_apf_task* task);
+
+/**
+ * @brief Stage a new plan that takes over from the active one without a jump in the reference
+ *        (docs/design.md s.4, "Replanning"): the new plan's t = 0 is aligned with the active
+ *        plan's trajectory time `t_switch`. The follower keeps its state (vehicle clock, mode
+ *        counters, the last command) and tracks the active plan until the step whose reference
+ *        time (clock + lookahead) reaches t_switch (or the active plan's end, if earlier); from
+ *        that step on the clock runs on the new plan at clock - t_switch, so the reference passes
+ *        from the active plan at t_switch to the new plan at 0. When the new plan starts with
+ *        the active plan's position, velocity and acceleration at t_switch (a plan from
+ *        tdo_replan_takeover's state), the reference p, v and a are continuous across the
+ *        switch. At the switch the nearest-point search restarts at the new plan's start, the
+ *        local-minimum window restarts, an escape or a stuck follower returns to tracking (the
+ *        new plan is the way out), the goal becomes the new plan's last sample and the grid
+ *        the task's; event TDO_APF_EVENT_SWITCHED. A t_switch already passed switches at the
+ *        next step (a plan from the vehicle's own state: the reference then starts at its t = 0
+ *        plus the time passed). A second call before the switch replaces the staged plan.
+ *        task->t0 and task->goal are not used.
+ * @return TDO_OK; TDO_ERR_NOT_CONFIGURED before a successful reset or without
+ *         tdo_apf_config.switching; TDO_ERR_INVALID_ARGUMENT for null pointers, a follower that
+ *         is not E-APF, a non-finite or negative t_switch, or samples as tdo_apf_reset refuses
+ *         them; TDO_ERR_SAMPLE_CAPACITY for more than max_samples; TDO_ERR_MAP_NOT_READY for an
+ *         unfinished grid. On error the staged plan (if any) and the active one are unchanged.
+ */
+tdo_status tdo_apf_switch(tdo_apf* ctx, const tdo_apf_task* task, double t_switch);
 
 /**
  * @brief One step: field at the input state, limited command for the next dt.
