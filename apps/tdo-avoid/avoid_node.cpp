@@ -298,23 +298,35 @@ void AvoidNode::request_map(const std::string& why) {
 // The part of the task's samples that crosses a known obstacle (at the vehicle radius): exact
 // segment queries between consecutive samples, bounded by the sample count.
 void AvoidNode::check_blocked() {
-  blocked_ = have_task_ && samples_blocked(samples_, &blocked_to_);
+  const double from = near_idx_ < samples_.size() ? samples_[near_idx_].t : 0.0;
+  blocked_ = have_task_ && samples_blocked(samples_, from, &blocked_to_);
 }
 
-// Whether `samples` cross a known obstacle; then the trajectory time of the end of the last
-// segment that does in `blocked_to`.
-bool AvoidNode::samples_blocked(const std::vector<tdo_sample>& samples, double* blocked_to) {
+// Whether `samples` cross a known obstacle from trajectory time `from` on (tdo_replan_check over
+// the rest of the trajectory, exact, at the vehicle radius; leaving the map's bounds counts);
+// then the end time of the first piece that does in `blocked_to`. Samples the check refuses (not
+// uniform in time) count as blocked.
+bool AvoidNode::samples_blocked(const std::vector<tdo_sample>& samples, double from,
+                                double* blocked_to) {
   if (!have_map_ || samples.size() < 2) return false;
   const tdo_grid* g = grid_.grid();
   if (tdo_grid_clearance(g) < 0.0) return false;  // no finished grid: nothing known
-  bool blocked = false;
-  for (std::size_t k = 0; k + 1 < samples.size(); ++k) {
-    if (tdo_collision_segment_clear(g, samples[k].p, samples[k + 1].p, cfg_.vehicle_radius))
-      continue;
-    blocked = true;
-    *blocked_to = samples[k + 1].t;
+  tdo_replan_check_input in{};
+  in.grid = g;
+  in.samples = samples.data();
+  in.n_samples = static_cast<uint32_t>(samples.size());
+  in.t = std::max(0.0, from);
+  in.horizon = std::max(0.0, samples.back().t - in.t);
+  in.clearance = cfg_.vehicle_radius;
+  tdo_replan_check_result r{};
+  if (tdo_replan_check(&in, &r) != TDO_OK) {
+    *blocked_to = samples.back().t;
+    return true;
   }
-  return blocked;
+  if (r.blocked == 0) return false;
+  const std::size_t end = std::min<std::size_t>(r.index + 1, samples.size() - 1);
+  *blocked_to = samples[end].t;
+  return true;
 }
 
 bool AvoidNode::path_blocked() const {
@@ -383,6 +395,7 @@ bool AvoidNode::tick() {
   }
   const auto t0 = std::chrono::steady_clock::now();
   track_nearest();
+  if (blocked_ && !path_blocked()) check_blocked();  // past that piece: anything further on?
   if (replan_tick()) return true;  // a hover while a replan is in progress or after a stop
   if (task_ready_ && path_blocked()) {
     request_replan();

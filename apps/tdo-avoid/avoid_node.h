@@ -223,7 +223,7 @@ class AvoidNode {
   tdo_setpoint brake_step(const tdo_vehicle_state& s) const;
   Check trajectory_samples(const tdo::trajectory_t& m, std::vector<tdo_sample>* out) const;
   void check_blocked();
-  bool samples_blocked(const std::vector<tdo_sample>& samples, double* blocked_to);
+  bool samples_blocked(const std::vector<tdo_sample>& samples, double from, double* blocked_to);
   void request_map(const std::string& why);
   void hold(Hold why);
   void track_nearest();

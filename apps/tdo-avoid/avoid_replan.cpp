@@ -102,7 +102,7 @@ void AvoidNode::on_replan_answer(const tdo::trajectory_t& m) {
     return;
   }
   double blocked_to = 0.0;
-  if (samples_blocked(samples, &blocked_to)) {
+  if (samples_blocked(samples, 0.0, &blocked_to)) {
     replan_refused("blocked");  // planned on a map without the obstacle: ask again
     return;
   }
