@@ -208,6 +208,8 @@ class AvoidNode {
     double t_take = 0.0;             /**< s, follower clock of the takeover */
     uint32_t attempts = 0;           /**< requests since the last trigger was resolved */
     double off_since = -1.0;         /**< s, follower clock since off the path (-1: on it) */
+    double clearance = -1.0;         /**< m, request clearance; < 0: the followed request's */
+    double start_speed = 0.0;        /**< m/s, of the predicted state asked from */
     std::vector<tdo_sample> samples; /**< the answer, waiting for its takeover */
   };
   bool have_template() const;

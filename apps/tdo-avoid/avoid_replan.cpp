@@ -72,6 +72,10 @@ void AvoidNode::request_replan() {
   m.seq = replan_seq_++;
   m.vehicle_id = cfg_.vehicle_id;
   m.map_id = -1;  // the planner's latest map
+  if (replan_.clearance >= 0.0) {
+    m.clearance = replan_.clearance;
+    m.use_defaults &= ~tdo::plan_request_t::USE_DEFAULT_CLEARANCE;
+  }
   const tdo_vec3* v3[3] = {&s.p, &s.v, &s.a};
   double* out[3] = {m.start, m.start_vel, m.start_acc};
   for (int i = 0; i < 3; ++i) {
@@ -82,6 +86,7 @@ void AvoidNode::request_replan() {
   replan_.phase = ReplanPhase::waiting;
   replan_.request_id = m.request_id;
   replan_.t_take = s.t;
+  replan_.start_speed = std::sqrt(s.v.x * s.v.x + s.v.y * s.v.y + s.v.z * s.v.z);
   ++replan_.attempts;
   ++counters_.replans;
   bus_->publish(cfg_.request_channel, m);  // comes back to on_request: promised, remembered
@@ -96,9 +101,17 @@ void AvoidNode::on_replan_answer(const tdo::trajectory_t& m) {
     if (m.status_code == TDO_ERR_NO_PATH) {
       ++counters_.replan_refused;
       replan_stop(Hold::no_way_through);
-    } else {
-      replan_refused(c.reason == Reason::no_plan ? m.status : reason_str(c.reason));
+      return;
     }
+    // Still braking: a start the planner cannot continue from (state_*) is asked again from a
+    // slower one without counting (bounded: the braking ends). A start within the clearance
+    // (the vehicle was pushed near an obstacle): asked again at the vehicle radius.
+    constexpr double kMoving = 0.05;  // m/s
+    if (m.status_code >= TDO_ERR_STATE_NOT_FINITE && m.status_code <= TDO_ERR_STATE_CANNOT_STOP &&
+        replan_.start_speed > kMoving && replan_.attempts > 0)
+      --replan_.attempts;
+    if (m.status_code == TDO_ERR_START_BLOCKED) replan_.clearance = cfg_.vehicle_radius;
+    replan_refused(c.reason == Reason::no_plan ? m.status : reason_str(c.reason));
     return;
   }
   double blocked_to = 0.0;

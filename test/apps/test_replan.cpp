@@ -282,4 +282,101 @@ TEST(Replan, GivenAWallWithNoWayThrough_ThenASafeStopNamedNoWayThroughNeverOk) {
   EXPECT_EQ(f.avoid.replan_switches, 0);
 }
 
+/** Fly Map6 with its movers and a share of the columns hidden until sensed; checks inside. */
+struct SensedFlight {
+  bool arrived = false;
+  double min_static = 1e9;  // m, to the true world (every box of the map file)
+  double min_mover = 1e9;   // m, surface gap to the movers
+  int64_t updates = 0, revealed = 0, hidden = 0;
+  tdo_lcm::AvoidCounters avoid;
+  std::vector<tdo::vehicle_state_t> states;
+};
+
+void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
+  tdo_lcm::Bus bus("memq://");
+  ASSERT_TRUE(bus.good());
+  std::vector<tdo::obstacles_t> obstacles;
+  std::vector<tdo::map_update_t> updates;
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelVehicleState, collect(&f->states)));
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelObstacles, collect(&obstacles)));
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMapUpdate, collect(&updates)));
+  tdo_lcm::PlannerConfig pc;
+  pc.max_nx = 50;
+  pc.max_ny = 50;
+  pc.max_nz = 20;
+  pc.max_nodes = 600000;
+  pc.max_boxes = 600;
+  pc.heartbeat_period_s = 0.0;
+  tdo_lcm::PlannerNode planner(&bus, pc);
+  std::string error;
+  ASSERT_TRUE(planner.start(&error)) << error;
+  tdo_lcm::AvoidConfig ac;
+  ac.lockstep = true;
+  ac.max_nx = 50;
+  ac.max_ny = 50;
+  ac.max_nz = 20;
+  ac.max_boxes = 600;
+  ac.heartbeat_period_s = 0.0;
+  tdo_lcm::AvoidNode avoid(&bus, ac);
+  ASSERT_TRUE(avoid.start(&error)) << error;
+  tdo_lcm::SimConfig sc;
+  sc.lockstep = true;
+  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
+  sc.start_utime = kT0;
+  sc.heartbeat_period_s = 0.0;
+  sc.unknown_fraction = unknown;
+  sc.sensor_range = range;
+  sc.seed = seed;
+  sc.request_goal = true;  // the flight's request, from the simulator as a ground station
+  tdo_lcm::SimNode sim(&bus, sc);
+  ASSERT_TRUE(sim.start(&error)) << error;
+  tdo_vec3 goal{};
+  ASSERT_TRUE(sim.goal(&goal));
+  const double goal_p[3] = {goal.x, goal.y, goal.z};
+  std::vector<std::vector<double>> world;  // the true world, from the map file, not the bus
+  for (const tdo_box& b : sim.true_boxes())
+    world.push_back({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z});
+  ASSERT_FALSE(world.empty());
+  std::size_t seen = 0;
+  const int max_messages = 8 * 50 * 120;
+  for (int i = 0; i < max_messages && !f->arrived; ++i) {
+    if (bus.handle_timeout(0) <= 0) break;
+    for (; seen < f->states.size(); ++seen) {
+      const tdo::vehicle_state_t& s = f->states[seen];
+      for (const auto& b : world) f->min_static = std::min(f->min_static, box_distance(s.position, b));
+      const tdo::obstacles_t& o = obstacles.back();
+      for (int k = 0; k < o.n; ++k)
+        f->min_mover = std::min(f->min_mover, dist3(s.position, o.position[k].data()) -
+                                                  o.radius[k] - kRadius);
+      if (dist3(s.position, goal_p) < 0.25) f->arrived = true;
+    }
+  }
+  for (std::size_t k = 0; k < updates.size(); ++k) EXPECT_EQ(updates[k].seq, k + 1) << k;
+  f->updates = static_cast<int64_t>(updates.size());
+  f->revealed = sim.counters().boxes_revealed;
+  f->hidden = sim.counters().boxes_hidden;
+  f->avoid = avoid.counters();
+}
+
+TEST(Replan, GivenMap6With30PercentOfTheColumnsUnknown_ThenTheLoopReachesTheGoalWithoutContact) {
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    SensedFlight f;
+    fly_sensed(0.3, 5.0, seed, &f);
+    EXPECT_TRUE(f.arrived) << "seed " << seed;
+    EXPECT_GE(f.min_static, kRadius) << "seed " << seed;
+    EXPECT_GT(f.min_mover, 0.0) << "seed " << seed;
+    EXPECT_GT(f.hidden, 0) << "seed " << seed;
+    EXPECT_EQ(f.avoid.safe_stops, 0) << "seed " << seed;
+    for (const auto& kv : f.avoid.reasons)
+      std::printf("[replan]   tdo-avoid %s %lld\n", kv.first.c_str(), static_cast<long long>(kv.second));
+    std::printf("[replan] Map6, 30 %% unknown, seed %llu: arrived %d after %zu states, %lld of "
+                "%lld hidden columns revealed in %lld updates, %lld replans (%lld taken over), "
+                "closest column %.3f m, mover gap %.3f m\n",
+                static_cast<unsigned long long>(seed), f.arrived ? 1 : 0, f.states.size(),
+                static_cast<long long>(f.revealed), static_cast<long long>(f.hidden),
+                static_cast<long long>(f.updates), static_cast<long long>(f.avoid.replans),
+                static_cast<long long>(f.avoid.replan_switches), f.min_static, f.min_mover);
+  }
+}
+
 }  // namespace
