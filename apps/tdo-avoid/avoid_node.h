@@ -210,6 +210,7 @@ class AvoidNode {
     double off_since = -1.0;         /**< s, follower clock since off the path (-1: on it) */
     double clearance = -1.0;         /**< m, request clearance; < 0: the followed request's */
     double start_speed = 0.0;        /**< m/s, of the predicted state asked from */
+    double rest_since = -1.0;        /**< s, follower clock since at rest after a stop */
     std::vector<tdo_sample> samples; /**< the answer, waiting for its takeover */
   };
   bool have_template() const;
@@ -219,6 +220,7 @@ class AvoidNode {
   void on_replan_answer(const tdo::trajectory_t& m);
   void replan_refused(const std::string& why);
   void replan_stop(Hold why);
+  bool at_rest_since(double s);
   bool replan_tick();
   void switch_to_pending();
   void resume_after_map();

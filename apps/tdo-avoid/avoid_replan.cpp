@@ -13,6 +13,11 @@
 #include "tdo_lcm/node_status.h"
 
 namespace tdo_lcm {
+namespace {
+
+constexpr double kRetryAfterS = 1.0;  // s at rest after replan_failed before asking again
+
+}  // namespace
 
 void AvoidNode::remember_request(const tdo::plan_request_t& m) {
   requests_.push_back(m);
@@ -135,9 +140,20 @@ void AvoidNode::replan_refused(const std::string& why) {
   replan_.samples.clear();
 }
 
+// Whether the vehicle has been at rest (below 0.05 m/s) for `s` seconds since the stop.
+bool AvoidNode::at_rest_since(double s) {
+  constexpr double kRest = 0.05;  // m/s
+  const double speed = std::sqrt(state_.v.x * state_.v.x + state_.v.y * state_.v.y +
+                                 state_.v.z * state_.v.z);
+  if (speed > kRest) replan_.rest_since = -1.0;
+  else if (replan_.rest_since < 0.0) replan_.rest_since = state_.t;
+  return replan_.rest_since >= 0.0 && state_.t - replan_.rest_since >= s;
+}
+
 void AvoidNode::replan_stop(Hold why) {
   replan_.phase = ReplanPhase::stopped;
   replan_.stop = why;
+  replan_.rest_since = -1.0;
   replan_.samples.clear();
   ++counters_.safe_stops;
 }
@@ -155,7 +171,12 @@ bool AvoidNode::replan_tick() {
     case ReplanPhase::idle:
       return false;
     case ReplanPhase::stopped:
-      hold(replan_.stop);
+      if (replan_.stop == Hold::replan_failed && at_rest_since(kRetryAfterS)) {
+        replan_ = Replan{};  // at rest, where the predicted start is the state itself: ask again
+        replan_.wanted = true;
+        request_replan();
+      }
+      hold(replan_.phase == ReplanPhase::stopped ? replan_.stop : Hold::replanning);
       return true;
     case ReplanPhase::pending:
       if (state_.t + 0.5 * params_.dt >= replan_.t_take) {

@@ -102,11 +102,13 @@ int main(int argc, char** argv) {
   if (!opt.quiet)
     std::fprintf(stderr,
                  "tdo-avoid: stopped: %lld received, %lld setpoints (%lld followed, %lld failed, "
-                 "%lld hover), %lld rejected, %lld ignored\n",
+                 "%lld hover), %lld rejected, %lld ignored; %lld replans (%lld taken over), "
+                 "%lld safe stops\n",
                  static_cast<long long>(c.received), static_cast<long long>(c.setpoints),
                  static_cast<long long>(c.steps_ok), static_cast<long long>(c.steps_failed),
                  static_cast<long long>(c.holds), static_cast<long long>(c.rejected),
-                 static_cast<long long>(c.ignored));
+                 static_cast<long long>(c.ignored), static_cast<long long>(c.replans),
+                 static_cast<long long>(c.replan_switches), static_cast<long long>(c.safe_stops));
   if (!opt.quiet)
     for (const auto& kv : c.reasons)
       std::fprintf(stderr, "tdo-avoid:   %s %lld\n", kv.first.c_str(),

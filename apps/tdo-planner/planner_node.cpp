@@ -88,6 +88,9 @@ void PlannerNode::on_map(const void* data, std::size_t size) {
   Check c = decode(data, size, &m);
   if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  // The map in use, sent again (a publisher repeats it for late starters): the updates applied
+  // on top of it stay. A stale map is reloaded (the whole map was asked for).
+  if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
 #if TDO_LCM_HAVE_OCTOMAP
   // An OctoMap binary stream is rasterised onto the message's grid first (capacity checked before).
   if (c.ok() && m.encoding == tdo::map_t::ENCODING_OCTOMAP_BT) {
