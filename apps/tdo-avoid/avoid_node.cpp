@@ -395,6 +395,10 @@ bool AvoidNode::tick() {
   }
   const auto t0 = std::chrono::steady_clock::now();
   track_nearest();
+  movers_now_ = movers_;
+  if (utime_ref_set_)
+    movers_advance(&movers_now_, seconds_since(movers_utime_, utime_ref_), state_.t,
+                   cfg_.max_mover_shift_s);
   if (blocked_ && !path_blocked()) check_blocked();  // past that piece: anything further on?
   if (replan_tick()) return true;  // a hover while a replan is in progress or after a stop
   if (task_ready_ && path_blocked()) {
@@ -403,10 +407,6 @@ bool AvoidNode::tick() {
     return true;
   }
   if (task_ready_) {
-    movers_now_ = movers_;
-    if (utime_ref_set_)
-      movers_advance(&movers_now_, seconds_since(movers_utime_, utime_ref_), state_.t,
-                     cfg_.max_mover_shift_s);
     tdo_apf_input in{};
     in.state = state_;
     in.movers = movers_now_.empty() ? nullptr : movers_now_.data();
@@ -448,6 +448,25 @@ tdo_setpoint AvoidNode::brake_step(const tdo_vehicle_state& s) const {
   return sp;
 }
 
+// Whether braking straight from the current state (brake_step until at rest, at most 5 s) keeps
+// the vehicle centre more than its radius from the known geometry.
+bool AvoidNode::brake_is_safe() {
+  if (!have_map_) return true;
+  const tdo_grid* g = grid_.grid();
+  if (tdo_grid_clearance(g) < 0.0) return true;
+  constexpr double kRest = 0.05, kMaxTime = 5.0;  // m/s, s
+  tdo_vehicle_state s = state_;
+  const int steps = static_cast<int>(kMaxTime / params_.dt);
+  for (int k = 0; k < steps; ++k) {
+    const tdo_setpoint sp = brake_step(s);
+    s = tdo_vehicle_state{sp.t, sp.p, sp.v, sp.a};
+    const double d = tdo_collision_point_distance(g, s.p, cfg_.vehicle_radius + 0.1);
+    if (d >= 0.0 && d < cfg_.vehicle_radius + 0.02) return false;
+    if (std::sqrt(s.v.x * s.v.x + s.v.y * s.v.y + s.v.z * s.v.z) < kRest) break;
+  }
+  return true;
+}
+
 // Brake to a hover with the library's motion rule: without a task (ok, the follower's damping),
 // or, braking hard (brake_step), because the task ahead is blocked, a new plan is on its way or
 // none could be had (a failed step with its named status).
@@ -455,7 +474,17 @@ void AvoidNode::hold(Hold why) {
   if (why != Hold::idle) {
     ++counters_.blocked_holds;
     ++counters_.steps_failed;
-    publish_setpoint(brake_step(state_), TDO_OK, request_id_, why);
+    tdo_setpoint sp = brake_step(state_);
+    if (task_ready_ && !brake_is_safe()) {  // the follower's safety filter and wall terms instead
+      tdo_apf_input in{};
+      in.state = state_;
+      in.movers = movers_now_.empty() ? nullptr : movers_now_.data();
+      in.n_movers = static_cast<uint32_t>(movers_now_.size());
+      const tdo_status st = tdo_apf_run(apf_, &in, &last_out_);
+      if (st == TDO_OK || st == TDO_ERR_LOCAL_MINIMUM) sp = last_out_.setpoint;
+      ++counters_.unsafe_brakes;
+    }
+    publish_setpoint(sp, TDO_OK, request_id_, why);
     return;
   }
   const double k = params_.k_d;

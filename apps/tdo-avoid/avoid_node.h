@@ -140,6 +140,8 @@ struct AvoidCounters {
   int64_t replan_switches = 0; /**< new plans taken over at their takeover time */
   int64_t replan_refused = 0;  /**< answers to them not taken (error, blocked, late) */
   int64_t safe_stops = 0;      /**< stops: no_way_through or replan_failed */
+  int64_t unsafe_brakes = 0;   /**< hold steps whose straight braking would touch a known
+                                    obstacle: the follower's step was sent instead */
   double last_step_ms = 0.0;   /**< ms, wall time of the last follower call */
   std::map<std::string, int64_t> reasons; /**< "trajectory.<reason>", "state.<reason>", ... */
 };
@@ -225,6 +227,7 @@ class AvoidNode {
   void switch_to_pending();
   void resume_after_map();
   tdo_setpoint brake_step(const tdo_vehicle_state& s) const;
+  bool brake_is_safe();
   Check trajectory_samples(const tdo::trajectory_t& m, std::vector<tdo_sample>* out) const;
   void check_blocked();
   bool samples_blocked(const std::vector<tdo_sample>& samples, double from, double* blocked_to);
