@@ -41,6 +41,11 @@ bool AvoidNode::start(std::string* error) {
   if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_with("the mover shift must be >= 0");
   if (!valid_timeout(cfg_.answer_timeout_s))
     return fail_with("the answer timeout must be in (0, 1e6] s");
+  if (!(cfg_.replan_lead_s >= 0.0 && cfg_.replan_lead_s <= 60.0))
+    return fail_with("the replan lead must be in [0, 60] s");
+  if (!(cfg_.replan_deviation_m > 0.0) || !std::isfinite(cfg_.replan_deviation_m) ||
+      !(cfg_.replan_deviation_s >= 0.0) || !std::isfinite(cfg_.replan_deviation_s))
+    return fail_with("the replan deviation must be finite and > 0");
   if (!grid_.start(cfg_.max_nx, cfg_.max_ny, cfg_.max_nz, cfg_.max_boxes, cfg_.max_clearance_ratio,
                    error))
     return false;

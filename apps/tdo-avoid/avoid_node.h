@@ -111,9 +111,9 @@ struct AvoidConfig {
   double max_mover_shift_s = 1.0; /**< s, movers are moved on to the state's time by at most this */
   double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
   // replanning (avoid_replan.cpp)
-  bool replan = true;           /**< send plan requests from the predicted state when needed */
-  double replan_lead_s = 0.5;   /**< s from the trigger to the takeover of the new plan */
-  uint32_t max_replans = 3;     /**< requests per trigger without a usable plan, then a stop */
+  bool replan = true;               /**< send plan requests from the predicted state when needed */
+  double replan_lead_s = 0.5;       /**< s from the trigger to the takeover of the new plan */
+  uint32_t max_replans = 3;         /**< requests per trigger without a usable plan, then a stop */
   uint32_t max_replans_total = 200; /**< requests over the node's life, then a stop */
   double replan_deviation_m = 2.0;  /**< m off the path for replan_deviation_s: replan */
   double replan_deviation_s = 1.0;  /**< s */

@@ -143,10 +143,12 @@ void AvoidNode::replan_refused(const std::string& why) {
 // Whether the vehicle has been at rest (below 0.05 m/s) for `s` seconds since the stop.
 bool AvoidNode::at_rest_since(double s) {
   constexpr double kRest = 0.05;  // m/s
-  const double speed = std::sqrt(state_.v.x * state_.v.x + state_.v.y * state_.v.y +
-                                 state_.v.z * state_.v.z);
-  if (speed > kRest) replan_.rest_since = -1.0;
-  else if (replan_.rest_since < 0.0) replan_.rest_since = state_.t;
+  const double speed =
+      std::sqrt(state_.v.x * state_.v.x + state_.v.y * state_.v.y + state_.v.z * state_.v.z);
+  if (speed > kRest)
+    replan_.rest_since = -1.0;
+  else if (replan_.rest_since < 0.0)
+    replan_.rest_since = state_.t;
   return replan_.rest_since >= 0.0 && state_.t - replan_.rest_since >= s;
 }
 

@@ -131,9 +131,8 @@ bool SimNode::start(std::string* error) {
 
   if (!start_sensing(map, error)) return false;  // the known part of the map as map_msg_
   const bool ok =
-      bus_->subscribe(
-          cfg_.setpoint_channel,
-          [this](const void* d, std::size_t n, const std::string&) { on_setpoint(d, n); }) &&
+      bus_->subscribe(cfg_.setpoint_channel, [this](const void* d, std::size_t n,
+                                                    const std::string&) { on_setpoint(d, n); }) &&
       (!sensing_ || bus_->subscribe(cfg_.map_request_channel,
                                     [this](const void* d, std::size_t n, const std::string&) {
                                       on_map_request(d, n);

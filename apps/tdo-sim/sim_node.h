@@ -33,23 +33,23 @@
 #include <vector>
 
 #include "tdo/tdo.h"
+#include "tdo_io/map_io.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/check.h"
 #include "tdo_lcm/grid_host.h"
-#include "tdo_io/map_io.h"
 #include "tdo_lcm/types.h"
 
 namespace tdo_lcm {
 
 /** Configuration of a simulator node (tdo-sim's command line). */
 struct SimConfig {
-  int32_t vehicle_id = 0;                            /**< vehicle simulated */
-  std::string setpoint_channel = kChannelSetpoint;   /**< setpoints in */
-  std::string state_channel = kChannelVehicleState;  /**< states out */
-  std::string obstacles_channel = kChannelObstacles; /**< movers out */
-  std::string map_channel = kChannelMap;             /**< the map file out */
-  std::string status_channel = kChannelStatus;       /**< heartbeats out */
-  std::string request_channel = kChannelPlanRequest; /**< the demo request out (request_goal) */
+  int32_t vehicle_id = 0;                               /**< vehicle simulated */
+  std::string setpoint_channel = kChannelSetpoint;      /**< setpoints in */
+  std::string state_channel = kChannelVehicleState;     /**< states out */
+  std::string obstacles_channel = kChannelObstacles;    /**< movers out */
+  std::string map_channel = kChannelMap;                /**< the map file out */
+  std::string status_channel = kChannelStatus;          /**< heartbeats out */
+  std::string request_channel = kChannelPlanRequest;    /**< the demo request out (request_goal) */
   std::string map_update_channel = kChannelMapUpdate;   /**< revealed boxes out (sensing) */
   std::string map_request_channel = kChannelMapRequest; /**< requests for the whole map in */
   double rate_hz = 50.0;        /**< Hz, steps per second; the simulator's dt = 1 / rate */

@@ -49,7 +49,8 @@ bool SimNode::start_sensing(const tdo_io::Map& map, std::string* error) {
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   uint64_t state = cfg_.seed ^ 0x5EB5E5EB5E5EB5E5ull;
-  const auto hide = static_cast<std::size_t>(std::llround(cfg_.unknown_fraction * static_cast<double>(n)));
+  const auto hide =
+      static_cast<std::size_t>(std::llround(cfg_.unknown_fraction * static_cast<double>(n)));
   for (std::size_t k = 0; k < hide; ++k) {
     const std::size_t j = k + static_cast<std::size_t>(splitmix64(&state) % (n - k));
     std::swap(order[k], order[j]);

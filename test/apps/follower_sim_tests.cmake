@@ -38,6 +38,7 @@ tdo_app_run_test(tdo-avoid bad_option 2 "frobnicate" --frobnicate)
 tdo_app_run_test(tdo-avoid bad_follower 2 "--follower" --follower potential)
 tdo_app_run_test(tdo-avoid bad_rate 2 "rate" --lcm-url memq:// --rate 0)
 tdo_app_run_test(tdo-avoid bad_url 2 "cannot start LCM" --lcm-url nonsense://x)
+tdo_app_run_test(tdo-avoid bad_replan_lead 2 "replan lead" --lcm-url memq:// --replan-lead -1)
 tdo_app_run_test(tdo-avoid memq_run 0 "stopped: 0 received, 0 setpoints"
                  --lcm-url memq:// --duration 0.3 --max-size 16 16 8 --follower apf)
 tdo_app_signal_tests(tdo-avoid --lcm-url memq:// --max-size 16 16 8)
@@ -50,5 +51,14 @@ if(TARGET tdo-sim)
   # No setpoints for 0.3 s: the vehicle stays at Map6's start, no collision, 12 movers.
   tdo_app_run_test(tdo-sim memq_run 0 "12 movers.*stopped: 0 received, [0-9]+ steps .[0-9]+ braking, 0 in collision.*at .2.000, 2.000, 3.000."
                    --lcm-url memq:// --duration 0.3 --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
+  tdo_app_run_test(tdo-sim bad_unknown 2 "unknown fraction" --lcm-url memq:// --unknown 1.5
+                   --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
+  tdo_app_run_test(tdo-sim bad_sensor_range 2 "sensor range" --lcm-url memq:// --unknown 0.3
+                   --sensor-range 0 --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
+  tdo_app_run_test(tdo-sim unknown_without_map 2 "need a map file" --lcm-url memq:// --unknown 0.3)
+  # 30 % of Map6's 500 columns hidden: 150, some seen from the start (in the first map).
+  tdo_app_run_test(tdo-sim memq_unknown 0 "0 in collision.* [0-9]+ of 150 hidden boxes revealed"
+                   --lcm-url memq:// --duration 0.3 --unknown 0.3 --sensor-range 5
+                   --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
   tdo_app_signal_tests(tdo-sim --lcm-url memq:// --map ${PROJECT_SOURCE_DIR}/maps/map6.tdomap)
 endif()

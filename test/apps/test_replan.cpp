@@ -229,17 +229,18 @@ TEST(Replan, GivenAWallAcrossTheRouteMidFlight_WhenThereIsAWayRound_ThenReplansA
   // The request's start is the state the vehicle really had at the takeover (prediction exact in
   // lock-step without noise): the state the switching setpoint was computed from.
   const tdo::setpoint_t& first = f.setpoints[k];
-  const auto it = std::find_if(f.states.begin(), f.states.end(),
-                               [&](const tdo::vehicle_state_t& s) { return s.utime == first.utime; });
+  const auto it =
+      std::find_if(f.states.begin(), f.states.end(),
+                   [&](const tdo::vehicle_state_t& s) { return s.utime == first.utime; });
   ASSERT_NE(it, f.states.end());
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(it->position[i], replans[0]->start[i], 1e-9) << i;
     EXPECT_NEAR(it->velocity[i], replans[0]->start_vel[i], 1e-9) << i;
     EXPECT_NEAR(it->acceleration[i], replans[0]->start_acc[i], 1e-9) << i;
   }
-  std::printf("[replan] wall with a way round: arrived %d, %zu states, %lld replans, closest %.3f m\n",
-              f.arrived ? 1 : 0, f.states.size(), static_cast<long long>(f.avoid.replans),
-              f.min_static);
+  std::printf(
+      "[replan] wall with a way round: arrived %d, %zu states, %lld replans, closest %.3f m\n",
+      f.arrived ? 1 : 0, f.states.size(), static_cast<long long>(f.avoid.replans), f.min_static);
 }
 
 // The setpoints across each switch to a new plan: no jump in position, velocity or acceleration
@@ -258,9 +259,10 @@ TEST(Replan, GivenAReplan_ThenTheSetpointsAcrossTheSwitchHaveNoJump) {
     if (f.setpoints[k].request_id != f.setpoints[k - 1].request_id &&
         f.setpoints[k - 1].request_id >= 0) {
       ++switches;
-      std::printf("[replan] switch at setpoint %zu: |dv|/dt %.3f m/s^2, |da|/dt %.3f m/s^3, "
-                  "position residual %.2e m\n",
-                  k, d.acc, d.jerk, d.pos);
+      std::printf(
+          "[replan] switch at setpoint %zu: |dv|/dt %.3f m/s^2, |da|/dt %.3f m/s^3, "
+          "position residual %.2e m\n",
+          k, d.acc, d.jerk, d.pos);
     }
   }
   EXPECT_GE(switches, 1);
@@ -343,11 +345,12 @@ void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
     if (bus.handle_timeout(0) <= 0) break;
     for (; seen < f->states.size(); ++seen) {
       const tdo::vehicle_state_t& s = f->states[seen];
-      for (const auto& b : world) f->min_static = std::min(f->min_static, box_distance(s.position, b));
+      for (const auto& b : world)
+        f->min_static = std::min(f->min_static, box_distance(s.position, b));
       const tdo::obstacles_t& o = obstacles.back();
       for (int k = 0; k < o.n; ++k)
-        f->min_mover = std::min(f->min_mover, dist3(s.position, o.position[k].data()) -
-                                                  o.radius[k] - kRadius);
+        f->min_mover =
+            std::min(f->min_mover, dist3(s.position, o.position[k].data()) - o.radius[k] - kRadius);
       if (dist3(s.position, goal_p) < 0.25) f->arrived = true;
     }
   }
@@ -356,6 +359,92 @@ void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
   f->revealed = sim.counters().boxes_revealed;
   f->hidden = sim.counters().boxes_hidden;
   f->avoid = avoid.counters();
+}
+
+// tdo-sim alone: the first map holds the known boxes only, each update the boxes just seen (none
+// known before, all from the map file), and a map request for the map in use gets every known box
+// under a new map_id.
+TEST(Replan, GivenHiddenColumns_ThenTheSimulatorPublishesWhatItSeesAsNumberedUpdates) {
+  tdo_lcm::Bus bus("memq://");
+  std::vector<tdo::map_t> maps;
+  std::vector<tdo::map_update_t> updates;
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMap, collect(&maps)));
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMapUpdate, collect(&updates)));
+  tdo_lcm::SimConfig sc;
+  sc.lockstep = true;
+  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
+  sc.start_utime = kT0;
+  sc.heartbeat_period_s = 0.0;
+  sc.unknown_fraction = 0.3;
+  sc.sensor_range = 5.0;
+  sc.seed = 7;
+  tdo_lcm::SimNode sim(&bus, sc);
+  std::string error;
+  ASSERT_TRUE(sim.start(&error)) << error;
+  for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+  }
+  const std::size_t n = sim.true_boxes().size();
+  ASSERT_EQ(n, 500u);
+  EXPECT_EQ(sim.counters().boxes_hidden, 150);
+  ASSERT_EQ(maps.size(), 1u);
+  const int64_t seen_at_start = sim.counters().boxes_revealed;
+  EXPECT_EQ(maps[0].n_boxes, static_cast<int32_t>(350 + seen_at_start));
+  // Fly the vehicle along the diagonal at 2 m/s for 10 s (setpoint accelerations towards that
+  // velocity, from the states it publishes): it sees more columns.
+  std::vector<tdo::vehicle_state_t> states;
+  ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelVehicleState, collect(&states)));
+  std::vector<std::vector<double>> known = maps[0].boxes;
+  auto is_in = [](const std::vector<std::vector<double>>& list, const std::vector<double>& b) {
+    return std::find(list.begin(), list.end(), b) != list.end();
+  };
+  std::vector<std::vector<double>> truth;
+  for (const tdo_box& b : sim.true_boxes())
+    truth.push_back({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z});
+  sim.publish_state();
+  for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+  }
+  const double v_des[3] = {std::sqrt(2.0), std::sqrt(2.0), 0.0};
+  for (int k = 1; k <= 500 && !states.empty(); ++k) {
+    const tdo::vehicle_state_t& st = states.back();
+    tdo::setpoint_t sp{};
+    sp.utime = st.utime;
+    for (int i = 0; i < 3; ++i) {
+      sp.position[i] = st.position[i];
+      sp.velocity[i] = st.velocity[i];
+      sp.acceleration[i] = 2.0 * (v_des[i] - st.velocity[i]);
+    }
+    sp.status = "ok";
+    ASSERT_TRUE(bus.publish(tdo_lcm::kChannelSetpoint, sp));
+    for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  }
+  ASSERT_GT(states.back().position[0], 10.0) << "the vehicle flew";
+  ASSERT_FALSE(updates.empty());
+  int64_t boxes = 0;
+  for (std::size_t k = 0; k < updates.size(); ++k) {
+    EXPECT_EQ(updates[k].map_id, 1);
+    EXPECT_EQ(updates[k].seq, static_cast<int64_t>(k) + 1);
+    for (const auto& b : updates[k].boxes) {
+      EXPECT_TRUE(is_in(truth, b)) << "a box of the map file";
+      EXPECT_FALSE(is_in(known, b)) << "not known before";
+      known.push_back(b);
+      ++boxes;
+    }
+  }
+  EXPECT_EQ(boxes + seen_at_start, sim.counters().boxes_revealed);
+  // A map request for map 1: every known box under map 2.
+  tdo::map_request_t r{};
+  r.program = "test";
+  r.reason = "gap";
+  r.map_id = 1;
+  ASSERT_TRUE(bus.publish(tdo_lcm::kChannelMapRequest, r));
+  for (int i = 0; i < 100 && bus.handle_timeout(0) > 0; ++i) {
+  }
+  ASSERT_EQ(maps.size(), 2u);
+  EXPECT_EQ(maps[1].map_id, 2);
+  EXPECT_EQ(sim.map_id(), 2);
+  EXPECT_EQ(static_cast<std::size_t>(maps[1].n_boxes), known.size());
+  for (const auto& b : known) EXPECT_TRUE(is_in(maps[1].boxes, b));
 }
 
 TEST(Replan, GivenMap6With30PercentOfTheColumnsUnknown_ThenTheLoopReachesTheGoalWithoutContact) {
@@ -368,14 +457,16 @@ TEST(Replan, GivenMap6With30PercentOfTheColumnsUnknown_ThenTheLoopReachesTheGoal
     EXPECT_GT(f.hidden, 0) << "seed " << seed;
     EXPECT_EQ(f.avoid.safe_stops, 0) << "seed " << seed;
     for (const auto& kv : f.avoid.reasons)
-      std::printf("[replan]   tdo-avoid %s %lld\n", kv.first.c_str(), static_cast<long long>(kv.second));
-    std::printf("[replan] Map6, 30 %% unknown, seed %llu: arrived %d after %zu states, %lld of "
-                "%lld hidden columns revealed in %lld updates, %lld replans (%lld taken over), "
-                "closest column %.3f m, mover gap %.3f m\n",
-                static_cast<unsigned long long>(seed), f.arrived ? 1 : 0, f.states.size(),
-                static_cast<long long>(f.revealed), static_cast<long long>(f.hidden),
-                static_cast<long long>(f.updates), static_cast<long long>(f.avoid.replans),
-                static_cast<long long>(f.avoid.replan_switches), f.min_static, f.min_mover);
+      std::printf("[replan]   tdo-avoid %s %lld\n", kv.first.c_str(),
+                  static_cast<long long>(kv.second));
+    std::printf(
+        "[replan] Map6, 30 %% unknown, seed %llu: arrived %d after %zu states, %lld of "
+        "%lld hidden columns revealed in %lld updates, %lld replans (%lld taken over), "
+        "closest column %.3f m, mover gap %.3f m\n",
+        static_cast<unsigned long long>(seed), f.arrived ? 1 : 0, f.states.size(),
+        static_cast<long long>(f.revealed), static_cast<long long>(f.hidden),
+        static_cast<long long>(f.updates), static_cast<long long>(f.avoid.replans),
+        static_cast<long long>(f.avoid.replan_switches), f.min_static, f.min_mover);
   }
 }
 
