@@ -15,21 +15,17 @@ if(TARGET tdo::sim_node)
                        PROPERTIES LABELS "apps;lcm" TIMEOUT 120)
 endif()
 if(TARGET tdo::sim_node)
-  add_executable(tdo_chain_tests test_chain.cpp)
-  target_link_libraries(tdo_chain_tests PRIVATE tdo::planner_node tdo::avoid_node tdo::sim_node
-                                                GTest::gtest_main)
-  target_compile_definitions(tdo_chain_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
-  tdo_set_warnings(tdo_chain_tests)
-  gtest_discover_tests(tdo_chain_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
-                       PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
-  # Replanning: a wall published across the route mid-flight (test_replan.cpp).
-  add_executable(tdo_replan_tests test_replan.cpp)
-  target_link_libraries(tdo_replan_tests PRIVATE tdo::planner_node tdo::avoid_node tdo::sim_node
-                                                 GTest::gtest_main)
-  target_compile_definitions(tdo_replan_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
-  tdo_set_warnings(tdo_replan_tests)
-  gtest_discover_tests(tdo_replan_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
-                       PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
+  # The three nodes on one bus: the chain on Map6 (test_chain.cpp) and replanning, a wall
+  # published across the route mid-flight and hidden columns (test_replan.cpp).
+  foreach(_chain chain replan)
+    add_executable(tdo_${_chain}_tests test_${_chain}.cpp)
+    target_link_libraries(tdo_${_chain}_tests PRIVATE tdo::planner_node tdo::avoid_node
+                                                      tdo::sim_node GTest::gtest_main)
+    target_compile_definitions(tdo_${_chain}_tests PRIVATE TDO_MAPS_DIR="${PROJECT_SOURCE_DIR}/maps")
+    tdo_set_warnings(tdo_${_chain}_tests)
+    gtest_discover_tests(tdo_${_chain}_tests TEST_PREFIX "apps." DISCOVERY_TIMEOUT 60
+                         PROPERTIES LABELS "apps;lcm" TIMEOUT 300)
+  endforeach()
 endif()
 
 # The programs: --help, a bad option, a bounded memq:// run, a bad URL, SIGINT/SIGTERM.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "avoid_node.h"
+#include "chain_configs.h"
 #include "node_test_util.h"
 #include "planner_node.h"
 #include "sim_node.h"
@@ -27,27 +28,15 @@
 namespace {
 
 constexpr int32_t kVehicle = 0;
-constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
-constexpr double kRadius = 0.25;           // m, the vehicle's
-constexpr double kDt = 0.02;               // s, 50 Hz
+constexpr int64_t kT0 = tdo_test::kChainT0;
+constexpr double kRadius = 0.25;  // m, the vehicle's
+constexpr double kDt = 0.02;      // s, 50 Hz
 
 using tdo_test::collect;
 
-double box_distance(const double* p, const std::vector<double>& b) {
-  double s = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double d = std::max({b[a] - p[a], 0.0, p[a] - b[a + 3]});
-    s += d * d;
-  }
-  return std::sqrt(s);
-}
-
-double norm3(const double* a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-
-double dist3(const double* a, const double* b) {
-  const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  return norm3(d);
-}
+using tdo_test::box_distance;
+using tdo_test::dist3;
+using tdo_test::norm3;
 
 enum class Wall { with_gap, closed };
 
@@ -95,51 +84,19 @@ void fly(Wall kind, Flight* f) {
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelVehicleState, collect(&f->states)));
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelPlanRequest, collect(&f->requests)));
 
-  tdo_lcm::PlannerConfig pc;
-  pc.vehicle_id = kVehicle;
-  pc.max_nx = 50;
-  pc.max_ny = 50;
-  pc.max_nz = 20;
-  pc.max_nodes = 600000;
-  pc.max_boxes = 600;
-  pc.heartbeat_period_s = 0.0;
-  tdo_lcm::PlannerNode planner(&bus, pc);
+  tdo_test::ChainConfigs cc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap");
+  cc.sim.movers = false;
+  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(planner.start(&error)) << error;
-
-  tdo_lcm::AvoidConfig ac;
-  ac.vehicle_id = kVehicle;
-  ac.lockstep = true;
-  ac.max_nx = 50;
-  ac.max_ny = 50;
-  ac.max_nz = 20;
-  ac.max_boxes = 600;
-  ac.heartbeat_period_s = 0.0;
-  tdo_lcm::AvoidNode avoid(&bus, ac);
-  ASSERT_TRUE(avoid.start(&error)) << error;
-
-  tdo_lcm::SimConfig sc;
-  sc.vehicle_id = kVehicle;
-  sc.lockstep = true;
-  sc.movers = false;
-  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
-  sc.start_utime = kT0;
-  sc.heartbeat_period_s = 0.0;
-  tdo_lcm::SimNode sim(&bus, sc);
-  ASSERT_TRUE(sim.start(&error)) << error;
+  ASSERT_TRUE(nodes.start(&error)) << error;
+  tdo_lcm::PlannerNode& planner = nodes.planner;
+  tdo_lcm::AvoidNode& avoid = nodes.avoid;
+  tdo_lcm::SimNode& sim = nodes.sim;
   tdo_vec3 goal{};
   ASSERT_TRUE(sim.goal(&goal));
   const double goal_p[3] = {goal.x, goal.y, goal.z};
 
-  tdo_plan_request req{};
-  tdo_plan_params_default(&req.params);
-  req.start = tdo_vec3{2, 2, 3};
-  req.goal = goal;
-  tdo::plan_request_t rm{};
-  tdo_lcm::plan_request_to_msg(req, -1.0, &rm);
-  rm.request_id = 700;
-  rm.vehicle_id = kVehicle;
-  rm.map_id = -1;
+  const tdo::plan_request_t rm = tdo_test::map6_request(goal, 700);
 
   bool requested = false, walled = false;
   std::size_t seen = 0;
@@ -302,36 +259,16 @@ void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelVehicleState, collect(&f->states)));
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelObstacles, collect(&obstacles)));
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMapUpdate, collect(&updates)));
-  tdo_lcm::PlannerConfig pc;
-  pc.max_nx = 50;
-  pc.max_ny = 50;
-  pc.max_nz = 20;
-  pc.max_nodes = 600000;
-  pc.max_boxes = 600;
-  pc.heartbeat_period_s = 0.0;
-  tdo_lcm::PlannerNode planner(&bus, pc);
+  tdo_test::ChainConfigs cc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap");
+  cc.sim.unknown_fraction = unknown;
+  cc.sim.sensor_range = range;
+  cc.sim.seed = seed;
+  cc.sim.request_goal = true;  // the flight's request, from the simulator as a ground station
+  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(planner.start(&error)) << error;
-  tdo_lcm::AvoidConfig ac;
-  ac.lockstep = true;
-  ac.max_nx = 50;
-  ac.max_ny = 50;
-  ac.max_nz = 20;
-  ac.max_boxes = 600;
-  ac.heartbeat_period_s = 0.0;
-  tdo_lcm::AvoidNode avoid(&bus, ac);
-  ASSERT_TRUE(avoid.start(&error)) << error;
-  tdo_lcm::SimConfig sc;
-  sc.lockstep = true;
-  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
-  sc.start_utime = kT0;
-  sc.heartbeat_period_s = 0.0;
-  sc.unknown_fraction = unknown;
-  sc.sensor_range = range;
-  sc.seed = seed;
-  sc.request_goal = true;  // the flight's request, from the simulator as a ground station
-  tdo_lcm::SimNode sim(&bus, sc);
-  ASSERT_TRUE(sim.start(&error)) << error;
+  ASSERT_TRUE(nodes.start(&error)) << error;
+  tdo_lcm::AvoidNode& avoid = nodes.avoid;
+  tdo_lcm::SimNode& sim = nodes.sim;
   tdo_vec3 goal{};
   ASSERT_TRUE(sim.goal(&goal));
   const double goal_p[3] = {goal.x, goal.y, goal.z};
@@ -370,11 +307,7 @@ TEST(Replan, GivenHiddenColumns_ThenTheSimulatorPublishesWhatItSeesAsNumberedUpd
   std::vector<tdo::map_update_t> updates;
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMap, collect(&maps)));
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelMapUpdate, collect(&updates)));
-  tdo_lcm::SimConfig sc;
-  sc.lockstep = true;
-  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
-  sc.start_utime = kT0;
-  sc.heartbeat_period_s = 0.0;
+  tdo_lcm::SimConfig sc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap").sim;
   sc.unknown_fraction = 0.3;
   sc.sensor_range = 5.0;
   sc.seed = 7;
