@@ -38,11 +38,16 @@
  * update that cannot be applied is counted ("update.gap", ...), makes the map stale
  * ("state.map_stale" in the heartbeat) and sends a map_request_t, as tdo-planner does.
  * Safety: after every map, update and trajectory the rest of the trajectory followed is checked
- * against the known obstacles (exact, tdo_collision_segment_clear at the vehicle radius; leaving
- * the map's bounds counts as crossing). While
- * the part still ahead crosses one, the follower does not follow it: it brakes to a hover and
- * every setpoint says status "path_blocked" (status_code kStatusPathBlocked), counted as failed
- * steps, with "state.path_blocked" in the heartbeat, until a trajectory that is clear arrives.
+ * against the known obstacles (tdo_replan_check from the vehicle's place on it, exact, at the
+ * vehicle radius; leaving the map's bounds counts as crossing). While the part still ahead
+ * crosses one, the follower does not follow it: it brakes to a hover and every setpoint says
+ * status "path_blocked" (status_code kStatusPathBlocked), counted as failed steps, with
+ * "state.path_blocked" in the heartbeat, until a trajectory that is clear takes over.
+ * Replanning (avoid_replan.cpp, docs/lcm.md "Replanning"): blocked, or the follower at a local
+ * minimum or off the path, the node asks the planner for a plan (the goal and parameters of the
+ * request followed) from the state its braking reaches at the takeover time, and follows the
+ * answer from that time; no_path is a safe stop ("no_way_through"), max_replans unusable answers
+ * one too ("replan_failed"); "replanning" while a plan the follower asked for is on its way.
  * Time: the follower's clock is seconds since the first accepted state's utime; movers are moved
  * on from their message's utime to the state's (at most max_mover_shift_s).
  * Single-threaded: the handlers run inside Bus::handle_timeout. Declare the bus before the node.
