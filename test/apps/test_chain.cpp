@@ -26,7 +26,6 @@
 
 namespace {
 
-constexpr int32_t kVehicle = 0;
 constexpr int64_t kT0 = tdo_test::kChainT0;
 
 using tdo_test::box_distance;

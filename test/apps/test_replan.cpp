@@ -27,7 +27,6 @@
 
 namespace {
 
-constexpr int32_t kVehicle = 0;
 constexpr int64_t kT0 = tdo_test::kChainT0;
 constexpr double kRadius = 0.25;  // m, the vehicle's
 constexpr double kDt = 0.02;      // s, 50 Hz
