@@ -41,6 +41,11 @@ bool AvoidNode::start(std::string* error) {
   if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_with("the mover shift must be >= 0");
   if (!valid_timeout(cfg_.answer_timeout_s))
     return fail_with("the answer timeout must be in (0, 1e6] s");
+  if (!(cfg_.replan_lead_s >= 0.0 && cfg_.replan_lead_s <= 60.0))
+    return fail_with("the replan lead must be in [0, 60] s");
+  if (!(cfg_.replan_deviation_m > 0.0) || !std::isfinite(cfg_.replan_deviation_m) ||
+      !(cfg_.replan_deviation_s >= 0.0) || !std::isfinite(cfg_.replan_deviation_s))
+    return fail_with("the replan deviation must be finite and > 0");
   if (!grid_.start(cfg_.max_nx, cfg_.max_ny, cfg_.max_nz, cfg_.max_boxes, cfg_.max_clearance_ratio,
                    error))
     return false;
@@ -132,25 +137,28 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
   if (c.ok() && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "trajectory for vehicle " + std::to_string(m.vehicle_id));
   if (c.ok()) watch_.arrived(m.request_id);  // delivered, whatever it holds
-  if (c.ok()) c = check_counts(m);
-  // Samples when the answer has them, else the compact form sampled at dt (compact.h).
-  const bool sampled = m.n_samples >= 2;
-  if (c.ok() && (m.status_code != 0 || (!sampled && m.n_pieces == 0)))
-    c = fail(Reason::no_plan, "request " + std::to_string(m.request_id) + ": status " + m.status +
-                                  ", " + std::to_string(m.n_samples) + " samples, " +
-                                  std::to_string(m.n_pieces) + " profile pieces");
-  if (c.ok() && sampled && static_cast<uint64_t>(m.n_samples) > cfg_.max_samples)
-    c = fail(Reason::over_capacity, std::to_string(m.n_samples) +
-                                        " samples, more than the capacity of " +
-                                        std::to_string(cfg_.max_samples));
+  if (c.ok() && replan_.phase == ReplanPhase::waiting && m.request_id == replan_.request_id) {
+    on_replan_answer(m);  // the answer to this node's own replan (avoid_replan.cpp)
+    return;
+  }
+  if (c.ok() && m.request_id >= cfg_.replan_id_base &&
+      m.request_id < cfg_.replan_id_base + counters_.replans)
+    c = fail(Reason::no_plan, "request " + std::to_string(m.request_id) +
+                                  ": an answer to a replan given up (late, or superseded)");
   std::vector<tdo_sample> samples;
-  if (c.ok())
-    c = sampled ? samples_from_msg(m, &samples)
-                : samples_from_compact(m, cfg_.max_samples, &samples);
+  if (c.ok()) c = trajectory_samples(m, &samples);
   if (!c.ok()) {
     refuse("trajectory", c);
     return;
   }
+  // A plan from elsewhere (a ground station): followed from now, replanning starts afresh.
+  replan_ = Replan{};
+  template_set_ = false;
+  for (const tdo::plan_request_t& r : requests_)
+    if (r.request_id == m.request_id) {
+      template_ = r;
+      template_set_ = true;
+    }
   samples_ = std::move(samples);
   near_idx_ = 0;
   request_id_ = m.request_id;
@@ -163,10 +171,29 @@ void AvoidNode::on_trajectory(const void* data, std::size_t size) {
   check_blocked();
 }
 
+// Checks of an answer and its samples: those it carries, else its compact form sampled at dt.
+Check AvoidNode::trajectory_samples(const tdo::trajectory_t& m,
+                                    std::vector<tdo_sample>* out) const {
+  Check c = check_counts(m);
+  const bool sampled = m.n_samples >= 2;
+  if (c.ok() && (m.status_code != 0 || (!sampled && m.n_pieces == 0)))
+    c = fail(Reason::no_plan, "request " + std::to_string(m.request_id) + ": status " + m.status +
+                                  ", " + std::to_string(m.n_samples) + " samples, " +
+                                  std::to_string(m.n_pieces) + " profile pieces");
+  if (c.ok() && sampled && static_cast<uint64_t>(m.n_samples) > cfg_.max_samples)
+    c = fail(Reason::over_capacity, std::to_string(m.n_samples) +
+                                        " samples, more than the capacity of " +
+                                        std::to_string(cfg_.max_samples));
+  if (c.ok())
+    c = sampled ? samples_from_msg(m, out) : samples_from_compact(m, cfg_.max_samples, out);
+  return c;
+}
+
 void AvoidNode::on_request(const void* data, std::size_t size) {
   tdo::plan_request_t m{};
   if (!decode(data, size, &m).ok() || m.vehicle_id != cfg_.vehicle_id) return;
   watch_.promise(m.request_id, std::chrono::steady_clock::now());
+  remember_request(m);
 }
 
 void AvoidNode::on_feasibility(const void* data, std::size_t size) {
@@ -239,6 +266,7 @@ void AvoidNode::on_map(const void* data, std::size_t size) {
   // The follower must not step on a grid that changed under it: restart the task on the new one.
   if (task_ready_) reset_task();
   check_blocked();
+  resume_after_map();
 }
 
 void AvoidNode::on_map_update(const void* data, std::size_t size) {
@@ -257,6 +285,7 @@ void AvoidNode::on_map_update(const void* data, std::size_t size) {
       ++counters_.updates_applied;
       if (task_ready_) reset_task();  // the follower's static repulsion sees the change
       check_blocked();
+      resume_after_map();
       return;
     }
     updates_.mark_stale();
@@ -267,30 +296,42 @@ void AvoidNode::on_map_update(const void* data, std::size_t size) {
 }
 
 void AvoidNode::request_map(const std::string& why) {
-  tdo::map_request_t r{};
-  r.utime = wall_utime();
-  r.seq = map_request_seq_++;
-  r.program = "tdo-avoid";
-  r.vehicle_id = cfg_.vehicle_id;
-  r.map_id = map_id();
-  r.last_seq = updates_.last_seq();
-  r.reason = why;
-  bus_->publish(cfg_.map_request_channel, r);
+  bus_->publish(cfg_.map_request_channel,
+                make_map_request("tdo-avoid", cfg_.vehicle_id, updates_, why, &map_request_seq_));
 }
 
 // The part of the task's samples that crosses a known obstacle (at the vehicle radius): exact
 // segment queries between consecutive samples, bounded by the sample count.
 void AvoidNode::check_blocked() {
-  blocked_ = false;
-  if (!have_task_ || !have_map_ || samples_.size() < 2) return;
+  const double from = near_idx_ < samples_.size() ? samples_[near_idx_].t : 0.0;
+  blocked_ = have_task_ && samples_blocked(samples_, from, &blocked_to_);
+}
+
+// Whether `samples` cross a known obstacle from trajectory time `from` on (tdo_replan_check over
+// the rest of the trajectory, exact, at the vehicle radius; leaving the map's bounds counts);
+// then the end time of the first piece that does in `blocked_to`. Samples the check refuses (not
+// uniform in time) count as blocked.
+bool AvoidNode::samples_blocked(const std::vector<tdo_sample>& samples, double from,
+                                double* blocked_to) {
+  if (!have_map_ || samples.size() < 2) return false;
   const tdo_grid* g = grid_.grid();
-  if (tdo_grid_clearance(g) < 0.0) return;  // no finished grid: nothing known
-  for (std::size_t k = 0; k + 1 < samples_.size(); ++k) {
-    if (tdo_collision_segment_clear(g, samples_[k].p, samples_[k + 1].p, cfg_.vehicle_radius))
-      continue;
-    blocked_ = true;
-    blocked_to_ = samples_[k + 1].t;
+  if (tdo_grid_clearance(g) < 0.0) return false;  // no finished grid: nothing known
+  tdo_replan_check_input in{};
+  in.grid = g;
+  in.samples = samples.data();
+  in.n_samples = static_cast<uint32_t>(samples.size());
+  in.t = std::max(0.0, from);
+  in.horizon = std::max(0.0, samples.back().t - in.t);
+  in.clearance = cfg_.vehicle_radius;
+  tdo_replan_check_result r{};
+  if (tdo_replan_check(&in, &r) != TDO_OK) {
+    *blocked_to = samples.back().t;
+    return true;
   }
+  if (r.blocked == 0) return false;
+  const std::size_t end = std::min<std::size_t>(r.index + 1, samples.size() - 1);
+  *blocked_to = samples[end].t;
+  return true;
 }
 
 bool AvoidNode::path_blocked() const {
@@ -320,14 +361,23 @@ void AvoidNode::track_nearest() {
 }
 
 void AvoidNode::publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id,
-                                 bool blocked) {
+                                 Hold why) {
   yaw_ = heading_of(sp.v, yaw_);
   tdo::setpoint_t m{};
   const Check c =
       setpoint_to_msg(sp, state_utime_, cfg_.vehicle_id, setpoint_seq_, request_id, yaw_, st, &m);
-  if (blocked) {  // never "ok" while the trajectory ahead crosses a known obstacle
-    m.status_code = kStatusPathBlocked;
-    m.status = "path_blocked";
+  // Never "ok" while the trajectory ahead crosses a known obstacle, nor while stopped for a plan.
+  static const struct {
+    int32_t code;
+    const char* name;
+  } kHoldStatus[] = {{0, "ok"},
+                     {kStatusPathBlocked, "path_blocked"},
+                     {kStatusReplanning, "replanning"},
+                     {kStatusNoWayThrough, "no_way_through"},
+                     {kStatusReplanFailed, "replan_failed"}};
+  if (why != Hold::idle) {
+    m.status_code = kHoldStatus[static_cast<int>(why)].code;
+    m.status = kHoldStatus[static_cast<int>(why)].name;
   }
   if (!c.ok()) {  // the library promises finite setpoints; count it rather than send garbage
     ++counters_.reasons[std::string("setpoint.") + reason_str(c.reason)];
@@ -350,15 +400,18 @@ bool AvoidNode::tick() {
   }
   const auto t0 = std::chrono::steady_clock::now();
   track_nearest();
+  movers_now_ = movers_;
+  if (utime_ref_set_)
+    movers_advance(&movers_now_, seconds_since(movers_utime_, utime_ref_), state_.t,
+                   cfg_.max_mover_shift_s);
+  if (blocked_ && !path_blocked()) check_blocked();  // past that piece: anything further on?
+  if (replan_tick()) return true;  // a hover while a replan is in progress or after a stop
   if (task_ready_ && path_blocked()) {
-    hold(true);
+    request_replan();
+    hold(replan_.phase == ReplanPhase::stopped ? replan_.stop : Hold::blocked);
     return true;
   }
   if (task_ready_) {
-    movers_now_ = movers_;
-    if (utime_ref_set_)
-      movers_advance(&movers_now_, seconds_since(movers_utime_, utime_ref_), state_.t,
-                     cfg_.max_mover_shift_s);
     tdo_apf_input in{};
     in.state = state_;
     in.movers = movers_now_.empty() ? nullptr : movers_now_.data();
@@ -373,6 +426,11 @@ bool AvoidNode::tick() {
         ++counters_.steps_failed;
       if ((last_out_.events & TDO_APF_EVENT_GOAL_REACHED) != 0u) ++counters_.goal_reached;
       if ((last_out_.events & TDO_APF_EVENT_LM_DETECTED) != 0u) ++counters_.lm_detections;
+      if (follower_wants_replan(st)) {  // brake from this state instead; the new plan takes over
+        request_replan();
+        hold(replan_.phase == ReplanPhase::stopped ? replan_.stop : Hold::replanning);
+        return true;
+      }
       publish_setpoint(last_out_.setpoint, st, request_id_);
       return true;
     }
@@ -380,26 +438,64 @@ bool AvoidNode::tick() {
     ++counters_.steps_failed;
     ++counters_.reasons[std::string("step.") + tdo_status_str(st)];
   }
-  hold(false);
+  hold(Hold::idle);
   return true;
 }
 
-// Brake to a hover with the library's motion rule: without a task (ok), or because the task
-// ahead is blocked (path_blocked, a failed step).
-void AvoidNode::hold(bool blocked) {
-  // Blocked: the hardest braking the limits allow (a_max above kBrakeSpeed, then proportional
-  // down to rest); otherwise the follower's damping.
+// One braking step from `s`: the hardest braking the limits allow (a_max above kBrakeSpeed, then
+// proportional down to rest), through the library's motion rule.
+tdo_setpoint AvoidNode::brake_step(const tdo_vehicle_state& s) const {
   constexpr double kBrakeSpeed = 0.5;  // m/s
-  const double k = blocked ? params_.a_max / kBrakeSpeed : params_.k_d;
+  const double k = params_.a_max / kBrakeSpeed;
+  const tdo_vec3 a_des{-k * s.v.x, -k * s.v.y, -k * s.v.z};
+  tdo_setpoint sp{};
+  tdo_motion_limit(&s, a_des, params_.v_max, params_.a_max, params_.j_max, params_.dt, &sp);
+  return sp;
+}
+
+// Whether braking straight from the current state (brake_step until at rest, at most 5 s) keeps
+// the vehicle centre more than its radius from the known geometry.
+bool AvoidNode::brake_is_safe() {
+  if (!have_map_) return true;
+  const tdo_grid* g = grid_.grid();
+  if (tdo_grid_clearance(g) < 0.0) return true;
+  constexpr double kRest = 0.05, kMaxTime = 5.0;  // m/s, s
+  tdo_vehicle_state s = state_;
+  const int steps = static_cast<int>(kMaxTime / params_.dt);
+  for (int k = 0; k < steps; ++k) {
+    const tdo_setpoint sp = brake_step(s);
+    s = tdo_vehicle_state{sp.t, sp.p, sp.v, sp.a};
+    const double d = tdo_collision_point_distance(g, s.p, cfg_.vehicle_radius + 0.1);
+    if (d >= 0.0 && d < cfg_.vehicle_radius + 0.02) return false;
+    if (std::sqrt(s.v.x * s.v.x + s.v.y * s.v.y + s.v.z * s.v.z) < kRest) break;
+  }
+  return true;
+}
+
+// Brake to a hover with the library's motion rule: without a task (ok, the follower's damping),
+// or, braking hard (brake_step), because the task ahead is blocked, a new plan is on its way or
+// none could be had (a failed step with its named status).
+void AvoidNode::hold(Hold why) {
+  if (why != Hold::idle) {
+    ++counters_.blocked_holds;
+    ++counters_.steps_failed;
+    tdo_setpoint sp = brake_step(state_);
+    if (task_ready_ && !brake_is_safe()) {  // the follower's safety filter and wall terms instead
+      tdo_apf_input in{};
+      in.state = state_;
+      in.movers = movers_now_.empty() ? nullptr : movers_now_.data();
+      in.n_movers = static_cast<uint32_t>(movers_now_.size());
+      const tdo_status st = tdo_apf_run(apf_, &in, &last_out_);
+      if (st == TDO_OK || st == TDO_ERR_LOCAL_MINIMUM) sp = last_out_.setpoint;
+      ++counters_.unsafe_brakes;
+    }
+    publish_setpoint(sp, TDO_OK, request_id_, why);
+    return;
+  }
+  const double k = params_.k_d;
   const tdo_vec3 a_des{-k * state_.v.x, -k * state_.v.y, -k * state_.v.z};
   tdo_setpoint sp{};
   tdo_motion_limit(&state_, a_des, params_.v_max, params_.a_max, params_.j_max, params_.dt, &sp);
-  if (blocked) {
-    ++counters_.blocked_holds;
-    ++counters_.steps_failed;
-    publish_setpoint(sp, TDO_OK, request_id_, true);
-    return;
-  }
   ++counters_.holds;
   publish_setpoint(sp, TDO_OK, -1);
 }
@@ -409,6 +505,7 @@ tdo::status_t AvoidNode::status_message() const {
   std::map<std::string, int64_t> reasons = counters_.reasons;
   if (updates_.stale()) reasons["state.map_stale"] = 1;  // outside the rejected + ignored sum
   if (path_blocked()) reasons["state.path_blocked"] = 1;
+  if (const char* why = stop_status(); why[0] != '\0') reasons[std::string("state.") + why] = 1;
   fill_status(&s, "tdo-avoid", status_seq_, cfg_.vehicle_id, started_, reasons);
   s.map_id = map_id();
   s.received = counters_.received;

@@ -38,11 +38,16 @@
  * update that cannot be applied is counted ("update.gap", ...), makes the map stale
  * ("state.map_stale" in the heartbeat) and sends a map_request_t, as tdo-planner does.
  * Safety: after every map, update and trajectory the rest of the trajectory followed is checked
- * against the known obstacles (exact, tdo_collision_segment_clear at the vehicle radius; leaving
- * the map's bounds counts as crossing). While
- * the part still ahead crosses one, the follower does not follow it: it brakes to a hover and
- * every setpoint says status "path_blocked" (status_code kStatusPathBlocked), counted as failed
- * steps, with "state.path_blocked" in the heartbeat, until a trajectory that is clear arrives.
+ * against the known obstacles (tdo_replan_check from the vehicle's place on it, exact, at the
+ * vehicle radius; leaving the map's bounds counts as crossing). While the part still ahead
+ * crosses one, the follower does not follow it: it brakes to a hover and every setpoint says
+ * status "path_blocked" (status_code kStatusPathBlocked), counted as failed steps, with
+ * "state.path_blocked" in the heartbeat, until a trajectory that is clear takes over.
+ * Replanning (avoid_replan.cpp, docs/lcm.md "Replanning"): blocked, or the follower at a local
+ * minimum or off the path, the node asks the planner for a plan (the goal and parameters of the
+ * request followed) from the state its braking reaches at the takeover time, and follows the
+ * answer from that time; no_path is a safe stop ("no_way_through"), max_replans unusable answers
+ * one too ("replan_failed"); "replanning" while a plan the follower asked for is on its way.
  * Time: the follower's clock is seconds since the first accepted state's utime; movers are moved
  * on from their message's utime to the state's (at most max_mover_shift_s).
  * Single-threaded: the handlers run inside Bus::handle_timeout. Declare the bus before the node.
@@ -70,6 +75,13 @@ namespace tdo_lcm {
 
 /** setpoint_t.status_code of a hover because the trajectory crosses a known obstacle. */
 constexpr int32_t kStatusPathBlocked = -2;
+/** setpoint_t.status_code while braking for a new plan the follower asked for (local minimum,
+ *  too far off the path). */
+constexpr int32_t kStatusReplanning = -3;
+/** setpoint_t.status_code of the safe stop after the planner found no way through (no_path). */
+constexpr int32_t kStatusNoWayThrough = -4;
+/** setpoint_t.status_code of the safe stop after max_replans requests brought no usable plan. */
+constexpr int32_t kStatusReplanFailed = -5;
 
 /** Configuration of a follower node (tdo-avoid's command line). */
 struct AvoidConfig {
@@ -103,6 +115,14 @@ struct AvoidConfig {
                                          (2 s at the planner's default 0.01 s) */
   double max_mover_shift_s = 1.0; /**< s, movers are moved on to the state's time by at most this */
   double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
+  // replanning (avoid_replan.cpp)
+  bool replan = true;               /**< send plan requests from the predicted state when needed */
+  double replan_lead_s = 0.5;       /**< s from the trigger to the takeover of the new plan */
+  uint32_t max_replans = 3;         /**< requests per trigger without a usable plan, then a stop */
+  uint32_t max_replans_total = 200; /**< requests over the node's life, then a stop */
+  double replan_deviation_m = 2.0;  /**< m off the path for replan_deviation_s: replan */
+  double replan_deviation_s = 1.0;  /**< s */
+  int64_t replan_id_base = 1000000000; /**< request_id of the k-th replan: base + k */
 };
 
 /** Message counters, also sent in each heartbeat (status_t). */
@@ -121,6 +141,12 @@ struct AvoidCounters {
   int64_t ignored = 0;         /**< messages not for this vehicle or without a plan */
   int64_t goal_reached = 0;    /**< GOAL_REACHED events */
   int64_t lm_detections = 0;   /**< local minima detected (over every task) */
+  int64_t replans = 0;         /**< plan requests sent from a predicted state */
+  int64_t replan_switches = 0; /**< new plans taken over at their takeover time */
+  int64_t replan_refused = 0;  /**< answers to them not taken (error, blocked, late) */
+  int64_t safe_stops = 0;      /**< stops: no_way_through or replan_failed */
+  int64_t unsafe_brakes = 0;   /**< hold steps whose straight braking would touch a known
+                                    obstacle: the follower's step was sent instead */
   double last_step_ms = 0.0;   /**< ms, wall time of the last follower call */
   std::map<std::string, int64_t> reasons; /**< "trajectory.<reason>", "state.<reason>", ... */
 };
@@ -159,6 +185,10 @@ class AvoidNode {
   /** @return true while the rest of the trajectory followed crosses a known obstacle. */
   bool path_blocked() const;
   bool map_stale() const { return updates_.stale(); }
+  /** @return the setpoint status while not following ("" when following or holding idle). */
+  const char* stop_status() const;
+  /** @return true while a replan is asked for and its plan has not taken over. */
+  bool replanning() const { return replan_.phase != ReplanPhase::idle; }
   /** @return the last follower output (mode, terms, events). */
   const tdo_apf_output& last_output() const { return last_out_; }
   std::size_t arena_bytes() const { return arena_bytes_ + grid_.arena_bytes(); }
@@ -174,14 +204,45 @@ class AvoidNode {
   void on_map_update(const void* data, std::size_t size);
 
  private:
+  enum class ReplanPhase { idle, waiting, pending, stopped };
+  enum class Hold { idle, blocked, replanning, no_way_through, replan_failed };
+  /** Replanning state (avoid_replan.cpp). */
+  struct Replan {
+    ReplanPhase phase = ReplanPhase::idle;
+    Hold stop = Hold::idle;          /**< why stopped (phase stopped) */
+    bool wanted = false;             /**< the follower asked for a new plan */
+    int64_t request_id = -1;         /**< the request waited for */
+    double t_take = 0.0;             /**< s, follower clock of the takeover */
+    uint32_t attempts = 0;           /**< requests since the last trigger was resolved */
+    double off_since = -1.0;         /**< s, follower clock since off the path (-1: on it) */
+    double clearance = -1.0;         /**< m, request clearance; < 0: the followed request's */
+    double start_speed = 0.0;        /**< m/s, of the predicted state asked from */
+    double rest_since = -1.0;        /**< s, follower clock since at rest after a stop */
+    std::vector<tdo_sample> samples; /**< the answer, waiting for its takeover */
+  };
+  bool have_template() const;
+  void remember_request(const tdo::plan_request_t& m);
+  bool follower_wants_replan(tdo_status st);
+  void request_replan();
+  void on_replan_answer(const tdo::trajectory_t& m);
+  void replan_refused(const std::string& why);
+  void replan_stop(Hold why);
+  bool at_rest_since(double s);
+  bool replan_tick();
+  void switch_to_pending();
+  void resume_after_map();
+  tdo_setpoint brake_step(const tdo_vehicle_state& s) const;
+  bool brake_is_safe();
+  Check trajectory_samples(const tdo::trajectory_t& m, std::vector<tdo_sample>* out) const;
   void check_blocked();
+  bool samples_blocked(const std::vector<tdo_sample>& samples, double from, double* blocked_to);
   void request_map(const std::string& why);
-  void hold(bool blocked);
+  void hold(Hold why);
   void track_nearest();
   void refuse(const std::string& what, const Check& c);
   void reset_task();
   void publish_setpoint(const tdo_setpoint& sp, tdo_status st, int64_t request_id,
-                        bool blocked = false);
+                        Hold why = Hold::idle);
 
   Bus* bus_;
   AvoidConfig cfg_;
@@ -220,6 +281,14 @@ class AvoidNode {
   double yaw_ = 0.0;
 
   AnswerWatch watch_;
+  // replanning: the requests seen for this vehicle (the last kMaxTemplates, their parameters and
+  // goal are reused), the one whose trajectory is followed, the replan in progress
+  static constexpr std::size_t kMaxTemplates = 16;
+  std::vector<tdo::plan_request_t> requests_;
+  tdo::plan_request_t template_{};
+  bool template_set_ = false;
+  Replan replan_;
+  int64_t replan_seq_ = 0;
 
   tdo_apf_output last_out_{};
   AvoidCounters counters_;

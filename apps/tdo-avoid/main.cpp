@@ -74,8 +74,26 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--max-movers", cfg.max_movers, "capacity: moving obstacles per message")
       ->capture_default_str();
+  bool no_replan = false;
+  app.add_flag("--no-replan", no_replan,
+               "never ask for a new plan (a blocked trajectory: brake, path_blocked)");
+  app.add_option("--replan-lead", cfg.replan_lead_s,
+                 "s from a replan's trigger to the takeover of the new plan")
+      ->capture_default_str();
+  app.add_option("--max-replans", cfg.max_replans,
+                 "requests per trigger without a usable plan before a safe stop (replan_failed)")
+      ->capture_default_str();
+  app.add_option("--max-replans-total", cfg.max_replans_total, "replan requests in all")
+      ->capture_default_str();
+  app.add_option("--replan-deviation", cfg.replan_deviation_m,
+                 "m off the path for 1 s that makes the follower ask for a new plan")
+      ->capture_default_str();
+  app.add_option("--replan-id-base", cfg.replan_id_base,
+                 "request_id of the first replan (then +1 per replan)")
+      ->capture_default_str();
   tdo_lcm::add_run_options(app, &opt);
   if (int rc = 0; !tdo_lcm::parse_options(app, argc, argv, &rc)) return rc;
+  cfg.replan = !no_replan;
   cfg.max_nx = max_size[0];
   cfg.max_ny = max_size[1];
   cfg.max_nz = max_size[2];
@@ -102,11 +120,13 @@ int main(int argc, char** argv) {
   if (!opt.quiet)
     std::fprintf(stderr,
                  "tdo-avoid: stopped: %lld received, %lld setpoints (%lld followed, %lld failed, "
-                 "%lld hover), %lld rejected, %lld ignored\n",
+                 "%lld hover), %lld rejected, %lld ignored; %lld replans (%lld taken over), "
+                 "%lld safe stops\n",
                  static_cast<long long>(c.received), static_cast<long long>(c.setpoints),
                  static_cast<long long>(c.steps_ok), static_cast<long long>(c.steps_failed),
                  static_cast<long long>(c.holds), static_cast<long long>(c.rejected),
-                 static_cast<long long>(c.ignored));
+                 static_cast<long long>(c.ignored), static_cast<long long>(c.replans),
+                 static_cast<long long>(c.replan_switches), static_cast<long long>(c.safe_stops));
   if (!opt.quiet)
     for (const auto& kv : c.reasons)
       std::fprintf(stderr, "tdo-avoid:   %s %lld\n", kv.first.c_str(),

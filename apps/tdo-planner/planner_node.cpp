@@ -88,6 +88,9 @@ void PlannerNode::on_map(const void* data, std::size_t size) {
   Check c = decode(data, size, &m);
   if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
     c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  // The map in use, sent again (a publisher repeats it for late starters): the updates applied
+  // on top of it stay. A stale map is reloaded (the whole map was asked for).
+  if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
 #if TDO_LCM_HAVE_OCTOMAP
   // An OctoMap binary stream is rasterised onto the message's grid first (capacity checked before).
   if (c.ok() && m.encoding == tdo::map_t::ENCODING_OCTOMAP_BT) {
@@ -236,15 +239,8 @@ void PlannerNode::on_map_update(const void* data, std::size_t size) {
 }
 
 void PlannerNode::request_map(const char* why) {
-  tdo::map_request_t r{};
-  r.utime = wall_utime();
-  r.seq = map_request_seq_++;
-  r.program = "tdo-planner";
-  r.vehicle_id = cfg_.vehicle_id;
-  r.map_id = map_id();
-  r.last_seq = updates_.last_seq();
-  r.reason = why;
-  bus_->publish(cfg_.map_request_channel, r);
+  bus_->publish(cfg_.map_request_channel,
+                make_map_request("tdo-planner", cfg_.vehicle_id, updates_, why, &map_request_seq_));
   ++counters_.map_requests;
   next_map_request_ = std::chrono::steady_clock::now() + steady_seconds(1.0);
 }

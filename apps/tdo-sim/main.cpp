@@ -62,7 +62,14 @@ int main(int argc, char** argv) {
          "--start-utime", cfg.start_utime,
          "us, utime of the initial state (0 = now); the clock then advances by 1/rate per step")
       ->capture_default_str();
-  app.add_option("--seed", cfg.seed, "seed of the disturbance")->capture_default_str();
+  app.add_option("--seed", cfg.seed, "seed of the disturbance and of the hidden obstacles")
+      ->capture_default_str();
+  app.add_option("--unknown", cfg.unknown_fraction,
+                 "share in [0, 1] of the map's boxes hidden until the range sensor sees them; "
+                 "revealed ones go out as map updates")
+      ->capture_default_str();
+  app.add_option("--sensor-range", cfg.sensor_range, "m, reach of the range sensor (--unknown)")
+      ->capture_default_str();
   app.add_option("--accel-noise", cfg.accel_noise, "m/s^2, standard deviation of the disturbance")
       ->capture_default_str();
   app.add_option("--v-max", cfg.v_max, "m/s, speed limit")->capture_default_str();
@@ -83,6 +90,11 @@ int main(int argc, char** argv) {
   app.add_option("--obstacles-channel", cfg.obstacles_channel, "moving obstacles out")
       ->capture_default_str();
   app.add_option("--map-channel", cfg.map_channel, "map out")->capture_default_str();
+  app.add_option("--map-update-channel", cfg.map_update_channel, "revealed obstacles out")
+      ->capture_default_str();
+  app.add_option("--map-request-channel", cfg.map_request_channel,
+                 "requests for the whole map in (--unknown)")
+      ->capture_default_str();
   app.add_option("--status-channel", cfg.status_channel, "heartbeats out")->capture_default_str();
   app.add_option("--heartbeat", cfg.heartbeat_period_s, "s between heartbeats (0 = none)")
       ->capture_default_str();
@@ -128,10 +140,14 @@ int main(int argc, char** argv) {
   if (!opt.quiet) {
     const tdo_sim_output s = node.current();
     std::fprintf(stderr,
-                 "tdo-sim: stopped: %lld received, %lld steps (%lld braking, %lld in collision), "
+                 "tdo-sim: stopped: %lld received, %lld steps (%lld braking, %lld in collision: "
+                 "%lld static, %lld mover), %lld of %lld hidden boxes revealed, "
                  "%lld rejected, %lld ignored; at (%.3f, %.3f, %.3f) after %.2f s\n",
                  static_cast<long long>(c.received), static_cast<long long>(c.steps),
                  static_cast<long long>(c.brakes), static_cast<long long>(c.collision_steps),
+                 static_cast<long long>(c.static_collisions),
+                 static_cast<long long>(c.mover_collisions),
+                 static_cast<long long>(c.boxes_revealed), static_cast<long long>(c.boxes_hidden),
                  static_cast<long long>(c.rejected), static_cast<long long>(c.ignored), s.state.p.x,
                  s.state.p.y, s.state.p.z, s.state.t);
     for (const auto& kv : c.reasons)

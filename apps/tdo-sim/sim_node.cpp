@@ -60,6 +60,7 @@ bool SimNode::start(std::string* error) {
     if (!c.ok()) return fail_with(cfg_.map_file + ": " + reason_str(c.reason) + ": " + c.detail);
     map_msg_.map_id = cfg_.map_id;
     map_msg_.vehicle_id = -1;
+    map_id_ = cfg_.map_id;
     has_map_ = true;
     if (!cfg_.has_goal) {
       has_goal_ = map.has_goal;
@@ -128,9 +129,14 @@ bool SimNode::start(std::string* error) {
   counters_.min_mover_gap = out.mover_gap;
   counters_.min_static_dist = out.static_dist;
 
-  const bool ok = bus_->subscribe(
-      cfg_.setpoint_channel,
-      [this](const void* d, std::size_t n, const std::string&) { on_setpoint(d, n); });
+  if (!start_sensing(map, error)) return false;  // the known part of the map as map_msg_
+  const bool ok =
+      bus_->subscribe(cfg_.setpoint_channel, [this](const void* d, std::size_t n,
+                                                    const std::string&) { on_setpoint(d, n); }) &&
+      (!sensing_ || bus_->subscribe(cfg_.map_request_channel,
+                                    [this](const void* d, std::size_t n, const std::string&) {
+                                      on_map_request(d, n);
+                                    }));
   if (!ok) return fail_with("cannot subscribe");
   if (cfg_.request_goal && !has_goal_)
     return fail_with("a plan request needs a goal (--goal, or a map file with one)");
@@ -216,6 +222,7 @@ void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   if (out.collision_mover != 0 || out.collision_static != 0) ++counters_.collision_steps;
   counters_.min_mover_gap = std::min(counters_.min_mover_gap, out.mover_gap);
   counters_.min_static_dist = std::min(counters_.min_static_dist, out.static_dist);
+  if (sensing_) sense();  // before the state: a lock-step follower steps as soon as it arrives
   publish_state();
 }
 
@@ -257,7 +264,7 @@ bool SimNode::publish_request() {
   m.utime = wall_utime();
   m.request_id = 1;
   m.vehicle_id = cfg_.vehicle_id;
-  m.map_id = has_map_ ? cfg_.map_id : -1;
+  m.map_id = has_map_ ? map_id_ : -1;
   bus_->publish(cfg_.request_channel, m);
   requested_ = true;
   return true;
@@ -266,7 +273,7 @@ bool SimNode::publish_request() {
 tdo::status_t SimNode::status_message() const {
   tdo::status_t s{};
   fill_status(&s, "tdo-sim", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
-  s.map_id = has_map_ ? cfg_.map_id : -1;
+  s.map_id = has_map_ ? map_id_ : -1;
   s.received = counters_.received;
   s.maps_loaded = has_map_ ? 1 : 0;
   s.answered = counters_.steps;

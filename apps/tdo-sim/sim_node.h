@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "tdo/tdo.h"
+#include "tdo_io/map_io.h"
 #include "tdo_lcm/bus.h"
 #include "tdo_lcm/check.h"
 #include "tdo_lcm/grid_host.h"
@@ -42,13 +43,15 @@ namespace tdo_lcm {
 
 /** Configuration of a simulator node (tdo-sim's command line). */
 struct SimConfig {
-  int32_t vehicle_id = 0;                            /**< vehicle simulated */
-  std::string setpoint_channel = kChannelSetpoint;   /**< setpoints in */
-  std::string state_channel = kChannelVehicleState;  /**< states out */
-  std::string obstacles_channel = kChannelObstacles; /**< movers out */
-  std::string map_channel = kChannelMap;             /**< the map file out */
-  std::string status_channel = kChannelStatus;       /**< heartbeats out */
-  std::string request_channel = kChannelPlanRequest; /**< the demo request out (request_goal) */
+  int32_t vehicle_id = 0;                               /**< vehicle simulated */
+  std::string setpoint_channel = kChannelSetpoint;      /**< setpoints in */
+  std::string state_channel = kChannelVehicleState;     /**< states out */
+  std::string obstacles_channel = kChannelObstacles;    /**< movers out */
+  std::string map_channel = kChannelMap;                /**< the map file out */
+  std::string status_channel = kChannelStatus;          /**< heartbeats out */
+  std::string request_channel = kChannelPlanRequest;    /**< the demo request out (request_goal) */
+  std::string map_update_channel = kChannelMapUpdate;   /**< revealed boxes out (sensing) */
+  std::string map_request_channel = kChannelMapRequest; /**< requests for the whole map in */
   double rate_hz = 50.0;        /**< Hz, steps per second; the simulator's dt = 1 / rate */
   bool lockstep = false;        /**< one step per received setpoint instead of the timer */
   std::string map_file;         /**< map to publish and simulate in; empty: none */
@@ -78,6 +81,9 @@ struct SimConfig {
   tdo_vec3 goal{};                 /**< m, world frame */
   double request_delay_s = 1.0;    /**< s after start (timed mode) before the request goes out */
   double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
+  double unknown_fraction = 0.0;   /**< in [0, 1]: share of the map's boxes hidden until sensed
+                                        (chosen with `seed`); 0: the whole map is known */
+  double sensor_range = 5.0;       /**< m, > 0: reach of the range sensor (tdo_sense_run) */
 };
 
 /** Counters, also sent in each heartbeat (status_t). */
@@ -92,6 +98,9 @@ struct SimCounters {
   double min_mover_gap = 0.0;    /**< m, smallest mover gap over the run (HUGE_VAL: none) */
   double min_static_dist = 0.0;  /**< m, smallest static distance over the run (capped at 10 m) */
   int64_t maps_published = 0;    /**< map messages sent */
+  int64_t boxes_hidden = 0;      /**< boxes hidden at start (sensing) */
+  int64_t boxes_revealed = 0;    /**< of them revealed by the sensor */
+  int64_t updates_published = 0; /**< map_update_t sent (one per step that revealed boxes) */
   int64_t rejected = 0;          /**< messages refused by a check */
   int64_t ignored = 0;           /**< messages for another vehicle */
   double last_step_ms = 0.0;     /**< ms, wall time of the last simulator call */
@@ -146,12 +155,23 @@ class SimNode {
   int64_t start_utime() const { return utime0_; }
   std::size_t arena_bytes() const { return arena_bytes_ + grid_.arena_bytes(); }
 
+  /** @return the map_id of the map published now (a new one after each map request). */
+  int64_t map_id() const { return map_id_; }
+  /** @return the true world's boxes and which of them the vehicle knows (1) or not yet (0). */
+  const std::vector<tdo_box>& true_boxes() const { return true_boxes_; }
+  const std::vector<uint8_t>& known() const { return known_; }
+
   /** Handler of the raw bytes of one setpoint (what start() subscribes). */
   void on_setpoint(const void* data, std::size_t size);
+  /** Handler of a map request: the known map under a new map_id (sensing only). */
+  void on_map_request(const void* data, std::size_t size);
 
  private:
   void refuse(const std::string& what, const Check& c);
   void step_at(std::chrono::steady_clock::time_point now);
+  bool start_sensing(const tdo_io::Map& map, std::string* error);
+  void sense(bool publish = true);
+  Check known_map_msg();
 
   Bus* bus_;
   SimConfig cfg_;
@@ -162,6 +182,14 @@ class SimNode {
 
   bool has_map_ = false;
   tdo::map_t map_msg_{};
+  int64_t map_id_ = -1;
+  // sensing (sim_sensing.cpp): the map file (the true world), its boxes and what is known
+  bool sensing_ = false;
+  tdo_io::Map map_;
+  std::vector<tdo_box> true_boxes_;
+  std::vector<uint8_t> known_;
+  std::vector<uint32_t> revealed_;
+  int64_t update_seq_ = 0;
   bool has_goal_ = false;
   tdo_vec3 goal_{};
 

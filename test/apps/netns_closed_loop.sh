@@ -3,8 +3,9 @@
 # network namespace made here (no packet can leave it), on the apps' default URL: tdo-sim (Map6,
 # vehicle, movers), tdo-planner, tdo-avoid, lcm-logger, and tdo-request --wait. Then 200 more
 # requests, each of which must be answered (tdo-request exit 0), with no trajectory.missing in
-# tdo-avoid's counters and the vehicle moving; then the log lcm-logger recorded must hold every
-# answer and tools/plot/tdo_plot_log.py must draw the executed path, the movers and the replans.
+# tdo-avoid's counters, the vehicle moving and no contact with a column or a mover (tdo-sim's
+# counters); then the log lcm-logger recorded must hold every answer and tools/plot/tdo_plot_log.py
+# must draw the executed path, the movers and the replans.
 # Exit 77 (CTest SKIP_RETURN_CODE) when namespaces are not available.
 #
 #   netns_closed_loop.sh REPO BUILD_DIR VENV_PYTHON PYDIR SCRATCH [N_REQUESTS]
@@ -34,7 +35,8 @@ run() { local exe="$1"; shift; "$build/${exe#build/}" "$@"; }
 bin() { echo "$build/${1#build/}"; }
 
 "$(bin "${sim[0]}")" "${sim[@]:1}" 2>"$scratch/sim.err" &
-pids+=($!)
+sim_pid=$!
+pids+=($sim_pid)
 "$(bin "${planner[0]}")" "${planner[@]:1}" 2>"$scratch/planner.err" &
 planner_pid=$!
 pids+=($planner_pid)
@@ -64,12 +66,18 @@ echo "closed loop: $ok of $n requests answered in $(echo "$(date +%s.%N) - $t0" 
 [[ $ok -eq $n ]] || rc=1
 sleep 4  # past tdo-avoid's answer timeout (2 s): a lost trajectory would be counted by now
 
+kill -TERM "$sim_pid"
+wait "$sim_pid" || { echo "tdo-sim exit status $?"; rc=1; }
 kill -TERM "$avoid_pid" "$planner_pid"
 wait "$avoid_pid" || { echo "tdo-avoid exit status $?"; rc=1; }
 wait "$planner_pid" || { echo "tdo-planner exit status $?"; rc=1; }
 kill -INT "$logger_pid"  # scripts/lcm-logger is the logger itself: SIGINT ends it
 wait "$logger_pid" || { echo "FAILED: lcm-logger exit status $? on SIGINT"; rc=1; }
-cat "$scratch/avoid.err" "$scratch/planner.err"
+cat "$scratch/sim.err" "$scratch/avoid.err" "$scratch/planner.err"
+# No contact with a column or a mover over the whole run (tdo-sim checks every step against the
+# map file and the movers it simulates).
+grep -Eq "tdo-sim: stopped: .* 0 in collision: 0 static, 0 mover" "$scratch/sim.err" ||
+  { echo "FAILED: tdo-sim counted a contact"; rc=1; }
 if grep -q "trajectory.missing" "$scratch/avoid.err"; then
   echo "FAILED: tdo-avoid was promised trajectories that never arrived"
   rc=1

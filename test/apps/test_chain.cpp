@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "avoid_node.h"
+#include "chain_configs.h"
 #include "node_test_util.h"
 #include "planner_node.h"
 #include "sim_node.h"
@@ -25,25 +26,10 @@
 
 namespace {
 
-constexpr int32_t kVehicle = 0;
-constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
+constexpr int64_t kT0 = tdo_test::kChainT0;
 
+using tdo_test::box_distance;
 using tdo_test::collect;
-
-/** Euclidean distance from p to an axis-aligned box (0 inside). */
-double box_distance(const double* p, const std::vector<double>& b) {
-  double s = 0.0;
-  for (int a = 0; a < 3; ++a) {
-    const double d = std::max({b[a] - p[a], 0.0, p[a] - b[a + 3]});
-    s += d * d;
-  }
-  return std::sqrt(s);
-}
-
-double dist(const double* a, const double* b) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                   (a[2] - b[2]) * (a[2] - b[2]));
-}
 
 struct Flight {
   bool arrived = false;
@@ -71,51 +57,20 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelObstacles, collect(&obstacles)));
   ASSERT_TRUE(bus.subscribe(tdo_lcm::kChannelVehicleState, collect(&states)));
 
-  tdo_lcm::PlannerConfig pc;
-  pc.vehicle_id = kVehicle;
-  pc.max_nx = 50;
-  pc.max_ny = 50;
-  pc.max_nz = 20;
-  pc.max_nodes = 600000;
-  pc.max_boxes = 600;
-  pc.heartbeat_period_s = 0.0;
-  tdo_lcm::PlannerNode planner(&bus, pc);
+  tdo_test::ChainConfigs cc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap");
+  cc.avoid.kind = kind;
+  const tdo_lcm::AvoidConfig& ac = cc.avoid;
+  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(planner.start(&error)) << error;
-
-  tdo_lcm::AvoidConfig ac;
-  ac.vehicle_id = kVehicle;
-  ac.kind = kind;
-  ac.lockstep = true;
-  ac.max_nx = 50;
-  ac.max_ny = 50;
-  ac.max_nz = 20;
-  ac.max_boxes = 600;
-  ac.heartbeat_period_s = 0.0;
-  tdo_lcm::AvoidNode avoid(&bus, ac);
-  ASSERT_TRUE(avoid.start(&error)) << error;
-
-  tdo_lcm::SimConfig sc;
-  sc.vehicle_id = kVehicle;
-  sc.lockstep = true;
-  sc.map_file = std::string(TDO_MAPS_DIR) + "/map6.tdomap";
-  sc.start_utime = kT0;
-  sc.heartbeat_period_s = 0.0;
-  tdo_lcm::SimNode sim(&bus, sc);  // publishes the map, the first state and the movers
-  ASSERT_TRUE(sim.start(&error)) << error;
+  ASSERT_TRUE(nodes.start(&error)) << error;
+  tdo_lcm::PlannerNode& planner = nodes.planner;
+  tdo_lcm::AvoidNode& avoid = nodes.avoid;
+  tdo_lcm::SimNode& sim = nodes.sim;
   tdo_vec3 goal{};
   ASSERT_TRUE(sim.goal(&goal));
 
   // The request, as a ground station would send it once the planner has the map.
-  tdo_plan_request req{};
-  tdo_plan_params_default(&req.params);
-  req.start = tdo_vec3{2, 2, 3};
-  req.goal = goal;
-  tdo::plan_request_t rm{};
-  tdo_lcm::plan_request_to_msg(req, -1.0, &rm);
-  rm.request_id = 600;
-  rm.vehicle_id = kVehicle;
-  rm.map_id = -1;
+  const tdo::plan_request_t rm = tdo_test::map6_request(goal, 600);
 
   const double goal_p[3] = {goal.x, goal.y, goal.z};
   std::vector<std::vector<double>> boxes;
@@ -141,9 +96,9 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
       const tdo::obstacles_t& o = obstacles.back();
       ASSERT_EQ(o.utime, s.utime);  // published together, movers first
       for (int k = 0; k < o.n; ++k)
-        run.min_mover = std::min(run.min_mover, dist(s.position, o.position[k].data()) -
+        run.min_mover = std::min(run.min_mover, tdo_test::dist3(s.position, o.position[k].data()) -
                                                     o.radius[k] - ac.vehicle_radius);
-      if (dist(s.position, goal_p) < 0.25) {
+      if (tdo_test::dist3(s.position, goal_p) < 0.25) {
         run.arrived = true;
         run.time_s = static_cast<double>(s.utime - kT0) * 1e-6;
       }

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tdo_lcm/node_status.h"
+
 namespace tdo_lcm {
 
 namespace {
@@ -119,6 +121,20 @@ Check MapUpdateSeq::order(const tdo::map_update_t& u) {
                                  std::to_string(u.seq - last_seq_ - 1) + " missing");
   }
   return Check{};
+}
+
+tdo::map_request_t make_map_request(const char* program, int32_t vehicle_id,
+                                    const MapUpdateSeq& updates, const std::string& why,
+                                    int64_t* seq) {
+  tdo::map_request_t r{};
+  r.utime = wall_utime();
+  r.seq = (*seq)++;
+  r.program = program;
+  r.vehicle_id = vehicle_id;
+  r.map_id = updates.map_id();
+  r.last_seq = updates.last_seq();
+  r.reason = why;
+  return r;
 }
 
 }  // namespace tdo_lcm

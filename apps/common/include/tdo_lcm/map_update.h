@@ -12,6 +12,7 @@
 #define TDO_LCM_MAP_UPDATE_H
 
 #include <cstdint>
+#include <string>
 
 #include "tdo/grid_update.h"
 #include "tdo_lcm/check.h"
@@ -62,6 +63,16 @@ class MapUpdateSeq {
   int64_t map_id_ = -1;
   int64_t last_seq_ = 0;
 };
+
+/**
+ * @brief The map_request_t a node with a stale map sends (tdo-planner, tdo-avoid): the map it has
+ *        (`updates`' map and last applied update), why, stamped with the wall clock.
+ * @param program the sender, e.g. "tdo-planner"
+ * @param seq the sender's request counter (incremented here)
+ */
+tdo::map_request_t make_map_request(const char* program, int32_t vehicle_id,
+                                    const MapUpdateSeq& updates, const std::string& why,
+                                    int64_t* seq);
 
 }  // namespace tdo_lcm
 
