@@ -38,6 +38,7 @@
 
 #include "collision_internal.h"
 #include "sample_energy.h"
+#include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
@@ -92,23 +93,6 @@ constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave a
 // from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
 // exactly v_max).
 constexpr double kStateSlack = 1e-9;
-
-struct V3 {
-  double x, y, z;
-};
-inline V3 mk(const tdo_vec3& a) { return V3{a.x, a.y, a.z}; }
-inline tdo_vec3 tv(const V3& a) { return tdo_vec3{a.x, a.y, a.z}; }
-inline V3 sub(const V3& a, const V3& b) { return V3{a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 add(const V3& a, const V3& b) { return V3{a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 mul(const V3& a, double k) { return V3{a.x * k, a.y * k, a.z * k}; }
-inline double dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline double norm(const V3& a) { return sqrt(dot(a, a)); }
-inline V3 cross(const V3& a, const V3& b) {
-  return V3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline double dmin(double a, double b) { return a < b ? a : b; }
-inline double dmax(double a, double b) { return a > b ? a : b; }
-inline bool positive(double v) { return isfinite(v) && v > 0.0; }
 
 /** A segment of positive length, or one of the equal parts of a curved segment, with its speed
  *  ceiling and tangential limits. */
@@ -224,30 +208,29 @@ constexpr uint32_t kCursorPanels = 64;  // panels per step, at most (covers the 
 constexpr double kCursorTaylor = 1e-5;  // steps in u below this use the local arclength model
 
 struct BezierCursor {
-  V3 p[4];       // control points
-  V3 d[3];       // P[i+1] - P[i]
-  V3 e[2];       // d[i+1] - d[i]
-  V3 d3;         // B''' = 6 (e[1] - e[0])
-  V3 h[3];       // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
-  double u;      // parameter of the last sample
-  double s;      // m, arclength at u
-  double len;    // m, segment length (tdo_segment_length)
-  uint32_t seg;  // segment index, UINT32_MAX when unset
+  tdo_vec3 p[4];  // control points
+  tdo_vec3 d[3];  // P[i+1] - P[i]
+  tdo_vec3 e[2];  // d[i+1] - d[i]
+  tdo_vec3 d3;    // B''' = 6 (e[1] - e[0])
+  tdo_vec3 h[3];  // B'(u) = h[0] + u (h[1] + u h[2]), for the arclength quadrature
+  double u;       // parameter of the last sample
+  double s;       // m, arclength at u
+  double len;     // m, segment length (tdo_segment_length)
+  uint32_t seg;   // segment index, UINT32_MAX when unset
   // B'(u), B''(u), |B'(u)| and B'.B''/|B'| at the parameter u of the last sample (valid when
   // `have`): the next evaluation starts from there, so it reuses them instead of recomputing.
-  V3 d1u, d2u;
+  tdo_vec3 d1u, d2u;
   double spu, curvu;
   int have;
 };
 
-inline V3 bez_d1(const BezierCursor& b, double u) {
+inline tdo_vec3 bez_d1(const BezierCursor& b, double u) {
   const double w = 1.0 - u;
   return mul(add(add(mul(b.d[0], w * w), mul(b.d[1], 2.0 * w * u)), mul(b.d[2], u * u)), 3.0);
 }
-inline V3 bez_d2(const BezierCursor& b, double u) {
+inline tdo_vec3 bez_d2(const BezierCursor& b, double u) {
   return mul(add(mul(b.e[0], 1.0 - u), mul(b.e[1], u)), 6.0);
 }
-inline V3 lerp(const V3& a, const V3& b, double u) { return add(a, mul(sub(b, a), u)); }
 /** m/(unit u), |B'(u)| in the power basis (Horner): the quadrature's integrand. */
 [[maybe_unused]] inline double bez_speed(const BezierCursor& b, double u) {
   return norm(add(b.h[0], mul(add(b.h[1], mul(b.h[2], u)), u)));
@@ -301,7 +284,7 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
 }
 
 void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) {
-  for (int i = 0; i < 4; ++i) c->p[i] = mk(seg.p[i]);
+  for (int i = 0; i < 4; ++i) c->p[i] = seg.p[i];
   for (int i = 0; i < 3; ++i) c->d[i] = sub(c->p[i + 1], c->p[i]);
   c->h[0] = mul(c->d[0], 3.0);
   for (int i = 0; i < 2; ++i) c->e[i] = sub(c->d[i + 1], c->d[i]);
@@ -320,7 +303,7 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
 void cursor_seek(BezierCursor* c, double s) {
   double u = c->u, at = c->s;
   // Derivatives at u (the same expressions wherever u came from; computed once per u).
-  V3 d1 = c->d1u, d2 = c->d2u;
+  tdo_vec3 d1 = c->d1u, d2 = c->d2u;
   double sp = c->spu, curv = c->curvu;
   bool have = c->have != 0;
   const auto derivs = [&]() {
@@ -380,17 +363,17 @@ void cursor_seek(BezierCursor* c, double s) {
 /** Position, unit tangent and dT/ds at the cursor's parameter (after cursor_seek). */
 void cursor_state(const BezierCursor& c, tdo_segment_state* st) {
   const double u = c.u, sp = c.spu;
-  const V3 a0 = lerp(c.p[0], c.p[1], u), a1 = lerp(c.p[1], c.p[2], u), a2 = lerp(c.p[2], c.p[3], u);
-  st->p = u <= 0.0 ? tv(c.p[0])
-                   : (u >= 1.0 ? tv(c.p[3]) : tv(lerp(lerp(a0, a1, u), lerp(a1, a2, u), u)));
+  const tdo_vec3 a0 = lerp(c.p[0], c.p[1], u), a1 = lerp(c.p[1], c.p[2], u),
+                 a2 = lerp(c.p[2], c.p[3], u);
+  st->p = u <= 0.0 ? c.p[0] : (u >= 1.0 ? c.p[3] : lerp(lerp(a0, a1, u), lerp(a1, a2, u), u));
   if (!(sp > 0.0)) {
     st->t = tdo_vec3{0.0, 0.0, 0.0};
     st->kn = st->t;
     return;
   }
-  const V3 t = mul(c.d1u, 1.0 / sp);
-  st->t = tv(t);
-  st->kn = tv(mul(sub(c.d2u, mul(t, dot(c.d2u, t))), 1.0 / (sp * sp)));  // dT/ds
+  const tdo_vec3 t = mul(c.d1u, 1.0 / sp);
+  st->t = t;
+  st->kn = mul(sub(c.d2u, mul(t, dot(c.d2u, t))), 1.0 / (sp * sp));  // dT/ds
 }
 
 /** State at local arclength s (clamped to [0, len]) from the cursor's last position. */
@@ -405,16 +388,16 @@ void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   st->dkappa_ds = 0.0;
   const double u = c.u;
   // cursor_eval left the derivatives at u in the cursor.
-  const V3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
-  const V3 d3 = c.d3;
+  const tdo_vec3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
+  const tdo_vec3 d3 = c.d3;
   const double sp = c.have ? c.spu : norm(d1);
   if (!(sp > 0.0)) return;
-  const V3 cr = cross(d1, d2);
+  const tdo_vec3 cr = cross(d1, d2);
   const double cn = norm(cr);
   const double sp3 = sp * sp * sp;
   st->kappa = cn / sp3;
   // kappa = |c| / |B'|^3 with c = B' x B'', c' = B' x B''' (B'' x B'' = 0).
-  const V3 cp = cross(d1, d3);
+  const tdo_vec3 cp = cross(d1, d3);
   double dcn;  // d|c|/du
   if (cn > 1e-12 * (norm(cp) + sp3 / (c.len > 0.0 ? c.len : 1.0)))
     dcn = dot(cr, cp) / cn;
@@ -500,11 +483,11 @@ tdo_status validate_start(tdo_traj* ctx, const tdo_traj_input* in) {
   ctx->start_p = in->start_p;
   ctx->start = st;
   const tdo_path_segment& first = in->path.seg[0];
-  if (norm(sub(mk(first.p[0]), mk(ctx->entry.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
+  if (norm(sub(first.p[0], ctx->entry.p)) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
   if (!(ctx->entry.speed > 0.0)) return TDO_OK;  // the ramp ends at rest: the path starts at rest
   if (first.kind != TDO_SEGMENT_LINE || !(first.length >= ctx->entry.brake))
     return TDO_ERR_INVALID_ARGUMENT;
-  const V3 d = sub(mk(first.p[1]), mk(first.p[0])), v = mk(ctx->entry.v);
+  const tdo_vec3 d = sub(first.p[1], first.p[0]), v = ctx->entry.v;
   const double angle = atan2(norm(cross(d, v)), dot(d, v));
   return angle <= kEntryAngle ? TDO_OK : TDO_ERR_INVALID_ARGUMENT;
 }
@@ -537,10 +520,10 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
   tdo_segment_state e, f;
   tdo_segment_eval(&prev, prev.length, &e);
   tdo_segment_eval(&seg, 0.0, &f);
-  if (norm(sub(mk(e.p), mk(f.p))) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
+  if (norm(sub(e.p, f.p)) > kGapTolerance) return TDO_ERR_INVALID_ARGUMENT;
   double b = stop ? 0.0 : HUGE_VAL;
   // Tangent kink: a velocity jump v*theta, FD acceleration v*theta/dt, FD jerk v*theta/dt^2.
-  const double theta = atan2(norm(cross(mk(e.t), mk(f.t))), dot(mk(e.t), mk(f.t)));
+  const double theta = atan2(norm(cross(e.t, f.t)), dot(e.t, f.t));
   if (theta > kKinkStop) {
     b = 0.0;
   } else if (theta > 0.0) {
@@ -548,7 +531,7 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
   }
   // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
   // with a kernel whose peak is 0.75 / dt.
-  const double jump = norm(sub(mk(e.kn), mk(f.kn)));
+  const double jump = norm(sub(e.kn, f.kn));
   *jump_out = 0;
   if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
     b = dmin(b, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
@@ -1005,8 +988,8 @@ tdo_status sample_count(const tdo_traj* ctx, double dt, uint32_t* n_out) {
 
 /** Sample of a moving start's entry ramp at t (< ramp); sample 0 is the start state itself. */
 void entry_sample(const tdo_traj* ctx, double t, uint32_t i, tdo_sample* out) {
-  const V3 p0 = mk(ctx->start_p), v0 = mk(ctx->start.v), a0 = mk(ctx->start.a);
-  const V3 j = mk(ctx->entry.jerk);
+  const tdo_vec3 p0 = ctx->start_p, v0 = ctx->start.v, a0 = ctx->start.a;
+  const tdo_vec3 j = ctx->entry.jerk;
   out->t = t;
   if (i == 0u) {  // exactly the caller's state
     out->p = ctx->start_p;
@@ -1014,9 +997,9 @@ void entry_sample(const tdo_traj* ctx, double t, uint32_t i, tdo_sample* out) {
     out->a = ctx->start.a;
     return;
   }
-  out->p = tv(add(p0, mul(add(v0, mul(add(mul(a0, 0.5), mul(j, t / 6.0)), t)), t)));
-  out->v = tv(add(v0, mul(add(a0, mul(j, 0.5 * t)), t)));
-  out->a = tv(add(a0, mul(j, t)));
+  out->p = add(p0, mul(add(v0, mul(add(mul(a0, 0.5), mul(j, t / 6.0)), t)), t));
+  out->v = add(v0, mul(add(a0, mul(j, 0.5 * t)), t));
+  out->a = add(a0, mul(j, t));
 }
 
 /** Generates samples 0, 1, ..., n-1 of the current profile in order (the only sampling code). */
@@ -1031,7 +1014,7 @@ struct Sampler {
   // The line segment of the last sample (lseg, UINT32_MAX when unset): its end points, direction
   // d, length |d| and unit tangent, as tdo_segment_eval computes them for every sample.
   uint32_t lseg;
-  V3 la, ld, lt;
+  tdo_vec3 la, ld, lt;
   double ln;
 };
 
@@ -1041,10 +1024,10 @@ void line_eval(Sampler* g, uint32_t index, double s, tdo_segment_state* st) {
   const tdo_path_segment& seg = g->segs[index];
   if (g->lseg != index) {
     g->lseg = index;
-    g->la = mk(seg.p[0]);
-    g->ld = sub(mk(seg.p[1]), g->la);
+    g->la = seg.p[0];
+    g->ld = sub(seg.p[1], g->la);
     g->ln = norm(g->ld);
-    g->lt = g->ln > 0.0 ? mul(g->ld, 1.0 / g->ln) : V3{0.0, 0.0, 0.0};
+    g->lt = g->ln > 0.0 ? mul(g->ld, 1.0 / g->ln) : tdo_vec3{0.0, 0.0, 0.0};
   }
   st->kn = tdo_vec3{0.0, 0.0, 0.0};
   st->kappa = 0.0;
@@ -1054,8 +1037,8 @@ void line_eval(Sampler* g, uint32_t index, double s, tdo_segment_state* st) {
   else if (s <= 0.0 || !(g->ln > 0.0))
     st->p = seg.p[0];
   else
-    st->p = tv(add(g->la, mul(g->ld, s / g->ln)));
-  st->t = tv(g->lt);
+    st->p = add(g->la, mul(g->ld, s / g->ln));
+  st->t = g->lt;
 }
 
 void sampler_start(Sampler* g, const tdo_traj* ctx, const tdo_path_segment* segs, double dt,
@@ -1116,8 +1099,8 @@ void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
   }
   out->t = t;
   out->p = st.p;
-  out->v = tv(mul(mk(st.t), sd));
-  out->a = tv(add(mul(mk(st.t), sdd), mul(mk(st.kn), sd * sd)));
+  out->v = mul(st.t, sd);
+  out->a = add(mul(st.t, sdd), mul(st.kn, sd * sd));
   *owner = q;
 }
 
@@ -1194,18 +1177,18 @@ void mark(tdo_traj* ctx, Src& src, uint32_t n, uint32_t first, uint32_t last) {
 /** Point distances along the samples, skipped by the 1-Lipschitz bound: a point at distance r from
  *  the last evaluated one, whose distance was `ref`, is at least ref - r from the obstacles. */
 struct LipschitzProbe {
-  double ref = -HUGE_VAL;  // m, distance of the last evaluated point
-  V3 at{0.0, 0.0, 0.0};    // m, world frame: that point
+  double ref = -HUGE_VAL;      // m, distance of the last evaluated point
+  tdo_vec3 at{0.0, 0.0, 0.0};  // m, world frame: that point
   PointHint hint;
   LipschitzProbe() { hint.valid = 0; }
   /** m, lower bound of the distance at p. */
-  double bound(const tdo_vec3& p) const { return ref - norm(sub(mk(p), at)) - kLipschitzSlack; }
+  double bound(const tdo_vec3& p) const { return ref - norm(sub(p, at)) - kLipschitzSlack; }
   /** m, the distance at p (capped at cap: min(distance, cap)), evaluated. The bound kept is
    *  the query's proven lower bound, which may exceed the cap (PointHint::lower). */
   double eval(const tdo_grid* g, const tdo_vec3& p, double cap) {
     const double d = point_distance_hinted(g, p, cap, &hint);
     ref = dmax(d, hint.lower);
-    at = mk(p);
+    at = p;
     return d;
   }
 };
@@ -1242,18 +1225,18 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   const double inv_dt = 1.0 / dt, dt2 = dt * dt;
   // Rolling finite differences: v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt,
   // j_i = (a_{i+1} - a_i)/dt.
-  V3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
+  tdo_vec3 v_prev{0.0, 0.0, 0.0}, a_prev{0.0, 0.0, 0.0};
   double aa0 = 0.0;  // |a|^2 of sample i (the energy's trapezoid)
   for (uint32_t i = 0; i + 1u < n; ++i) {
     const tdo_sample& s1 = src.at(i + 1u);  // generated first: the window keeps sample i
     const tdo_sample& s0 = src.at(i);
     if (clear && (i % kClearanceStride) == 0u && !(pre.bound(s0.p) >= pre_min))
       pre_min = dmin(pre_min, pre.eval(in->grid, s0.p, dmin(cap, pre_min)));
-    if (i == 0u) aa0 = dot(mk(s0.a), mk(s0.a));
-    const double aa1 = dot(mk(s1.a), mk(s1.a));
+    if (i == 0u) aa0 = dot(s0.a, s0.a);
+    const double aa1 = dot(s1.a, s1.a);
     energy_sum += energy_step_sq(aa0, aa1, s1.t - s0.t);
     aa0 = aa1;
-    const V3 v = mul(sub(mk(s1.p), mk(s0.p)), inv_dt);
+    const tdo_vec3 v = mul(sub(s1.p, s0.p), inv_dt);
     const double speed = norm(v);
     max_speed = dmax(max_speed, speed);
     if (speed > v_lim) {
@@ -1261,7 +1244,7 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
       mark(ctx, src, n, i, i + 1u);
     }
     if (i >= 1u) {  // a_{i-1} from v_{i-1} and v_i: centred at sample i
-      const V3 a = mul(sub(v, v_prev), inv_dt);
+      const tdo_vec3 a = mul(sub(v, v_prev), inv_dt);
       const double acc = norm(a);
       max_acc = dmax(max_acc, acc);
       if (acc > a_lim) {
@@ -1269,14 +1252,14 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
         mark(ctx, src, n, i - 1u, i + 1u);
       }
       // Turn radius at sample i with the centred velocity (eq. 19).
-      const V3 vc = mul(add(v, v_prev), 0.5);
+      const tdo_vec3 vc = mul(add(v, v_prev), 0.5);
       const double vn = norm(vc);
       if (vn > 0.0) {
-        const V3 u = mul(vc, 1.0 / vn);
+        const tdo_vec3 u = mul(vc, 1.0 / vn);
         const double ap = norm(sub(a, mul(u, dot(a, u))));
         // Below the rounding noise of a second difference of these positions the path is
         // straight (near rest that noise alone would give any radius).
-        const double noise = kRadiusNoise * (norm(mk(s0.p)) + 1.0) / dt2;
+        const double noise = kRadiusNoise * (norm(s0.p) + 1.0) / dt2;
         if (ap > noise) {
           const double radius = vn * vn / ap;
           min_radius = dmin(min_radius, radius);
@@ -1347,14 +1330,14 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
     return TDO_ERR_INVALID_ARGUMENT;
   memset(out, 0, sizeof(*out));
   if (!finite3(s->v) || !finite3(s->a)) return TDO_ERR_STATE_NOT_FINITE;
-  const V3 v0 = mk(s->v), a0 = mk(s->a);
+  const tdo_vec3 v0 = s->v, a0 = s->a;
   if (norm(v0) > v_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_TOO_FAST;
   const double acc = norm(a0);
   if (acc > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
   // Ramp: a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its
   // norm never exceeds the larger end (the norm is convex).
   const double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
-  V3 v1 = add(v0, mul(a0, 0.5 * ramp));
+  tdo_vec3 v1 = add(v0, mul(a0, 0.5 * ramp));
   double speed = norm(v1);
   if (!(speed <= v_max * (1.0 + kStateSlack))) return TDO_ERR_STATE_OVER_LIMITS;
   if (speed > v_max) {  // rounding only (kStateSlack): the path starts at exactly v_max
@@ -1362,9 +1345,9 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
     speed = v_max;
   }
   out->ramp = ramp;
-  out->jerk = ramp > 0.0 ? tv(mul(a0, -1.0 / ramp)) : tdo_vec3{0.0, 0.0, 0.0};
-  out->p = tv(add(mk(p0), add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0))));
-  out->v = tv(v1);
+  out->jerk = ramp > 0.0 ? mul(a0, -1.0 / ramp) : tdo_vec3{0.0, 0.0, 0.0};
+  out->p = add(p0, add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0)));
+  out->v = v1;
   out->speed = speed;
   out->brake =
       scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs;
