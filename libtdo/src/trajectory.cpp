@@ -84,9 +84,13 @@ constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
-constexpr double kRampJerk = 0.95;    // of j_max: the ramp that brings the start acceleration to 0
-constexpr double kBrakeRel = 1e-6;    // relative margin on the braking line's length
-constexpr double kBrakeAbs = 1e-9;    // m, absolute margin on it
+constexpr double kRampJerk = 0.95;  // of j_max: the ramp that brings the start acceleration to 0
+constexpr double kBrakeRel = 1e-6;  // relative margin on the braking line's length
+constexpr double kBrakeAbs = 1e-9;  // m, absolute margin on it
+// m: the shortest braking line. A start that has almost stopped at the ramp's end (|v1| of a few
+// nm/s) would otherwise get a line of about kBrakeAbs, which the smoothing merges into the next
+// waypoint (points closer than 1e-9 m), leaving no line along the velocity.
+constexpr double kBrakeMin = 1e-5;
 constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave along the velocity
 // Relative rounding allowance on |v| <= v_max and |a| <= a_max of a start state: a state sampled
 // from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
@@ -1366,8 +1370,9 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
   out->p = tv(add(mk(p0), add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0))));
   out->v = tv(v1);
   out->speed = speed;
-  out->brake =
-      scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs;
+  out->brake = dmax(
+      scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs,
+      kBrakeMin);
   if (!(speed > 0.0)) out->brake = 0.0;
   return TDO_OK;
 }

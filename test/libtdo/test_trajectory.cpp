@@ -1295,6 +1295,26 @@ TEST_F(MovingStart, GivenAZeroStateWithNegativeZeros_WhenPlanned_ThenExactlyTheP
   EXPECT_TRUE(exactly(len3(want[0].v), 0.0));
 }
 
+TEST_F(MovingStart, GivenAStateThatAlmostStopsOnTheRamp_WhenPlanned_ThenItPlansFromIt) {
+  // GIVEN a vehicle braking near a stop: its acceleration's ramp would end at |v1| of 1e-10 to
+  // 1e-6 m/s (v = -a T / 2 plus a tiny remainder), so the braking line is only nanometres long
+  const tdo_vec3 a0{-0.75, -1.29, 2.48};
+  const double ramp = len3(a0) / (0.95 * 10.0);
+  for (const double rest : {1e-10, 1e-9, 3e-9, 1e-7, 1e-6}) {
+    tdo_vec3 v = a0 * (-0.5 * ramp);
+    v.x += rest;
+    const tdo_plan_request r = request(tdo_vec3{5.0, 4.5, 3.0}, v, a0);
+    // WHEN planned
+    ASSERT_EQ(plan(r), TDO_OK) << "remainder " << rest;
+    const tdo_traj_output o = samples_of(res_);
+    // THEN it begins with exactly the state, stays within every limit and reaches the goal
+    EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt)) << rest;
+    EXPECT_TRUE(within_limits(o, limits_of(r.params))) << rest;
+    EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0)) << rest;
+    EXPECT_TRUE(streams_the_same(r)) << rest;
+  }
+}
+
 TEST(TrajectoryStart,
      GivenAMovingStartAndItsBrakingLine_WhenParameterised_ThenItContinuesTheState) {
   // GIVEN a state at (1, 2, 3) with v = (1.5, 1, 0) m/s and a = (0, -1, 0.5) m/s^2, its entry
