@@ -95,6 +95,7 @@ struct Entry {
 
 constexpr int kExtensionTries = 4;      // extension lengths tried (halved each time)
 constexpr double kBrakeStretch = 1e-9;  // relative: the braking line's point lies this far beyond
+constexpr double kBrakeStretchAbs = 1e-11;  // m: at least this far (a short line's rounding)
 
 /** Plans the entry of req's moving start: the start point in bounds and clear, the ramp (a cubic
  *  Bezier) and the braking line along the velocity clear, then an extension of the line, as long
@@ -128,7 +129,9 @@ tdo_status plan_entry(const tdo_grid* g, const tdo_plan_request& req, double cle
     return voxel_free(g, e.p) ? TDO_OK : TDO_ERR_STATE_CANNOT_STOP;
   }
   const tdo_vec3 d{e.v.x / e.speed, e.v.y / e.speed, e.v.z / e.speed};
-  const tdo_vec3 stop = along(e.p, d, e.brake * (1.0 + kBrakeStretch));
+  const double reach = e.brake * (1.0 + kBrakeStretch);
+  const tdo_vec3 stop =
+      along(e.p, d, reach > e.brake + kBrakeStretchAbs ? reach : e.brake + kBrakeStretchAbs);
   if (!tdo_collision_segment_clear(g, e.p, stop, c)) return TDO_ERR_STATE_CANNOT_STOP;
   const double res = tdo_grid_get_desc(g).res;
   double ext = e.brake > res ? e.brake : res;

@@ -85,9 +85,16 @@ constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
-constexpr double kRampJerk = 0.95;    // of j_max: the ramp that brings the start acceleration to 0
-constexpr double kBrakeRel = 1e-6;    // relative margin on the braking line's length
-constexpr double kBrakeAbs = 1e-9;    // m, absolute margin on it
+constexpr double kRampJerk = 0.95;  // of j_max: the ramp that brings the start acceleration to 0
+// Of j_max: the steepest ramp, for one that would end above v_max at kRampJerk. Above the profile's
+// 0.99 so that a state of a plan's own speed-up to v_max (at 0.99 j_max) is plannable.
+constexpr double kRampJerkMax = 0.995;
+constexpr double kBrakeRel = 1e-6;  // relative margin on the braking line's length
+constexpr double kBrakeAbs = 1e-9;  // m, absolute margin on it
+// m: the shortest braking line. A start that has almost stopped at the ramp's end (|v1| of a few
+// nm/s) would otherwise get a line of about kBrakeAbs, which the smoothing merges into the next
+// waypoint (points closer than 1e-9 m), leaving no line along the velocity.
+constexpr double kBrakeMin = 1e-5;
 constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave along the velocity
 // Relative rounding allowance on |v| <= v_max and |a| <= a_max of a start state: a state sampled
 // from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
@@ -1323,6 +1330,17 @@ static uint32_t plateau_capacity(const tdo_traj_config* cfg) {
   return by_profile > cfg->max_segments ? by_profile : cfg->max_segments;
 }
 
+/** A ramp accelerating along v0 that would end above v_max: the shorter ramp (steeper jerk, up to
+ *  kRampJerkMax j_max) that ends at exactly v_max, i.e. T / 2 the root of |v0 + a0 T / 2| = v_max;
+ *  `ramp` unchanged when even the steepest ramp ends above v_max (a turn at v_max). */
+static double steep_ramp(tdo_vec3 v0, tdo_vec3 a0, double v_max, double j_max, double ramp) {
+  const double aa = dot(a0, a0), b = dot(v0, a0), c = dot(v0, v0) - v_max * v_max;
+  const double disc = b * b - aa * c;
+  if (!(aa > 0.0) || !(c <= 0.0) || !(disc >= 0.0)) return ramp;
+  const double t = 2.0 * (-b + sqrt(disc)) / aa;
+  return t >= sqrt(aa) / (kRampJerkMax * j_max) && t < ramp ? t : ramp;
+}
+
 extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max,
                                           double a_max, double j_max, tdo_traj_entry* out) {
   if (s == nullptr || out == nullptr || !finite3(p0) || !positive(v_max) || !positive(a_max) ||
@@ -1336,8 +1354,10 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
   if (acc > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
   // Ramp: a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its
   // norm never exceeds the larger end (the norm is convex).
-  const double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
+  double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
   tdo_vec3 v1 = add(v0, mul(a0, 0.5 * ramp));
+  if (norm(v1) > v_max) ramp = steep_ramp(v0, a0, v_max, j_max, ramp);
+  v1 = add(v0, mul(a0, 0.5 * ramp));
   double speed = norm(v1);
   if (!(speed <= v_max * (1.0 + kStateSlack))) return TDO_ERR_STATE_OVER_LIMITS;
   if (speed > v_max) {  // rounding only (kStateSlack): the path starts at exactly v_max
@@ -1349,8 +1369,9 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
   out->p = add(p0, add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0)));
   out->v = v1;
   out->speed = speed;
-  out->brake =
-      scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs;
+  out->brake = dmax(
+      scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs,
+      kBrakeMin);
   if (!(speed > 0.0)) out->brake = 0.0;
   return TDO_OK;
 }

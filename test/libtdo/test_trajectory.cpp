@@ -1295,6 +1295,51 @@ TEST_F(MovingStart, GivenAZeroStateWithNegativeZeros_WhenPlanned_ThenExactlyTheP
   EXPECT_TRUE(exactly(len3(want[0].v), 0.0));
 }
 
+TEST_F(MovingStart, GivenAStateThatAlmostStopsOnTheRamp_WhenPlanned_ThenItPlansFromIt) {
+  // GIVEN a vehicle braking near a stop: its acceleration's ramp would end at |v1| of 1e-10 to
+  // 1e-6 m/s (v = -a T / 2 plus a tiny remainder), so the braking line is only nanometres long
+  const tdo_vec3 a0{-0.75, -1.29, 2.48};
+  const double ramp = len3(a0) / (0.95 * 10.0);
+  for (const double rest : {1e-10, 1e-9, 3e-9, 1e-7, 1e-6}) {
+    tdo_vec3 v = a0 * (-0.5 * ramp);
+    v.x += rest;
+    const tdo_plan_request r = request(tdo_vec3{5.0, 4.5, 3.0}, v, a0);
+    // WHEN planned
+    ASSERT_EQ(plan(r), TDO_OK) << "remainder " << rest;
+    const tdo_traj_output o = samples_of(res_);
+    // THEN it begins with exactly the state, stays within every limit and reaches the goal
+    EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt)) << rest;
+    EXPECT_TRUE(within_limits(o, limits_of(r.params))) << rest;
+    EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0)) << rest;
+    EXPECT_TRUE(streams_the_same(r)) << rest;
+  }
+}
+
+TEST_F(MovingStart, GivenStatesOfItsOwnPlanAcceleratingToVMax_WhenReplanned_ThenTheyArePlanned) {
+  // GIVEN the plan from rest at (3, 4.5, 3), and its samples still accelerating near v_max, where a
+  // ramp at 0.95 j_max (removing the acceleration) would end above v_max
+  const tdo_plan_request r0 = request(tdo_vec3{3.0, 4.5, 3.0}, tdo_vec3{}, tdo_vec3{});
+  ASSERT_EQ(plan(r0), TDO_OK);
+  const std::vector<tdo_sample> s(res_.samples, res_.samples + res_.n_samples);
+  const double v_max = r0.params.v_max, j_max = r0.params.j_max;
+  uint32_t tried = 0;
+  for (const tdo_sample& x : s) {
+    const double ramp = len3(x.a) / (0.95 * j_max);
+    if (!(len3(x.v + x.a * (0.5 * ramp)) > v_max * (1.0 + 1e-6))) continue;
+    if (!(len3(x.v) + len3(x.a) * len3(x.a) / (2.0 * 0.99 * j_max) <= v_max)) continue;
+    ++tried;
+    // WHEN replanned from that state
+    const tdo_plan_request r = request(x.p, x.v, x.a);
+    ASSERT_EQ(plan(r), TDO_OK) << "t " << x.t << " " << tdo_status_str(res_.status);
+    // THEN the plan continues the state exactly and stays within every limit
+    const tdo_traj_output o = samples_of(res_);
+    EXPECT_TRUE(continues(o, r.start, r.state, j_max, r.params.dt)) << x.t;
+    EXPECT_TRUE(within_limits(o, limits_of(r.params))) << x.t;
+    EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0)) << x.t;
+  }
+  EXPECT_GE(tried, 3u);
+}
+
 TEST(TrajectoryStart,
      GivenAMovingStartAndItsBrakingLine_WhenParameterised_ThenItContinuesTheState) {
   // GIVEN a state at (1, 2, 3) with v = (1.5, 1, 0) m/s and a = (0, -1, 0.5) m/s^2, its entry
