@@ -233,9 +233,7 @@ void AvoidNode::on_state(const void* data, std::size_t size) {
 void AvoidNode::on_map(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_t m{};
-  Check c = decode(data, size, &m);
-  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  Check c = decode_map(data, size, cfg_.vehicle_id, &m);
   // The map in use, sent again (when stale: the whole map asked for, reloaded).
   if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
   // Everything is checked before the grid is touched, so a bad map leaves the current one in place.

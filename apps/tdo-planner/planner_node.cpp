@@ -79,9 +79,7 @@ void PlannerNode::answer_error(const AnswerIds& ids, const std::string& what, co
 void PlannerNode::on_map(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_t m{};
-  Check c = decode(data, size, &m);
-  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  Check c = decode_map(data, size, cfg_.vehicle_id, &m);
   // The map in use, sent again (a publisher repeats it for late starters): the updates applied
   // on top of it stay. A stale map is reloaded (the whole map was asked for).
   if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
