@@ -30,22 +30,16 @@ AvoidNode::AvoidNode(Bus* bus, AvoidConfig cfg)
 }
 
 bool AvoidNode::start(std::string* error) {
-  auto fail_with = [&](const std::string& msg) {
-    if (error != nullptr) *error = msg;
-    return false;
-  };
-  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
-  if (apf_ != nullptr) return fail_with("already started");
-  if (!(cfg_.rate_hz > 0.0) || !std::isfinite(cfg_.rate_hz))
-    return fail_with("the rate must be finite and > 0");
-  if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_with("the mover shift must be >= 0");
+  const char* problem = start_problem(bus_, apf_ != nullptr, cfg_.rate_hz);
+  if (problem[0] != '\0') return fail_start(error, problem);
+  if (!(cfg_.max_mover_shift_s >= 0.0)) return fail_start(error, "the mover shift must be >= 0");
   if (!valid_timeout(cfg_.answer_timeout_s))
-    return fail_with("the answer timeout must be in (0, 1e6] s");
+    return fail_start(error, "the answer timeout must be in (0, 1e6] s");
   if (!(cfg_.replan_lead_s >= 0.0 && cfg_.replan_lead_s <= 60.0))
-    return fail_with("the replan lead must be in [0, 60] s");
+    return fail_start(error, "the replan lead must be in [0, 60] s");
   if (!(cfg_.replan_deviation_m > 0.0) || !std::isfinite(cfg_.replan_deviation_m) ||
       !(cfg_.replan_deviation_s >= 0.0) || !std::isfinite(cfg_.replan_deviation_s))
-    return fail_with("the replan deviation must be finite and > 0");
+    return fail_start(error, "the replan deviation must be finite and > 0");
   if (!grid_.start(cfg_.max_nx, cfg_.max_ny, cfg_.max_nz, cfg_.max_boxes, cfg_.max_clearance_ratio,
                    error))
     return false;
@@ -63,18 +57,16 @@ bool AvoidNode::start(std::string* error) {
   acfg.nearest_window = cfg_.nearest_window;
   arena_bytes_ = tdo_apf_footprint(&acfg);
   if (arena_bytes_ == 0)
-    return fail_with("invalid follower capacities (samples >= 2, movers >= 1, window >= 1)");
-  const std::size_t words =
-      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
-  arena_.reset(new (std::nothrow) std::max_align_t[words]);
-  if (!arena_)
-    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+    return fail_start(error,
+                      "invalid follower capacities (samples >= 2, movers >= 1, window >= 1)");
+  const std::size_t allocated = alloc_node_arena(&arena_, arena_bytes_, error);
+  if (allocated == 0) return false;
   tdo_arena arena;
-  tdo_arena_init(&arena, arena_.get(), words * sizeof(std::max_align_t));
+  tdo_arena_init(&arena, arena_.get(), allocated);
   tdo_status st = tdo_apf_init(&apf_, &arena, &acfg);
   if (st != TDO_OK) {
     apf_ = nullptr;
-    return fail_with(std::string("tdo_apf_init: ") + tdo_status_str(st));
+    return fail_start(error, std::string("tdo_apf_init: ") + tdo_status_str(st));
   }
   // Let the library judge the parameters now (rate, limits) with a dummy straight task; the
   // follower stays unused until a real trajectory resets it.
@@ -86,8 +78,9 @@ bool AvoidNode::start(std::string* error) {
   task.goal = probe[1].p;
   st = tdo_apf_reset(apf_, &params_, &task);
   if (st != TDO_OK)
-    return fail_with(std::string("the follower refuses the parameters (rate, limits, radius): ") +
-                     tdo_status_str(st));
+    return fail_start(error,
+                      std::string("the follower refuses the parameters (rate, limits, radius): ") +
+                          tdo_status_str(st));
 
   const auto sub = [this](const std::string& ch, void (AvoidNode::*fn)(const void*, std::size_t)) {
     return bus_->subscribe(
@@ -100,7 +93,7 @@ bool AvoidNode::start(std::string* error) {
                   sub(cfg_.map_update_channel, &AvoidNode::on_map_update) &&
                   sub(cfg_.request_channel, &AvoidNode::on_request) &&
                   sub(cfg_.feasibility_channel, &AvoidNode::on_feasibility);
-  return ok ? true : fail_with("cannot subscribe");
+  return ok ? true : fail_start(error, "cannot subscribe");
 }
 
 void AvoidNode::refuse(const std::string& what, const Check& c) {
@@ -240,9 +233,7 @@ void AvoidNode::on_state(const void* data, std::size_t size) {
 void AvoidNode::on_map(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_t m{};
-  Check c = decode(data, size, &m);
-  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  Check c = decode_map(data, size, cfg_.vehicle_id, &m);
   // The map in use, sent again (when stale: the whole map asked for, reloaded).
   if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
   // Everything is checked before the grid is touched, so a bad map leaves the current one in place.
@@ -501,22 +492,21 @@ void AvoidNode::hold(Hold why) {
 }
 
 tdo::status_t AvoidNode::status_message() const {
-  tdo::status_t s{};
   std::map<std::string, int64_t> reasons = counters_.reasons;
   if (updates_.stale()) reasons["state.map_stale"] = 1;  // outside the rejected + ignored sum
   if (path_blocked()) reasons["state.path_blocked"] = 1;
   if (const char* why = stop_status(); why[0] != '\0') reasons[std::string("state.") + why] = 1;
-  fill_status(&s, "tdo-avoid", status_seq_, cfg_.vehicle_id, started_, reasons);
-  s.map_id = map_id();
-  s.received = counters_.received;
-  s.maps_loaded = counters_.maps_loaded;
-  s.answered = counters_.setpoints;
-  s.succeeded = counters_.steps_ok;
-  s.failed = counters_.steps_failed;
-  s.rejected = counters_.rejected;
-  s.ignored = counters_.ignored;
-  s.last_plan_ms = counters_.last_step_ms;
-  return s;
+  StatusCounts c;
+  c.map_id = map_id();
+  c.received = counters_.received;
+  c.maps_loaded = counters_.maps_loaded;
+  c.answered = counters_.setpoints;
+  c.succeeded = counters_.steps_ok;
+  c.failed = counters_.steps_failed;
+  c.rejected = counters_.rejected;
+  c.ignored = counters_.ignored;
+  c.last_plan_ms = counters_.last_step_ms;
+  return make_status("tdo-avoid", status_seq_, cfg_.vehicle_id, started_, reasons, c);
 }
 
 void AvoidNode::publish_status() {

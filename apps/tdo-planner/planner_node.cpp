@@ -22,27 +22,21 @@ PlannerNode::PlannerNode(Bus* bus, PlannerConfig cfg) : bus_(bus), cfg_(std::mov
 }
 
 bool PlannerNode::start(std::string* error) {
-  auto fail_with = [&](const std::string& msg) {
-    if (error != nullptr) *error = msg;
-    return false;
-  };
-  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
+  const char* problem = start_problem(bus_, false, 1.0);
+  if (problem[0] != '\0') return fail_start(error, problem);
   if (cfg_.max_nx <= 0 || cfg_.max_ny <= 0 || cfg_.max_nz <= 0)
-    return fail_with("the capacity sizes must be > 0");
+    return fail_start(error, "the capacity sizes must be > 0");
   if (!(cfg_.max_clearance_ratio >= 0.0) || !std::isfinite(cfg_.max_clearance_ratio))
-    return fail_with("the clearance ratio must be finite and >= 0");
+    return fail_start(error, "the clearance ratio must be finite and >= 0");
   tdo_capacity_for_grid(&cfg_tdo_.cap, cfg_.max_nx, cfg_.max_ny, cfg_.max_nz,
                         cfg_.max_clearance_ratio, 27u, cfg_.max_nodes);
   cfg_tdo_.cap.max_boxes = cfg_.max_boxes > 0 ? cfg_.max_boxes : 1u;
   arena_bytes_ = tdo_planner_footprint(&cfg_tdo_);
-  if (arena_bytes_ == 0) return fail_with("invalid planner configuration");
-  const std::size_t words =
-      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
-  arena_.reset(new (std::nothrow) std::max_align_t[words]);
-  if (!arena_)
-    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+  if (arena_bytes_ == 0) return fail_start(error, "invalid planner configuration");
+  if (alloc_node_arena(&arena_, arena_bytes_, error) == 0) return false;
   const tdo_status st = tdo_planner_init(&planner_, arena_.get(), arena_bytes_, &cfg_tdo_);
-  if (st != TDO_OK) return fail_with(std::string("tdo_planner_init: ") + tdo_status_str(st));
+  if (st != TDO_OK)
+    return fail_start(error, std::string("tdo_planner_init: ") + tdo_status_str(st));
   const bool ok =
       bus_->subscribe(cfg_.map_channel,
                       [this](const void* d, std::size_t n, const std::string&) { on_map(d, n); }) &&
@@ -50,7 +44,7 @@ bool PlannerNode::start(std::string* error) {
                                                    const std::string&) { on_request(d, n); }) &&
       bus_->subscribe(cfg_.map_update_channel, [this](const void* d, std::size_t n,
                                                       const std::string&) { on_map_update(d, n); });
-  return ok ? true : fail_with("cannot subscribe");
+  return ok ? true : fail_start(error, "cannot subscribe");
 }
 
 void PlannerNode::refuse(const std::string& what, const Check& c) {
@@ -85,9 +79,7 @@ void PlannerNode::answer_error(const AnswerIds& ids, const std::string& what, co
 void PlannerNode::on_map(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_t m{};
-  Check c = decode(data, size, &m);
-  if (c.ok() && m.vehicle_id != -1 && m.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m.vehicle_id));
+  Check c = decode_map(data, size, cfg_.vehicle_id, &m);
   // The map in use, sent again (a publisher repeats it for late starters): the updates applied
   // on top of it stay. A stale map is reloaded (the whole map was asked for).
   if (c.ok() && have_map_ && m.map_id == map_id_ && !updates_.stale()) return;
@@ -246,20 +238,12 @@ void PlannerNode::request_map(const char* why) {
 }
 
 tdo::status_t PlannerNode::status_message() const {
-  tdo::status_t s{};
   std::map<std::string, int64_t> reasons = counters_.reasons;
   if (updates_.stale()) reasons["state.map_stale"] = 1;  // outside the rejected + ignored sum
-  fill_status(&s, "tdo-planner", status_seq_, cfg_.vehicle_id, started_, reasons);
-  s.map_id = map_id();
-  s.received = counters_.received;
-  s.maps_loaded = counters_.maps_loaded;
-  s.answered = counters_.answered;
-  s.succeeded = counters_.succeeded;
-  s.failed = counters_.failed;
-  s.rejected = counters_.rejected;
-  s.ignored = counters_.ignored;
-  s.last_plan_ms = counters_.last_plan_ms;
-  return s;
+  const StatusCounts c{map_id(),           counters_.received,  counters_.maps_loaded,
+                       counters_.answered, counters_.succeeded, counters_.failed,
+                       counters_.rejected, counters_.ignored,   counters_.last_plan_ms};
+  return make_status("tdo-planner", status_seq_, cfg_.vehicle_id, started_, reasons, c);
 }
 
 void PlannerNode::publish_status() {

@@ -23,19 +23,13 @@ SimNode::SimNode(Bus* bus, SimConfig cfg) : bus_(bus), cfg_(std::move(cfg)) {
 }
 
 bool SimNode::start(std::string* error) {
-  auto fail_with = [&](const std::string& msg) {
-    if (error != nullptr) *error = msg;
-    return false;
-  };
-  if (bus_ == nullptr || !bus_->good()) return fail_with("LCM is not initialised");
-  if (sim_ != nullptr) return fail_with("already started");
-  if (!(cfg_.rate_hz > 0.0) || !std::isfinite(cfg_.rate_hz))
-    return fail_with("the rate must be finite and > 0");
+  const char* problem = start_problem(bus_, sim_ != nullptr, cfg_.rate_hz);
+  if (problem[0] != '\0') return fail_start(error, problem);
   if (!(cfg_.map_clearance >= 0.0) || !std::isfinite(cfg_.map_clearance))
-    return fail_with("the map clearance must be finite and >= 0");
-  if (cfg_.map_id < 0) return fail_with("the map id must be >= 0");
+    return fail_start(error, "the map clearance must be finite and >= 0");
+  if (cfg_.map_id < 0) return fail_start(error, "the map id must be >= 0");
   if (!(cfg_.brake_gain >= 0.0) || !std::isfinite(cfg_.brake_gain))
-    return fail_with("the brake gain must be finite and >= 0");
+    return fail_start(error, "the brake gain must be finite and >= 0");
   if (cfg_.has_goal) {
     has_goal_ = true;
     goal_ = cfg_.goal;
@@ -48,16 +42,18 @@ bool SimNode::start(std::string* error) {
     tdo_io::LoadOptions lo;
     lo.resolution = cfg_.map_resolution;
     std::string why;
-    if (!tdo_io::load_map(cfg_.map_file, lo, &map, &why)) return fail_with(why);
+    if (!tdo_io::load_map(cfg_.map_file, lo, &map, &why)) return fail_start(error, why);
     const tdo_grid_desc& d = map.desc;
     if (!grid_.start(d.nx, d.ny, d.nz, static_cast<uint32_t>(map.boxes.size()),
                      cfg_.map_clearance / d.res, error))
       return false;
     const tdo_status st = tdo_io::load_into(map, grid_.grid(), cfg_.map_clearance);
     if (st != TDO_OK)
-      return fail_with(cfg_.map_file + ": the library refuses the map: " + tdo_status_str(st));
+      return fail_start(error,
+                        cfg_.map_file + ": the library refuses the map: " + tdo_status_str(st));
     const Check c = map_msg_from_map(map, cfg_.map_clearance, &map_msg_);
-    if (!c.ok()) return fail_with(cfg_.map_file + ": " + reason_str(c.reason) + ": " + c.detail);
+    if (!c.ok())
+      return fail_start(error, cfg_.map_file + ": " + reason_str(c.reason) + ": " + c.detail);
     map_msg_.map_id = cfg_.map_id;
     map_msg_.vehicle_id = -1;
     map_id_ = cfg_.map_id;
@@ -88,24 +84,21 @@ bool SimNode::start(std::string* error) {
     s0.p = tdo_vec3{0.5 * (bounds.min.x + bounds.max.x), 0.5 * (bounds.min.y + bounds.max.y),
                     0.5 * (bounds.min.z + bounds.max.z)};
   if (movers.size() > cfg_.max_movers)
-    return fail_with(std::to_string(movers.size()) + " movers, more than --max-movers " +
-                     std::to_string(cfg_.max_movers));
+    return fail_start(error, std::to_string(movers.size()) + " movers, more than --max-movers " +
+                                 std::to_string(cfg_.max_movers));
 
   tdo_sim_config scfg{};
   scfg.max_movers = cfg_.max_movers;
   arena_bytes_ = tdo_sim_footprint(&scfg);
-  if (arena_bytes_ == 0) return fail_with("invalid simulator capacity (movers >= 1)");
-  const std::size_t words =
-      (arena_bytes_ + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
-  arena_.reset(new (std::nothrow) std::max_align_t[words]);
-  if (!arena_)
-    return fail_with("cannot allocate an arena of " + std::to_string(arena_bytes_) + " bytes");
+  if (arena_bytes_ == 0) return fail_start(error, "invalid simulator capacity (movers >= 1)");
+  const std::size_t allocated = alloc_node_arena(&arena_, arena_bytes_, error);
+  if (allocated == 0) return false;
   tdo_arena arena;
-  tdo_arena_init(&arena, arena_.get(), words * sizeof(std::max_align_t));
+  tdo_arena_init(&arena, arena_.get(), allocated);
   tdo_status st = tdo_sim_init(&sim_, &arena, &scfg);
   if (st != TDO_OK) {
     sim_ = nullptr;
-    return fail_with(std::string("tdo_sim_init: ") + tdo_status_str(st));
+    return fail_start(error, std::string("tdo_sim_init: ") + tdo_status_str(st));
   }
   tdo_sim_params sp;
   tdo_sim_params_default(&sp);
@@ -121,9 +114,10 @@ bool SimNode::start(std::string* error) {
   sp.accel_noise = cfg_.accel_noise;
   st = tdo_sim_reset(sim_, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()));
   if (st != TDO_OK)
-    return fail_with(std::string("the simulator refuses the set-up (rate, limits, bounds, start, "
-                                 "movers): ") +
-                     tdo_status_str(st));
+    return fail_start(error,
+                      std::string("the simulator refuses the set-up (rate, limits, bounds, start, "
+                                  "movers): ") +
+                          tdo_status_str(st));
   utime0_ = cfg_.start_utime != 0 ? cfg_.start_utime : wall_utime();
   const tdo_sim_output out = current();
   counters_.min_mover_gap = out.mover_gap;
@@ -137,9 +131,9 @@ bool SimNode::start(std::string* error) {
                                     [this](const void* d, std::size_t n, const std::string&) {
                                       on_map_request(d, n);
                                     }));
-  if (!ok) return fail_with("cannot subscribe");
+  if (!ok) return fail_start(error, "cannot subscribe");
   if (cfg_.request_goal && !has_goal_)
-    return fail_with("a plan request needs a goal (--goal, or a map file with one)");
+    return fail_start(error, "a plan request needs a goal (--goal, or a map file with one)");
   publish_map();
   if (cfg_.request_goal && cfg_.lockstep) publish_request();
   publish_state();
@@ -271,18 +265,17 @@ bool SimNode::publish_request() {
 }
 
 tdo::status_t SimNode::status_message() const {
-  tdo::status_t s{};
-  fill_status(&s, "tdo-sim", status_seq_, cfg_.vehicle_id, started_, counters_.reasons);
-  s.map_id = has_map_ ? map_id_ : -1;
-  s.received = counters_.received;
-  s.maps_loaded = has_map_ ? 1 : 0;
-  s.answered = counters_.steps;
-  s.succeeded = counters_.steps - counters_.collision_steps;
-  s.failed = counters_.collision_steps;
-  s.rejected = counters_.rejected;
-  s.ignored = counters_.ignored;
-  s.last_plan_ms = counters_.last_step_ms;
-  return s;
+  StatusCounts c;
+  c.map_id = has_map_ ? map_id_ : -1;
+  c.received = counters_.received;
+  c.maps_loaded = has_map_ ? 1 : 0;
+  c.answered = counters_.steps;
+  c.succeeded = counters_.steps - counters_.collision_steps;
+  c.failed = counters_.collision_steps;
+  c.rejected = counters_.rejected;
+  c.ignored = counters_.ignored;
+  c.last_plan_ms = counters_.last_step_ms;
+  return make_status("tdo-sim", status_seq_, cfg_.vehicle_id, started_, counters_.reasons, c);
 }
 
 void SimNode::publish_status() {

@@ -553,72 +553,73 @@ int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], doub
   return ok ? 1 : 0;
 }
 
-bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
-  if (g->n_cubes == 0) return true;
+// What a piece walk's visitor decides for one piece.
+enum class PieceStep { skip, split, stop };
+
+// Walk the pieces of [a, b] depth first from the whole segment, halving each piece for which
+// visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit stopped the
+// walk, -1 when kMaxPieces or kStackCap was reached (the caller answers conservatively).
+template <class F>
+int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], F&& visit) {
   Piece stack[kStackCap];
   int top = 0;
   stack[top++] = Piece{0.0, 1.0};
   for (uint32_t pieces = 0; top > 0; ++pieces) {
-    if (pieces >= kMaxPieces) return false;
+    if (pieces >= kMaxPieces) return -1;
     const Piece pc = stack[--top];
-    const PieceInfo pi = piece_info(g, a, b, pc);
-    if (pi.lb >= c && pi.lb > 0.0) continue;
-    if (pi.leaf) {
-      if (pi.in_cube) return false;
-      const int fast = bricks_clear(g, pi.p0, pi.p1, c);
-      if (fast == 0) return false;
-      if (fast == 1) continue;
-      const bool ok =
-          for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
-            if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
-            return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
-          });
-      if (!ok) return false;
-      continue;
-    }
-    if (top + 2 > kStackCap) return false;  // never "clear" on overflow
+    const PieceStep step = visit(piece_info(g, a, b, pc));
+    if (step == PieceStep::stop) return 0;
+    if (step == PieceStep::skip) continue;
+    if (top + 2 > kStackCap) return -1;
     const double tm = 0.5 * (pc.t0 + pc.t1);
     stack[top++] = Piece{tm, pc.t1};
     stack[top++] = Piece{pc.t0, tm};
   }
-  return true;
+  return 1;
+}
+
+bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
+  if (g->n_cubes == 0) return true;
+  const int walked = walk_pieces(g, a, b, [g, c](const PieceInfo& pi) {
+    if (pi.lb >= c && pi.lb > 0.0) return PieceStep::skip;
+    if (!pi.leaf) return PieceStep::split;
+    if (pi.in_cube) return PieceStep::stop;
+    const int fast = bricks_clear(g, pi.p0, pi.p1, c);
+    if (fast == 0) return PieceStep::stop;
+    if (fast == 1) return PieceStep::skip;
+    const bool ok =
+        for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
+          if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
+          return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
+        });
+    return ok ? PieceStep::skip : PieceStep::stop;
+  });
+  return walked == 1;  // never "clear" on overflow
 }
 
 // min(best, distance from [a, b] to the cubes); `best` already holds the boxes' distance.
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
-  Piece stack[kStackCap];
-  int top = 0;
-  stack[top++] = Piece{0.0, 1.0};
-  for (uint32_t pieces = 0; top > 0; ++pieces) {
-    if (pieces >= kMaxPieces) return 0.0;  // a lower bound, never reached on int32 grids
-    const Piece pc = stack[--top];
-    const PieceInfo pi = piece_info(g, a, b, pc);
-    if (pi.lb >= best) continue;
-    if (pi.leaf) {
-      if (pi.in_cube) return 0.0;
-      // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
-      // lower the result (the boxes' part of `best` is exact).
-      const double r = dmin(best, pi.ub);
-      if (bricks_min(g, pi.p0, pi.p1, a == b, r, &best)) {
-        if (!(best > 0.0)) return 0.0;
-        continue;
-      }
+  const bool point = a == b;
+  const int walked = walk_pieces(g, a, b, [g, point, &best](const PieceInfo& pi) {
+    if (pi.lb >= best) return PieceStep::skip;
+    if (!pi.leaf) return PieceStep::split;
+    if (pi.in_cube) return PieceStep::stop;
+    // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
+    // lower the result (the boxes' part of `best` is exact).
+    const double r = dmin(best, pi.ub);
+    if (!bricks_min(g, pi.p0, pi.p1, point, r, &best)) {
       for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, &best](const double* lo, const double* hi) {
         if (far_apart(pi.p0, pi.p1, lo, hi, best)) return true;
         const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
         if (d2 < best * best) best = sqrt(d2);
         return best > 0.0;
       });
-      if (!(best > 0.0)) return 0.0;
-      continue;
     }
-    if (top + 2 > kStackCap) return 0.0;
-    const double tm = 0.5 * (pc.t0 + pc.t1);
-    stack[top++] = Piece{tm, pc.t1};
-    stack[top++] = Piece{pc.t0, tm};
-  }
-  return best;
+    return best > 0.0 ? PieceStep::skip : PieceStep::stop;
+  });
+  // Stopped at zero, or a bound reached (a lower bound, never reached on int32 grids): 0.
+  return walked == 1 ? best : 0.0;
 }
 
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }

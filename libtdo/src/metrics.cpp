@@ -18,6 +18,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "path_segment.h"
 #include "sample_energy.h"
 #include "scalar.h"
 #include "tdo/collision.h"
@@ -298,13 +299,7 @@ tdo_status validate(const tdo_metrics_input* in) {
     const tdo_path& p = *in->path;
     if (p.seg == nullptr || p.n == 0u) return TDO_ERR_INVALID_ARGUMENT;
     for (uint32_t i = 0; i < p.n; ++i) {
-      const tdo_path_segment& s = p.seg[i];
-      if (s.kind != TDO_SEGMENT_LINE && s.kind != TDO_SEGMENT_BEZIER && s.kind != TDO_SEGMENT_ARC)
-        return TDO_ERR_INVALID_ARGUMENT;
-      const int np = s.kind == TDO_SEGMENT_BEZIER ? 4 : (s.kind == TDO_SEGMENT_ARC ? 3 : 2);
-      for (int k = 0; k < np; ++k)
-        if (!finite3(s.p[k])) return TDO_ERR_INVALID_ARGUMENT;
-      if (!(isfinite(s.length) && s.length >= 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+      if (!segment_shape_ok(p.seg[i])) return TDO_ERR_INVALID_ARGUMENT;
     }
   }
   if (in->samples != nullptr && in->n_samples > 0u) {

@@ -17,10 +17,7 @@
 #include <stddef.h>
 #include <string.h>
 #if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#include <immintrin.h>
+#include <emmintrin.h>  // the scalar square root (sqrt_sd)
 #endif
 
 #include "directions.h"

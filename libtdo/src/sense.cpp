@@ -28,23 +28,12 @@ tdo_vec3 closest_point(const tdo_box& b, tdo_vec3 p) {
             clampd(p.z, b.min.z, b.max.z));
 }
 
-double axis(tdo_vec3 v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
-
-void set_axis(tdo_vec3* v, int a, double x) {
-  if (a == 0)
-    v->x = x;
-  else if (a == 1)
-    v->y = x;
-  else
-    v->z = x;
-}
-
 // 1 when the segment p + s d, s in (tol, 1 - tol), meets the open interior of b (slab test).
 bool enters_interior(const tdo_box& b, tdo_vec3 p, tdo_vec3 d) {
   double enter = kParamTol, leave = 1.0 - kParamTol;
   for (int a = 0; a < 3; ++a) {
-    const double o = axis(p, a), di = axis(d, a);
-    const double lo = axis(b.min, a), hi = axis(b.max, a);
+    const double o = vec_axis(p, a), di = vec_axis(d, a);
+    const double lo = vec_axis(b.min, a), hi = vec_axis(b.max, a);
     if (fabs(di) <= 0.0) {
       if (!(o > lo && o < hi)) return false;
       continue;
@@ -88,25 +77,25 @@ bool box_visible(const tdo_sense_input* in, uint32_t i, uint64_t* tests) {
   if (!(dc > 0.0)) return true;  // the sensor is in the box
   if (point_visible(in, i, c, tests)) return true;
   for (int a = 0; a < 3; ++a) {
-    const double pa = axis(in->p, a);
+    const double pa = vec_axis(in->p, a);
     double plane;
-    if (pa < axis(b.min, a))
-      plane = axis(b.min, a);
-    else if (pa > axis(b.max, a))
-      plane = axis(b.max, a);
+    if (pa < vec_axis(b.min, a))
+      plane = vec_axis(b.min, a);
+    else if (pa > vec_axis(b.max, a))
+      plane = vec_axis(b.max, a);
     else
       continue;  // this axis's faces do not face the sensor
     const int u = (a + 1) % 3, w = (a + 2) % 3;
     for (int iu = 0; iu <= kGrid; ++iu) {
       for (int iw = 0; iw <= kGrid; ++iw) {
         tdo_vec3 q = in->p;
-        set_axis(&q, a, plane);
-        set_axis(
-            &q, u,
-            axis(b.min, u) + (axis(b.max, u) - axis(b.min, u)) * (static_cast<double>(iu) / kGrid));
-        set_axis(
-            &q, w,
-            axis(b.min, w) + (axis(b.max, w) - axis(b.min, w)) * (static_cast<double>(iw) / kGrid));
+        set_vec_axis(&q, a, plane);
+        set_vec_axis(&q, u,
+                     vec_axis(b.min, u) + (vec_axis(b.max, u) - vec_axis(b.min, u)) *
+                                              (static_cast<double>(iu) / kGrid));
+        set_vec_axis(&q, w,
+                     vec_axis(b.min, w) + (vec_axis(b.max, w) - vec_axis(b.min, w)) *
+                                              (static_cast<double>(iw) / kGrid));
         if (point_visible(in, i, q, tests)) return true;
       }
     }

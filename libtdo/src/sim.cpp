@@ -29,16 +29,6 @@ namespace {
 constexpr double kStaticCap = 10.0;  // m, cap of the static distance query
 constexpr int kMaxReflections = 4;   // per axis and step
 
-double comp(tdo_vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
-void set_comp(tdo_vec3* v, int k, double x) {
-  if (k == 0)
-    v->x = x;
-  else if (k == 1)
-    v->y = x;
-  else
-    v->z = x;
-}
-
 // splitmix64 (Vigna).
 uint64_t next_u64(uint64_t* s) {
   uint64_t z = (*s += 0x9E3779B97F4A7C15ull);
@@ -57,9 +47,9 @@ double noise(uint64_t* s) {
 
 void advance_mover(tdo_mover* m, const tdo_box& b, double dt) {
   for (int k = 0; k < 3; ++k) {
-    const double lo = comp(b.min, k), hi = comp(b.max, k);
-    double x = comp(m->p, k) + comp(m->v, k) * dt;
-    double u = comp(m->v, k);
+    const double lo = vec_axis(b.min, k), hi = vec_axis(b.max, k);
+    double x = vec_axis(m->p, k) + vec_axis(m->v, k) * dt;
+    double u = vec_axis(m->v, k);
     for (int r = 0; r < kMaxReflections; ++r) {
       if (x > hi) {
         x = 2.0 * hi - x;
@@ -73,8 +63,8 @@ void advance_mover(tdo_mover* m, const tdo_box& b, double dt) {
     }
     if (x > hi) x = hi;
     if (x < lo) x = lo;
-    set_comp(&m->p, k, x);
-    set_comp(&m->v, k, u);
+    set_vec_axis(&m->p, k, x);
+    set_vec_axis(&m->v, k, u);
   }
 }
 

@@ -37,6 +37,7 @@
 #endif
 
 #include "collision_internal.h"
+#include "path_segment.h"
 #include "sample_energy.h"
 #include "scalar.h"
 #include "tdo/collision.h"
@@ -464,12 +465,7 @@ tdo_status validate(const tdo_traj* ctx, const tdo_traj_input* in) {
   double total = 0.0;
   for (uint32_t i = 0; i < path.n; ++i) {
     const tdo_path_segment& s = path.seg[i];
-    if (s.kind != TDO_SEGMENT_LINE && s.kind != TDO_SEGMENT_BEZIER && s.kind != TDO_SEGMENT_ARC)
-      return TDO_ERR_INVALID_ARGUMENT;
-    const int np = s.kind == TDO_SEGMENT_BEZIER ? 4 : (s.kind == TDO_SEGMENT_ARC ? 3 : 2);
-    for (int k = 0; k < np; ++k)
-      if (!finite3(s.p[k])) return TDO_ERR_INVALID_ARGUMENT;
-    if (!(isfinite(s.length) && s.length >= 0.0)) return TDO_ERR_INVALID_ARGUMENT;
+    if (!segment_shape_ok(s)) return TDO_ERR_INVALID_ARGUMENT;
     if (isnan(s.v_limit) || !(s.v_limit > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
     total += s.length;
   }
@@ -768,15 +764,10 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
   return r;
 }
 
-/** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
- *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
- *  (from_end 1). The length grows with the speed, so bisection finds it. */
-double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
-  const double cap = move_level(ctx, k), len = move_len(ctx, k);
-  if (!(cap > v0)) return cap;
-  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
-  if (fits(cap)) return cap;
-  double lo = v0, hi = cap;  // lo always reachable
+/** The highest v in [lo, hi] with fits(v), by kBisections bisection steps; `lo` must fit and
+ *  fits must be monotone (true below some speed, false above). */
+template <class Fits>
+double bisect_highest(double lo, double hi, const Fits& fits) {
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
@@ -788,6 +779,17 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
   return lo;
 }
 
+/** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
+ *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
+ *  (from_end 1). The length grows with the speed, so bisection finds it. */
+double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
+  const double cap = move_level(ctx, k), len = move_len(ctx, k);
+  if (!(cap > v0)) return cap;
+  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
+  if (fits(cap)) return cap;
+  return bisect_highest(v0, cap, fits);  // v0 always reachable
+}
+
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
  *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
 double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
@@ -795,17 +797,9 @@ double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, 
   const auto fits = [&](double vp) {
     return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist <= len;
   };
-  double lo = dmax(v0, v1), hi = move_level(ctx, k);
+  const double hi = move_level(ctx, k);
   if (fits(hi)) return hi;
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fits(mid))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
+  return bisect_highest(dmax(v0, v1), hi, fits);
 }
 
 /** s, duration of an S-curve between speeds a and b. */

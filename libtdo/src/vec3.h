@@ -26,6 +26,16 @@ inline tdo_vec3 unit_or(tdo_vec3 a, tdo_vec3 fallback, double eps) {
   return n > eps ? mul(a, 1.0 / n) : fallback;
 }
 inline tdo_vec3 lerp(tdo_vec3 a, tdo_vec3 b, double u) { return add(a, mul(sub(b, a), u)); }
+// Component k of v (0 x, 1 y, otherwise z), read and written.
+inline double vec_axis(tdo_vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+inline void set_vec_axis(tdo_vec3* v, int k, double x) {
+  if (k == 0)
+    v->x = x;
+  else if (k == 1)
+    v->y = x;
+  else
+    v->z = x;
+}
 
 }  // namespace tdo_internal
 

@@ -91,8 +91,24 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Agg {
+// The outcome counts both tables share; M is tdo_episode::Metrics or tdo_online::Metrics.
+struct Outcomes {
   int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
+  // Count one episode; @return whether it was planned (the caller adds its own figures then).
+  template <class M>
+  bool count(const M& m) {
+    ++episodes;
+    if (!m.planned) return false;
+    ++planned;
+    success += m.success;
+    collisions += m.collision;
+    coll_mover += m.collision_mover;
+    coll_static += m.collision_static;
+    return true;
+  }
+};
+
+struct Agg : Outcomes {
   int lm_episodes = 0, failed = 0;
   long lm_events = 0;
   double min_sep = HUGE_VAL, max_dev = 0.0, max_v = 0.0, max_a = 0.0, max_j = 0.0;
@@ -105,13 +121,7 @@ struct Agg {
       evade_episodes = 0;  // episodes whose executed v, a or j exceeds its limit by more than 1 %
   std::vector<double> mean_dev, max_devs, overhead, seps;
   void add(const tdo_episode::Metrics& m) {
-    ++episodes;
-    if (!m.planned) return;
-    ++planned;
-    success += m.success;
-    collisions += m.collision;
-    coll_mover += m.collision_mover;
-    coll_static += m.collision_static;
+    if (!count(m)) return;
     lm_events += m.lm_events;
     lm_episodes += m.lm_events > 0;
     failed += m.escape_failed;
@@ -142,17 +152,23 @@ double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : s / static_cast<double>(v.size());
 }
 
+// x printed with printf format `fm`.
+std::string num(double x, const char* fm = "%.3f") {
+  char b[64];
+  std::snprintf(b, sizeof b, fm, x);
+  return std::string(b);
+}
+
+// One table row: `name`, then f(aggregate) of each column right-aligned in `width` characters.
+template <class Cols, class F>
+void print_row(const char* name, const Cols& cols, int width, F f) {
+  std::printf("%-34s", name);
+  for (const auto& c : cols) std::printf(" %*s", width, f(c.second).c_str());
+  std::printf("\n");
+}
+
 void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
-  auto row = [&](const char* name, auto f) {
-    std::printf("%-34s", name);
-    for (const auto& c : cols) std::printf(" %14s", f(c.second).c_str());
-    std::printf("\n");
-  };
-  auto s = [](double x, const char* fm = "%.3f") {
-    char b[64];
-    std::snprintf(b, sizeof b, fm, x);
-    return std::string(b);
-  };
+  auto row = [&](const char* name, auto f) { print_row(name, cols, 14, f); };
   std::printf("%-34s", "");
   for (const auto& c : cols) std::printf(" %14s", c.first.c_str());
   std::printf("\n");
@@ -160,22 +176,22 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
     return std::to_string(a.episodes) + " (" + std::to_string(a.planned) + ")";
   });
   row("success rate %",
-      [&](const Agg& a) { return s(100.0 * a.success / std::max(a.planned, 1), "%.2f"); });
+      [&](const Agg& a) { return num(100.0 * a.success / std::max(a.planned, 1), "%.2f"); });
   row("collisions (mover / static)", [&](const Agg& a) {
     return std::to_string(a.collisions) + " (" + std::to_string(a.coll_mover) + "/" +
            std::to_string(a.coll_static) + ")";
   });
-  row("min static distance m", [&](const Agg& a) { return s(a.min_static); });
+  row("min static distance m", [&](const Agg& a) { return num(a.min_static); });
   row("episodes inside planner clearance",
       [&](const Agg& a) { return std::to_string(a.inside_clearance); });
   row("min mover separation m",
-      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : s(a.min_sep); });
+      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : num(a.min_sep); });
   row("median min separation m",
-      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : s(median(a.seps)); });
-  row("mean deviation m (mean)", [&](const Agg& a) { return s(mean(a.mean_dev)); });
-  row("max deviation m (median)", [&](const Agg& a) { return s(median(a.max_devs)); });
-  row("max deviation m (max)", [&](const Agg& a) { return s(a.max_dev); });
-  row("time overhead s (median)", [&](const Agg& a) { return s(median(a.overhead), "%.2f"); });
+      [&](const Agg& a) { return a.seps.empty() ? std::string("-") : num(median(a.seps)); });
+  row("mean deviation m (mean)", [&](const Agg& a) { return num(mean(a.mean_dev)); });
+  row("max deviation m (median)", [&](const Agg& a) { return num(median(a.max_devs)); });
+  row("max deviation m (max)", [&](const Agg& a) { return num(a.max_dev); });
+  row("time overhead s (median)", [&](const Agg& a) { return num(median(a.overhead), "%.2f"); });
   row("local-minimum events", [&](const Agg& a) { return std::to_string(a.lm_events); });
   row("episodes with a local minimum", [&](const Agg& a) { return std::to_string(a.lm_episodes); });
   row("escape failed (named status)", [&](const Agg& a) { return std::to_string(a.failed); });
@@ -185,17 +201,16 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
   row("evasion steps (episodes)", [&](const Agg& a) {
     return std::to_string(a.evade_steps) + " (" + std::to_string(a.evade_episodes) + ")";
   });
-  row("executed max speed m/s", [&](const Agg& a) { return s(a.max_v); });
-  row("executed max acc m/s^2", [&](const Agg& a) { return s(a.max_a); });
-  row("executed max jerk m/s^3", [&](const Agg& a) { return s(a.max_j); });
+  row("executed max speed m/s", [&](const Agg& a) { return num(a.max_v); });
+  row("executed max acc m/s^2", [&](const Agg& a) { return num(a.max_a); });
+  row("executed max jerk m/s^3", [&](const Agg& a) { return num(a.max_j); });
   row("episodes over a v/a/j limit (1 %)",
       [&](const Agg& a) { return std::to_string(a.over_limits); });
 }
 
 // ---- Online episodes (--unknown): hidden columns, sensing, replanning (issue 20) ----
 
-struct OnlineAgg {
-  int episodes = 0, planned = 0, success = 0, collisions = 0, coll_mover = 0, coll_static = 0;
+struct OnlineAgg : Outcomes {
   int over_limits = 0, escape_failed = 0;
   long replans = 0, failures = 0, blocked = 0, stuck = 0, mover_conflicts = 0, switches = 0,
        stale = 0, hidden = 0, revealed = 0;
@@ -204,14 +219,8 @@ struct OnlineAgg {
   std::map<std::string, int> failed;  // failed plans by "takeover:" / "vehicle:" status
   void add(const tdo_online::Metrics& m) {
     for (const std::string& f : m.failure_statuses) ++failed[f];
-    ++episodes;
     hidden += m.hidden;
-    if (!m.planned) return;
-    ++planned;
-    success += m.success;
-    collisions += m.collision;
-    coll_mover += m.collision_mover;
-    coll_static += m.collision_static;
+    if (!count(m)) return;
     escape_failed += m.escape_failed;
     replans += m.replans;
     failures += m.replan_failures;
@@ -243,16 +252,7 @@ double quantile(std::vector<double> v, double q) {
 }
 
 void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& cols) {
-  auto row = [&](const char* name, auto f) {
-    std::printf("%-34s", name);
-    for (const auto& c : cols) std::printf(" %16s", f(c.second).c_str());
-    std::printf("\n");
-  };
-  auto s = [](double x, const char* fm = "%.3f") {
-    char b[64];
-    std::snprintf(b, sizeof b, fm, x);
-    return std::string(b);
-  };
+  auto row = [&](const char* name, auto f) { print_row(name, cols, 16, f); };
   auto n = [](long x) { return std::to_string(x); };
   std::printf("%-34s", "");
   for (const auto& c : cols) std::printf(" %16s", c.first.c_str());
@@ -260,14 +260,14 @@ void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& co
   row("episodes (first plan ok)",
       [&](const OnlineAgg& a) { return n(a.episodes) + " (" + n(a.planned) + ")"; });
   row("success", [&](const OnlineAgg& a) {
-    return n(a.success) + " (" + s(100.0 * a.success / std::max(a.episodes, 1), "%.1f") + " %)";
+    return n(a.success) + " (" + num(100.0 * a.success / std::max(a.episodes, 1), "%.1f") + " %)";
   });
   row("collisions (mover / static)", [&](const OnlineAgg& a) {
     return n(a.collisions) + " (" + n(a.coll_mover) + "/" + n(a.coll_static) + ")";
   });
-  row("min true static distance m", [&](const OnlineAgg& a) { return s(a.min_static); });
+  row("min true static distance m", [&](const OnlineAgg& a) { return num(a.min_static); });
   row("min mover gap m", [&](const OnlineAgg& a) {
-    return std::isfinite(a.min_gap) ? s(a.min_gap) : std::string("-");
+    return std::isfinite(a.min_gap) ? num(a.min_gap) : std::string("-");
   });
   row("hidden / revealed columns",
       [&](const OnlineAgg& a) { return n(a.hidden) + " / " + n(a.revealed); });
@@ -280,17 +280,17 @@ void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& co
   row("plan switches (stale, replaced)",
       [&](const OnlineAgg& a) { return n(a.switches) + " (" + n(a.stale) + ")"; });
   row("replan wall ms p50 / p99", [&](const OnlineAgg& a) {
-    return s(quantile(a.ms, 0.5), "%.2f") + " / " + s(quantile(a.ms, 0.99), "%.2f");
+    return num(quantile(a.ms, 0.5), "%.2f") + " / " + num(quantile(a.ms, 0.99), "%.2f");
   });
-  row("replan wall ms max", [&](const OnlineAgg& a) { return s(quantile(a.ms, 1.0), "%.2f"); });
+  row("replan wall ms max", [&](const OnlineAgg& a) { return num(quantile(a.ms, 1.0), "%.2f"); });
   row("replan CPU ms p50 / p99", [&](const OnlineAgg& a) {
-    return s(quantile(a.cpu, 0.5), "%.2f") + " / " + s(quantile(a.cpu, 0.99), "%.2f");
+    return num(quantile(a.cpu, 0.5), "%.2f") + " / " + num(quantile(a.cpu, 0.99), "%.2f");
   });
   row("flight time s (median, arrived)",
-      [&](const OnlineAgg& a) { return s(quantile(a.times, 0.5), "%.2f"); });
+      [&](const OnlineAgg& a) { return num(quantile(a.times, 0.5), "%.2f"); });
   row("escape failed (named status)", [&](const OnlineAgg& a) { return n(a.escape_failed); });
   row("executed max v / a / j", [&](const OnlineAgg& a) {
-    return s(a.max_v, "%.2f") + "/" + s(a.max_a, "%.2f") + "/" + s(a.max_j, "%.1f");
+    return num(a.max_v, "%.2f") + "/" + num(a.max_a, "%.2f") + "/" + num(a.max_j, "%.1f");
   });
   row("episodes over a v/a/j limit (1 %)", [&](const OnlineAgg& a) { return n(a.over_limits); });
 }

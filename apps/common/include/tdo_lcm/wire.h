@@ -14,6 +14,7 @@
 #include <lcm/lcm_coretypes.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "tdo_lcm/check.h"
@@ -42,6 +43,17 @@ Check decode(const void* data, std::size_t size, Msg* out) {
     return fail(Reason::decode_error, std::string(Msg::getTypeName()) + ": decoder threw");
   }
   return {};
+}
+
+/**
+ * @brief decode a map, then refuse it (other_vehicle) when it is for a vehicle other than
+ *        `vehicle_id` (vehicle -1 in the map: for every vehicle).
+ */
+inline Check decode_map(const void* data, std::size_t size, int32_t vehicle_id, tdo::map_t* m) {
+  Check c = decode(data, size, m);
+  if (c.ok() && m->vehicle_id != -1 && m->vehicle_id != vehicle_id)
+    c = fail(Reason::other_vehicle, "map for vehicle " + std::to_string(m->vehicle_id));
+  return c;
 }
 
 }  // namespace tdo_lcm
