@@ -97,11 +97,8 @@ bool AvoidNode::start(std::string* error) {
 }
 
 void AvoidNode::refuse(const std::string& what, const Check& c) {
-  if (c.reason == Reason::other_vehicle || c.reason == Reason::no_plan)
-    ++counters_.ignored;
-  else
-    ++counters_.rejected;
-  ++counters_.reasons[what + "." + reason_str(c.reason)];
+  count_refusal(&counters_, what, c.reason,
+                c.reason == Reason::other_vehicle || c.reason == Reason::no_plan);
 }
 
 void AvoidNode::reset_task() {
@@ -263,10 +260,7 @@ void AvoidNode::on_map(const void* data, std::size_t size) {
 void AvoidNode::on_map_update(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_update_t u{};
-  Check c = decode(data, size, &u);
-  if (c.ok() && u.vehicle_id != -1 && u.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "update for vehicle " + std::to_string(u.vehicle_id));
-  if (c.ok()) c = map_update_check(u);
+  Check c = decode_map_update(data, size, cfg_.vehicle_id, &u);
   const bool was_stale = updates_.stale();
   if (c.ok()) c = updates_.order(u);
   if (c.ok()) {

@@ -8,6 +8,7 @@
 
 #include "avoid_node.h"
 #include "tdo_lcm/app_cli.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/run_loop.h"
 
 int main(int argc, char** argv) {
@@ -102,11 +103,7 @@ int main(int argc, char** argv) {
   tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-avoid", bus, opt.url)) return 2;
   tdo_lcm::AvoidNode node(&bus, cfg);
-  std::string error;
-  if (!node.start(&error)) {
-    std::fprintf(stderr, "tdo-avoid: error: %s\n", error.c_str());
-    return 2;
-  }
+  if (!tdo_lcm::start_node("tdo-avoid", &node)) return 2;
   if (!opt.quiet)
     std::fprintf(stderr, "tdo-avoid: vehicle %d on %s, %s at %g Hz%s, arena %zu bytes\n",
                  cfg.vehicle_id, opt.url.c_str(), cfg.kind == TDO_FOLLOWER_APF ? "apf" : "eapf",

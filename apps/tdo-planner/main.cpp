@@ -8,6 +8,7 @@
 #include "planner_node.h"
 #include "planner_options.h"
 #include "tdo_lcm/app_cli.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/run_loop.h"
 
 int main(int argc, char** argv) {
@@ -32,11 +33,7 @@ int main(int argc, char** argv) {
   tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-planner", bus, opt.url)) return 2;
   tdo_lcm::PlannerNode node(&bus, cfg);
-  std::string error;
-  if (!node.start(&error)) {
-    std::fprintf(stderr, "tdo-planner: error: %s\n", error.c_str());
-    return 2;
-  }
+  if (!tdo_lcm::start_node("tdo-planner", &node)) return 2;
   if (!opt.quiet)
     std::fprintf(stderr, "tdo-planner: vehicle %d on %s, arena %zu bytes, maps up to %u voxels\n",
                  cfg.vehicle_id, opt.url.c_str(), node.arena_bytes(), node.capacity().max_voxels);

@@ -48,11 +48,7 @@ bool PlannerNode::start(std::string* error) {
 }
 
 void PlannerNode::refuse(const std::string& what, const Check& c) {
-  if (c.reason == Reason::other_vehicle)
-    ++counters_.ignored;
-  else
-    ++counters_.rejected;
-  ++counters_.reasons[what + "." + reason_str(c.reason)];
+  count_refusal(&counters_, what, c.reason, c.reason == Reason::other_vehicle);
   // Refused requests also by the field at fault ("field.v_max"; outside the rejected sum).
   if (what == "request" && !c.field.empty()) ++counters_.reasons["field." + c.field];
 }
@@ -207,10 +203,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
 void PlannerNode::on_map_update(const void* data, std::size_t size) {
   ++counters_.received;
   tdo::map_update_t u{};
-  Check c = decode(data, size, &u);
-  if (c.ok() && u.vehicle_id != -1 && u.vehicle_id != cfg_.vehicle_id)
-    c = fail(Reason::other_vehicle, "update for vehicle " + std::to_string(u.vehicle_id));
-  if (c.ok()) c = map_update_check(u);
+  Check c = decode_map_update(data, size, cfg_.vehicle_id, &u);
   if (c.ok()) c = updates_.order(u);  // a gap makes the map stale
   if (c.ok()) {
     // Applied at the clearance of the grid's last finish; a request with another clearance

@@ -8,6 +8,7 @@
 
 #include "sim_node.h"
 #include "tdo_lcm/app_cli.h"
+#include "tdo_lcm/node_status.h"
 #include "tdo_lcm/run_loop.h"
 
 int main(int argc, char** argv) {
@@ -118,11 +119,7 @@ int main(int argc, char** argv) {
   tdo_lcm::Bus bus(opt.url, opt.queue_capacity);
   if (!tdo_lcm::report_bus_start("tdo-sim", bus, opt.url)) return 2;
   tdo_lcm::SimNode node(&bus, cfg);
-  std::string error;
-  if (!node.start(&error)) {
-    std::fprintf(stderr, "tdo-sim: error: %s\n", error.c_str());
-    return 2;
-  }
+  if (!tdo_lcm::start_node("tdo-sim", &node)) return 2;
   if (!opt.quiet) {
     const tdo_sim_output s = node.current();
     std::fprintf(stderr,

@@ -157,11 +157,7 @@ bool SimNode::goal(tdo_vec3* out) const {
 }
 
 void SimNode::refuse(const std::string& what, const Check& c) {
-  if (c.reason == Reason::other_vehicle)
-    ++counters_.ignored;
-  else
-    ++counters_.rejected;
-  ++counters_.reasons[what + "." + reason_str(c.reason)];
+  count_refusal(&counters_, what, c.reason, c.reason == Reason::other_vehicle);
 }
 
 void SimNode::on_setpoint(const void* data, std::size_t size) {

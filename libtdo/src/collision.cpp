@@ -460,17 +460,8 @@ bool for_each_cube_near(const tdo_grid* g, const double p0[3], const double p1[3
                         F&& f) {
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const int32_t n[3] = {d.nx, d.ny, d.nz};
-  int64_t lo[3], hi[3];
-  for (int i = 0; i < 3; ++i) {
-    // One voxel of margin on each side: a cube touching the range exactly (or within rounding)
-    // is included; far_apart filters the extra ones.
-    const double a = floor((dmin(p0[i], p1[i]) - r - o[i]) / d.res) - 1.0;
-    const double b = floor((dmax(p0[i], p1[i]) + r - o[i]) / d.res) + 1.0;
-    if (b < 0.0 || a > static_cast<double>(n[i] - 1)) return true;
-    lo[i] = a < 0.0 ? 0 : static_cast<int64_t>(a);
-    hi[i] = b > static_cast<double>(n[i] - 1) ? n[i] - 1 : static_cast<int64_t>(b);
-  }
+  int64_t lo[3], hi[3];  // one voxel of margin; far_apart filters the extra cubes
+  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
   for (int64_t k = lo[2]; k <= hi[2]; ++k) {
     for (int64_t j = lo[1]; j <= hi[1]; ++j) {
       const uint8_t* row = g->flags + j * g->stride_y + k * g->stride_z;

@@ -35,6 +35,26 @@ void surface_index_build(tdo_grid* g);
 // Voxel (i, j, k) (inside the grid) is now a surface cube (on = true) or not (map updates).
 void surface_index_set(tdo_grid* g, int64_t i, int64_t j, int64_t k, bool on);
 
+// The voxels [lo, hi] (per axis, clamped to the grid) of the span box of [p0, p1] grown by r plus
+// one voxel each side: a cube touching that box exactly (or within rounding) is included. False
+// when the box misses the grid.
+inline bool span_voxels(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                        int64_t lo[3], int64_t hi[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  for (int a = 0; a < 3; ++a) {
+    const double mn = p0[a] < p1[a] ? p0[a] : p1[a];
+    const double mx = p0[a] < p1[a] ? p1[a] : p0[a];
+    const double va = floor((mn - r - o[a]) / d.res) - 1.0;
+    const double vb = floor((mx + r - o[a]) / d.res) + 1.0;
+    if (vb < 0.0 || va > static_cast<double>(n[a] - 1)) return false;
+    lo[a] = va < 0.0 ? 0 : static_cast<int64_t>(va);
+    hi[a] = vb > static_cast<double>(n[a] - 1) ? n[a] - 1 : static_cast<int64_t>(vb);
+  }
+  return true;
+}
+
 // A brick near a query: its index and the squared gap (m^2) between its tight box and the
 // query's span box, a lower bound of the squared distance of each of its cubes.
 struct BrickCand {
@@ -51,19 +71,14 @@ bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
   const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
-  const int32_t n[3] = {d.nx, d.ny, d.nz};
-  double mn[3], mx[3];
   int64_t lo[3], hi[3];
+  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
+  double mn[3], mx[3];
   for (int a = 0; a < 3; ++a) {
     mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
     mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
-    const double va = floor((mn[a] - r - o[a]) / d.res) - 1.0;
-    const double vb = floor((mx[a] + r - o[a]) / d.res) + 1.0;
-    if (vb < 0.0 || va > static_cast<double>(n[a] - 1)) return true;
-    const int64_t ia = va < 0.0 ? 0 : static_cast<int64_t>(va);
-    const int64_t ib = vb > static_cast<double>(n[a] - 1) ? n[a] - 1 : static_cast<int64_t>(vb);
-    lo[a] = ia / kBrickVoxels;
-    hi[a] = ib / kBrickVoxels;
+    lo[a] /= kBrickVoxels;
+    hi[a] /= kBrickVoxels;
   }
   for (int64_t z = lo[2]; z <= hi[2]; ++z)
     for (int64_t y = lo[1]; y <= hi[1]; ++y) {

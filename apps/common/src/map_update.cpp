@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "tdo_lcm/node_status.h"
+#include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
 
@@ -56,6 +57,15 @@ Check map_update_check(const tdo::map_update_t& u) {
         return fail_field(Reason::out_of_range, f, f + " has max <= min");
   }
   return Check{};
+}
+
+Check decode_map_update(const void* data, std::size_t size, int32_t vehicle_id,
+                        tdo::map_update_t* u) {
+  Check c = decode(data, size, u);
+  if (c.ok() && u->vehicle_id != -1 && u->vehicle_id != vehicle_id)
+    c = fail(Reason::other_vehicle, "update for vehicle " + std::to_string(u->vehicle_id));
+  if (c.ok()) c = map_update_check(*u);
+  return c;
 }
 
 Check map_update_apply(const tdo::map_update_t& u, tdo_grid* grid, tdo_grid_update_result* out) {

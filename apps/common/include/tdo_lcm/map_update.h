@@ -11,6 +11,7 @@
 #ifndef TDO_LCM_MAP_UPDATE_H
 #define TDO_LCM_MAP_UPDATE_H
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -25,6 +26,13 @@ namespace tdo_lcm {
  *        seq < 1, a negative voxel index, a box with max <= min), non_finite (a box corner).
  */
 Check map_update_check(const tdo::map_update_t& u);
+
+/**
+ * @brief decode an update, refuse it (other_vehicle) when it is for a vehicle other than
+ *        `vehicle_id` (vehicle -1: for every vehicle), then map_update_check it.
+ */
+Check decode_map_update(const void* data, std::size_t size, int32_t vehicle_id,
+                        tdo::map_update_t* u);
 
 /**
  * @brief Apply a checked update to a finished grid (all of it or nothing).

@@ -9,11 +9,13 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "tdo_lcm/bus.h"
+#include "tdo_lcm/check.h"
 #include "tdo_lcm/types.h"
 
 namespace tdo_lcm {
@@ -55,6 +57,31 @@ std::size_t alloc_node_arena(std::unique_ptr<std::max_align_t[]>* arena, std::si
 void fill_status(tdo::status_t* s, const char* program, int64_t seq, int32_t vehicle_id,
                  std::chrono::steady_clock::time_point started,
                  const std::map<std::string, int64_t>& reasons);
+
+/**
+ * @brief start() `node`; on failure print "PROG: error: WHY" on stderr.
+ * @return whether the node started
+ */
+template <class Node>
+bool start_node(const char* prog, Node* node) {
+  std::string error;
+  if (node->start(&error)) return true;
+  std::fprintf(stderr, "%s: error: %s\n", prog, error.c_str());
+  return false;
+}
+
+/**
+ * @brief Count a refused message in a node's counters (fields `ignored`, `rejected`, `reasons`):
+ * ignored when `on_purpose` (e.g. for another vehicle), else rejected, and by "WHAT.REASON".
+ */
+template <class Counters>
+void count_refusal(Counters* c, const std::string& what, Reason reason, bool on_purpose) {
+  if (on_purpose)
+    ++c->ignored;
+  else
+    ++c->rejected;
+  ++c->reasons[what + "." + reason_str(reason)];
+}
 
 /** A node's own counters of one heartbeat (their meaning: lcmtypes/status_t.lcm). */
 struct StatusCounts {
