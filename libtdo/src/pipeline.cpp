@@ -6,6 +6,7 @@
 
 #include "grid_internal.h"
 #include "planner_internal.h"
+#include "search_headed.h"
 #include "tdo/collision.h"
 #include "tdo/params.h"
 #include "vec3.h"
@@ -55,6 +56,29 @@ void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_o
     w[m++] = tdo_grid_voxel_center(pl->grid, s.path[n - 1]);
   w[m++] = req.goal;
   pl->n_grid_path = m;
+}
+
+// The direct route (docs/design.md s.1): when the straight segment from start to goal keeps the
+// clearance, it is the shortest path and has no turn, so no search can better it for the
+// turn-penalised planner; the search is skipped and the correction gets the segment itself.
+// The search's own refusals (an end voxel out of bounds or blocked by the centre rule, start
+// equal to goal) are left to it, so the direct route never plans what the search refuses.
+bool direct_path(tdo_planner* pl, const tdo_plan_request& req, double clearance,
+                 tdo_search_output* s) {
+  const tdo_grid* g = pl->grid;
+  tdo_voxel a, b;
+  if (!tdo_grid_world_to_voxel(g, req.start, &a) || !tdo_grid_world_to_voxel(g, req.goal, &b) ||
+      tdo_grid_is_blocked(g, a) || tdo_grid_is_blocked(g, b) || zero3(sub(req.goal, req.start)))
+    return false;
+  if (tdo_collision_segment_clear(g, req.start, req.goal, verify_clearance(clearance)) == 0)
+    return false;
+  memset(s, 0, sizeof(*s));
+  s->cost = s->penalized_cost = norm(sub(req.goal, req.start));
+  s->direct = 1;
+  pl->grid_path[0] = req.start;
+  pl->grid_path[1] = req.goal;
+  pl->n_grid_path = 2;
+  return true;
 }
 
 // docs/design.md s.0: every point of the output keeps the clearance, the exact start and goal
@@ -369,13 +393,18 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   si.start = sreq.start;
   si.goal = req->goal;
   tdo_plan_search_input(&p, &si);
-  GuideReport guide;
-  out->status = guide_search(pl->guide, pl->search, &si, &out->search, &guide);
-  out->search.guide = guide.used;
-  out->search.guide_expansions = guide.expansions;
-  if (out->status == TDO_OK) out->status = check_end_points(pl->grid, sreq, clearance);
-  if (out->status != TDO_OK) return out->status;
-  world_path(pl, sreq, out->search, clearance);
+  if (p.depth >= TDO_PLAN_CORRECT && search_headed(&si) &&
+      direct_path(pl, sreq, clearance, &out->search)) {
+    out->status = TDO_OK;
+  } else {
+    GuideReport guide;
+    out->status = guide_search(pl->guide, pl->search, &si, &out->search, &guide);
+    out->search.guide = guide.used;
+    out->search.guide_expansions = guide.expansions;
+    if (out->status == TDO_OK) out->status = check_end_points(pl->grid, sreq, clearance);
+    if (out->status != TDO_OK) return out->status;
+    world_path(pl, sreq, out->search, clearance);
+  }
   out->grid_path = pl->grid_path;
   out->n_grid_path = pl->n_grid_path;
   out->reached = TDO_PLAN_SEARCH;

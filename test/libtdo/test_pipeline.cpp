@@ -92,6 +92,65 @@ TEST_F(Pipeline, GivenLambdaAndMuZeroWhenPlannedThenValidWithoutPenalty) {
   EXPECT_GT(res_.search.penalized_cost, res_.search.cost);  // the door forces turns
 }
 
+TEST_F(Pipeline, GivenAClearStraightSegment_WhenPlannedWithDefaults_ThenTheDirectRouteAndNoSearch) {
+  tdo_plan_request r = room_request();
+  r.goal = tdo_vec3{6.4, 9.1, 4.2};  // west of the wall: the straight segment keeps 0.5 m
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_EQ(res_.search.direct, 1u);
+  EXPECT_EQ(res_.search.expansions, 0u);
+  EXPECT_EQ(res_.search.n_path, 0u);
+  const double dx = r.goal.x - r.start.x, dy = r.goal.y - r.start.y, dz = r.goal.z - r.start.z;
+  EXPECT_DOUBLE_EQ(res_.search.cost, std::sqrt(dx * dx + dy * dy + dz * dz));
+  ASSERT_EQ(res_.n_waypoints, 2u);
+  EXPECT_EQ(std::memcmp(&res_.waypoints[0], &r.start, sizeof(tdo_vec3)), 0);
+  EXPECT_EQ(std::memcmp(&res_.waypoints[1], &r.goal, sizeof(tdo_vec3)), 0);
+  EXPECT_TRUE(res_.feasibility.ok);
+  // Every sample on the segment, at least the clearance from the wall and the chamber.
+  ASSERT_GE(res_.n_samples, 2u);
+  EXPECT_GE(res_.feasibility.min_clearance, kClearance - 1e-9);
+  for (uint32_t i = 0; i < res_.n_samples; ++i) {
+    const tdo_vec3 p = res_.samples[i].p;
+    const double u = ((p.x - r.start.x) * dx + (p.y - r.start.y) * dy + (p.z - r.start.z) * dz) /
+                     (dx * dx + dy * dy + dz * dz);
+    const double ex = r.start.x + u * dx - p.x, ey = r.start.y + u * dy - p.y,
+                 ez = r.start.z + u * dz - p.z;
+    ASSERT_LT(std::sqrt(ex * ex + ey * ey + ez * ez), 1e-9) << "sample " << i;
+  }
+}
+
+TEST_F(Pipeline, GivenASegmentThroughTheWall_WhenPlanned_ThenTheSearchRunsAndNoDirectRoute) {
+  const tdo_plan_request r = room_request();  // start and goal on both sides of the wall
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_EQ(res_.search.direct, 0u);
+  EXPECT_GT(res_.search.expansions, 0u);
+  EXPECT_GT(res_.n_waypoints, 2u);
+}
+
+TEST_F(Pipeline, GivenAClearSegment_WhenOnlySearchingOrPlainAStar_ThenTheGridPathAsBefore) {
+  tdo_plan_request r = room_request();
+  r.goal = tdo_vec3{6.4, 9.1, 4.2};
+  r.params.depth = TDO_PLAN_SEARCH;  // the raw search keeps its grid path (the oracle's)
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_EQ(res_.search.direct, 0u);
+  EXPECT_GT(res_.search.n_path, 1u);
+  r.params.depth = TDO_PLAN_TRAJECTORY;  // plain A*: no heading cost, no direct route
+  r.params.lambda = 0.0;
+  r.params.mu = 0.0;
+  r.params.theta_max = 0.0;
+  r.params.d_th = 0.0;
+  ASSERT_EQ(plan(r), TDO_OK);
+  EXPECT_EQ(res_.search.direct, 0u);
+  EXPECT_GT(res_.search.n_path, 1u);
+}
+
+TEST_F(Pipeline, GivenEndsTheSearchRefuses_WhenTheSegmentIsClear_ThenTheSearchsStatus) {
+  tdo_plan_request r = room_request();
+  r.goal = r.start;
+  EXPECT_EQ(plan(r), TDO_ERR_START_EQUALS_GOAL);
+  r.goal = tdo_vec3{6.4, 9.1, 21.0};  // above the room
+  EXPECT_EQ(plan(r), TDO_ERR_GOAL_OUT_OF_BOUNDS);
+}
+
 /** One bad value of one parameter. */
 struct BadParam {
   const char* name;

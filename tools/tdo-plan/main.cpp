@@ -624,6 +624,9 @@ void print_search(const Options& o, const tdo_search_output& sr) {
     std::printf(
         "search_try       first (grid distances and the deviation term, --retry "
         "first-terms)\n");
+  if (sr.direct != 0)  // tdo_search_output.direct (search.h: the direct route)
+    std::printf(
+        "search_direct    the straight start-goal segment keeps the clearance: no search\n");
   if (sr.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
     std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
                 sr.guide == 1 ? "corridor" : "corridor empty, whole grid", sr.guide_expansions);

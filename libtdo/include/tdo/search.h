@@ -153,6 +153,9 @@ typedef struct tdo_search_output {
                               the whole grid was searched (docs/design.md s.1) */
   uint32_t guide_expansions; /**< the guide's coarse search and corridor search; expansions counts
                               the search that returned */
+  uint32_t direct;           /**< set by the planner: 1 = the straight segment from start to goal
+                              keeps the clearance and no search ran (n_path = 0; cost = its
+                              length; docs/design.md s.1, "The direct route") */
 } tdo_search_output;
 
 /** @return arena bytes tdo_search_init carves for `cfg`. */
