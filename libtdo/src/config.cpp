@@ -45,8 +45,8 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   // The obstacle-aware retry (24 bytes per voxel) with the turn-penalised search, whose octile
   // try can flood (docs/performance.md); plain searches never retry.
   cap->exact_heuristic = headings >= 27u ? 1u : 0u;
-  // The coarse guide (guide.cpp) only runs on grids of 2^20 voxels or more.
-  cap->guide_shift = headings >= 27u && n >= (1u << 20) ? 2u : 0u;
+  // The coarse guide (guide.cpp) only runs on grids of TDO_GUIDE_MIN_VOXELS or more.
+  cap->guide_shift = headings >= 27u && n >= TDO_GUIDE_MIN_VOXELS ? 2u : 0u;
   cap->max_checks = 100000u;  // correction: a few checks per point and scale, far above need
   cap->max_shrinks = 16u;     // radius x0.6 per shrink: 16 steps reach 0.03 % of the radius
   // A flight of 64 samples (0.64 s at dt = 0.01 s) per path voxel covers a slow, stop-heavy path.

@@ -405,7 +405,7 @@ TEST(PlannerGuide, GivenWallMaps_WhenPlanningWithTheGuide_ThenAPlanWheneverOneEx
   constexpr int32_t nx = 32, ny = 16, nz = 4;
   tdo_capacity cap{};
   tdo_capacity_for_grid(&cap, nx, ny, nz, 0.0, 27u, 0u);
-  EXPECT_EQ(cap.guide_shift, 0u);  // below 2^20 voxels tdo_capacity_for_grid sets none
+  EXPECT_EQ(cap.guide_shift, 0u);  // below 2^19 voxels tdo_capacity_for_grid sets none
   cap.guide_shift = 2u;
   TestPlanner pl(cap);
   ASSERT_EQ(pl.status(), TDO_OK);

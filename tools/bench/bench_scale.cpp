@@ -39,7 +39,7 @@ struct Options {
   bool load = false;                   // --load: map loading only (scale_load.h)
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
-  std::string guide = "on";            // tdo's coarse guide on grids of 2^20 voxels or more
+  std::string guide = "on";            // tdo's coarse guide on grids of 2^19 voxels or more
 };
 
 void usage(FILE* f) {
@@ -60,7 +60,7 @@ void usage(FILE* f) {
       "                   tdo-plan --max-nodes (default 4000000; 0 = voxels x headings)\n"
       "  --states S       tdo's search states: heading (the library's default) or voxel\n"
       "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
-      "  --guide on|off   tdo's coarse guide on grids of 2^20 voxels or more (design s.1;\n"
+      "  --guide on|off   tdo's coarse guide on grids of 2^19 voxels or more (design s.1;\n"
       "                   default on, as tdo-plan)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"

@@ -53,7 +53,7 @@ class ScaleMapRun {
    *        voxels. `node_cap`: search states per direction of both libtdo planners (capacity_for;
    *        0 = voxels x headings). `states`: the tdo search's tdo_state_space; with
    *        TDO_STATES_VOXEL tdo is sized without headings but keeps the retry tables, as tdo-plan
-   *        --states voxel. `guide`: tdo's coarse guide on grids of 2^20 voxels or more
+   *        --states voxel. `guide`: tdo's coarse guide on grids of 2^19 voxels or more
    *        (tdo_capacity.guide_shift 2), as tdo-plan --guide. @return null with `error` on a
    *        set-up failure.
    */

@@ -284,9 +284,10 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
-  // The coarse guide (docs/design.md s.1) on grids of 2^20 voxels or more, voxel states included.
+  // The coarse guide (docs/design.md s.1) on grids of TDO_GUIDE_MIN_VOXELS or more, voxel states
+  // included.
   cfg.cap.guide_shift =
-      penalised && o.guide == "on" && voxel_count(map.desc) >= 1048576.0 ? 2u : 0u;
+      penalised && o.guide == "on" && voxel_count(map.desc) >= TDO_GUIDE_MIN_VOXELS ? 2u : 0u;
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
@@ -872,7 +873,7 @@ int run(int argc, char** argv) {
                  "keeps the deviation term and the turn bound with grid distances in h | off")
       ->check(CLI::IsMember({"on", "off", "first", "first-terms"}));
   app.add_option("--guide", o.guide,
-                 "on: a turn-penalised search on a grid of 2^20 voxels or more first plans on "
+                 "on: a turn-penalised search on a grid of 2^19 voxels or more first plans on "
                  "4^3-voxel cells and searches a corridor around that plan (docs/design.md s.1) "
                  "| off: the whole grid")
       ->check(CLI::IsMember({"on", "off"}))

@@ -86,9 +86,13 @@ typedef struct tdo_capacity {
                                  corridor around that plan, the whole grid only when the corridor
                                  holds no path (docs/design.md s.1, "The coarse guide"; about
                                  max_voxels / 2^(2 guide_shift + 1) cells of ~120 bytes).
-                                 tdo_capacity_for_grid sets 2 for 27 headings on grids of 2^20
-                                 voxels or more, else 0 */
+                                 tdo_capacity_for_grid sets 2 for 27 headings on grids of
+                                 TDO_GUIDE_MIN_VOXELS or more, else 0 */
 } tdo_capacity;
+
+/** Grids of this many voxels or more get the coarse guide from tdo_capacity_for_grid (2^19: the
+ *  forest_gen forests, 541,008 voxels, are guided; Map1-5 are not). */
+#define TDO_GUIDE_MIN_VOXELS 524288u
 
 /** Configuration of a whole planner. */
 typedef struct tdo_planner_config {
