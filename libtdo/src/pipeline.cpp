@@ -113,7 +113,8 @@ tdo_status plan_entry(const tdo_grid* g, const tdo_plan_request& req, double cle
   const tdo_traj_entry& e = out->e;
   // Each ramp piece p + v t + a t^2 / 2 + j t^3 / 6 on [0, T] as a cubic Bezier: the first from
   // the start state to the knot, the second (if any) from the knot to the ramp's end.
-  const tdo_vec3 from[2][3] = {{req.start, req.state.v, req.state.a}, {e.knot_p, e.knot_v, e.knot_a}};
+  const tdo_vec3 from[2][3] = {{req.start, req.state.v, req.state.a},
+                               {e.knot_p, e.knot_v, e.knot_a}};
   const double dur[2] = {e.knot, e.ramp - e.knot};
   const tdo_vec3 to[2] = {e.knot_p, e.p};
   for (int k = 0; k < 2; ++k) {

@@ -1403,9 +1403,9 @@ static bool two_piece(tdo_vec3 v0, tdo_vec3 a0, tdo_vec3 am, double jerk, double
 }
 
 /** The shortest two-piece ramp (two_piece) whose middle acceleration am = -b v^ + c n^ (v^ along
- *  v0, n^ along the part of a0 across it) lies on the grid b = a_max k / kMidGrid (k = 0..kMidGrid),
- *  c = a_max l / kMidGrid (|l| <= kMidGrid), |am| <= a_max, at kRampJerk j_max, else at
- *  kRampJerkMax j_max; false when none keeps the speed within sqrt(v2_max). */
+ *  v0, n^ along the part of a0 across it) lies on the grid b = a_max k / kMidGrid (k =
+ * 0..kMidGrid), c = a_max l / kMidGrid (|l| <= kMidGrid), |am| <= a_max, at kRampJerk j_max, else
+ * at kRampJerkMax j_max; false when none keeps the speed within sqrt(v2_max). */
 static bool two_piece_ramp(tdo_vec3 v0, tdo_vec3 a0, double a_max, double j_max, double v2_max,
                            tdo_traj_entry* out) {
   const double sp = norm(v0);
