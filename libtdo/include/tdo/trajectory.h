@@ -123,18 +123,18 @@ typedef struct tdo_traj_entry {
 
 /**
  * @brief The entry of the state (p0, s): the acceleration ramp and the braking line. On the ramp
- *        |v| <= v_max, |a| <= max(|a0|, a_max) and |j| <= 0.995 j_max throughout. Bounded work (a
- *        fixed grid of at most 2 x 153 candidate ramps), no allocation, deterministic.
+ *        |v| <= v_max, |a| <= a_max and |j| <= 0.995 j_max throughout. Bounded work (at most
+ *        2 x 153 candidate two-piece ramps), no allocation, deterministic.
  * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, non-finite p0 or limits not > 0;
  *         TDO_ERR_STATE_NOT_FINITE (a NaN or infinity in s); TDO_ERR_STATE_TOO_FAST (|v| above
- *         v_max); TDO_ERR_STATE_OVER_LIMITS for |a| above a_max, and for a state whose speed must
- *         rise above v_max while its acceleration is removed: every state with a tangential
- *         acceleration a_t = a.v/|v| > 0 and |v| + a_t^2 / (2 j_max) > v_max is one (no jerk
- *         within j_max avoids it), and so is the narrow band next to them for which no ramp of
- *         the fixed set keeps |v| <= v_max (docs/design.md s.5). A state with a_t <= 0 is accepted
- *         whenever |a|^2 <= 0.75 j_max |v| (in particular turning at v_max with |a| <= a_max under
- *         the default limits). Each limit allows 1e-9 relative for rounding (a state sampled at
- *         v_max); the entry's speed is then v_max.
+ *         v_max); TDO_ERR_STATE_OVER_LIMITS for |a| above a_max, and for a state speeding up
+ *         (a_t = a.v / |v| > 0) for which no candidate ramp keeps |v| <= v_max: every state with
+ *         |v| + a_t^2 / (2 j_max) > v_max (its speed must rise above v_max whatever the jerk,
+ *         since d a_t / dt >= -j_max), and a band below that bound, less than 1.25 w^2 / (2 v_max)
+ *         wide with w = a_max^2 / (1.9 j_max) (0.047 m/s at 3 m/s, 3 m/s^2, 10 m/s^3).
+ *         A state not speeding up (a_t <= 0) is accepted when a_max^2 <= 0.9 j_max v_max
+ *         (docs/design.md s.5 says how both statements are tested). Each limit allows 1e-9
+ *         relative for rounding (a state sampled at v_max); the entry's speed is then v_max.
  */
 tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max, double a_max,
                                double j_max, tdo_traj_entry* out);
