@@ -135,14 +135,21 @@ tdo_status plan_entry(const tdo_grid* g, const tdo_plan_request& req, double cle
   const double c = verify_clearance(clearance);
   if (tdo_collision_point_distance(g, req.start, clearance) < c) return TDO_ERR_START_BLOCKED;
   const tdo_traj_entry& e = out->e;
-  if (e.ramp > 0.0) {  // p0 + v0 t + a0 t^2 / 2 + j t^3 / 6 on [0, ramp] as a cubic Bezier
-    const double t = e.ramp;
-    const tdo_vec3 p0 = req.start, v0 = req.state.v, a0 = req.state.a;
+  // Each ramp piece p + v t + a t^2 / 2 + j t^3 / 6 on [0, T] as a cubic Bezier: the first from
+  // the start state to the knot, the second (if any) from the knot to the ramp's end.
+  const tdo_vec3 from[2][3] = {{req.start, req.state.v, req.state.a},
+                               {e.knot_p, e.knot_v, e.knot_a}};
+  const double dur[2] = {e.knot, e.ramp - e.knot};
+  const tdo_vec3 to[2] = {e.knot_p, e.p};
+  for (int k = 0; k < 2; ++k) {
+    const double t = dur[k];
+    if (!(t > 0.0)) continue;
+    const tdo_vec3 p0 = from[k][0], v0 = from[k][1], a0 = from[k][2];
     const tdo_vec3 b[4] = {p0, along(p0, v0, t / 3.0),
                            tdo_vec3{p0.x + (2.0 * v0.x * t + 0.5 * a0.x * t * t) / 3.0,
                                     p0.y + (2.0 * v0.y * t + 0.5 * a0.y * t * t) / 3.0,
                                     p0.z + (2.0 * v0.z * t + 0.5 * a0.z * t * t) / 3.0},
-                           e.p};
+                           to[k]};
     if (!tdo_collision_bezier_clear(g, b, c, 0.0)) return TDO_ERR_STATE_CANNOT_STOP;
   }
   out->n_prefix = 0;

@@ -101,6 +101,10 @@ constexpr double kEntryAngle = 1e-3;  // rad: the path's first line must leave a
 // from a trajectory at v_max has |T sd| above v_max by a rounding error (the entry then flies at
 // exactly v_max).
 constexpr double kStateSlack = 1e-9;
+// The two-piece ramp (a start whose one-piece ramp would exceed v_max): the middle acceleration's
+// grid steps per a_max, and the bisections that find a piece's speed maximum (to 2^-40 of it).
+constexpr int kMidGrid = 8;
+constexpr int kPeakBisections = 40;
 
 /** A segment of positive length, or one of the equal parts of a curved segment, with its speed
  *  ceiling and tangential limits. */
@@ -987,10 +991,13 @@ tdo_status sample_count(const tdo_traj* ctx, double dt, uint32_t* n_out) {
   return TDO_OK;
 }
 
-/** Sample of a moving start's entry ramp at t (< ramp); sample 0 is the start state itself. */
+/** Sample of a moving start's entry ramp at t (< ramp): its first piece from the start state,
+ *  its second (if any) from the knot; sample 0 is the start state itself. */
 void entry_sample(const tdo_traj* ctx, double t, uint32_t i, tdo_sample* out) {
-  const tdo_vec3 p0 = ctx->start_p, v0 = ctx->start.v, a0 = ctx->start.a;
-  const tdo_vec3 j = ctx->entry.jerk;
+  const tdo_traj_entry& e = ctx->entry;
+  const bool first = t < e.knot;
+  const tdo_vec3 p0 = first ? ctx->start_p : e.knot_p, v0 = first ? ctx->start.v : e.knot_v;
+  const tdo_vec3 a0 = first ? ctx->start.a : e.knot_a, j = first ? e.jerk : e.jerk2;
   out->t = t;
   if (i == 0u) {  // exactly the caller's state
     out->p = ctx->start_p;
@@ -998,6 +1005,7 @@ void entry_sample(const tdo_traj* ctx, double t, uint32_t i, tdo_sample* out) {
     out->a = ctx->start.a;
     return;
   }
+  if (!first) t -= e.knot;
   out->p = add(p0, mul(add(v0, mul(add(mul(a0, 0.5), mul(j, t / 6.0)), t)), t));
   out->v = add(v0, mul(add(a0, mul(j, 0.5 * t)), t));
   out->a = add(a0, mul(j, t));
@@ -1335,6 +1343,118 @@ static double steep_ramp(tdo_vec3 v0, tdo_vec3 a0, double v_max, double j_max, d
   return t >= sqrt(aa) / (kRampJerkMax * j_max) && t < ramp ? t : ramp;
 }
 
+/** Velocity of a constant-jerk piece at t: v0 + a0 t + j t^2 / 2. */
+static tdo_vec3 piece_v(tdo_vec3 v0, tdo_vec3 a0, tdo_vec3 j, double t) {
+  return add(v0, mul(add(a0, mul(j, 0.5 * t)), t));
+}
+
+/** Highest |v|^2 on the constant-jerk piece (v0, a0, j) over [0, T]: at an end, or at a maximum
+ *  inside, where g(t) = v.a (half the derivative of |v|^2, a cubic) falls through zero; g is
+ *  monotone between the roots of its derivative 1.5 |j|^2 t^2 + 3 (a0.j) t + |a0|^2 + v0.j, and
+ *  each such interval with g falling from + to - is bisected kPeakBisections times. */
+static double piece_peak_sq(tdo_vec3 v0, tdo_vec3 a0, tdo_vec3 j, double T) {
+  const auto g = [&](double t) { return dot(piece_v(v0, a0, j, t), add(a0, mul(j, t))); };
+  double cut[4] = {0.0, T, T, T};
+  uint32_t n = 1;
+  const double qa = 1.5 * dot(j, j), qb = 3.0 * dot(a0, j), qc = dot(a0, a0) + dot(v0, j);
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (qa > 0.0 && disc > 0.0) {
+    const double r = sqrt(disc), lo = (-qb - r) / (2.0 * qa), hi = (-qb + r) / (2.0 * qa);
+    if (lo > 0.0 && lo < T) cut[n++] = lo;
+    if (hi > 0.0 && hi < T) cut[n++] = hi;
+  }
+  cut[n++] = T;
+  const tdo_vec3 v_end = piece_v(v0, a0, j, T);
+  double peak = dmax(dot(v0, v0), dot(v_end, v_end));
+  for (uint32_t k = 0; k + 1u < n; ++k) {
+    double lo = cut[k], hi = cut[k + 1u];
+    if (!(g(lo) > 0.0 && g(hi) < 0.0)) continue;
+    for (int it = 0; it < kPeakBisections; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (g(mid) > 0.0)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    const tdo_vec3 v = piece_v(v0, a0, j, 0.5 * (lo + hi));
+    peak = dmax(peak, dot(v, v));
+  }
+  return peak;
+}
+
+/** A two-piece ramp: a0 to the middle acceleration am at jerk `jerk`, then am to zero. False when
+ *  its speed exceeds sqrt(v2_max) anywhere (out unchanged). */
+static bool two_piece(tdo_vec3 v0, tdo_vec3 a0, tdo_vec3 am, double jerk, double v2_max,
+                      tdo_traj_entry* out) {
+  const tdo_vec3 d = sub(am, a0);
+  const double t1 = norm(d) / jerk, t2 = norm(am) / jerk;
+  if (!(t1 > 0.0)) return false;
+  const tdo_vec3 j1 = mul(d, 1.0 / t1), j2 = t2 > 0.0 ? mul(am, -1.0 / t2) : tdo_vec3{0, 0, 0};
+  if (piece_peak_sq(v0, a0, j1, t1) > v2_max) return false;
+  const tdo_vec3 vk = piece_v(v0, a0, j1, t1);
+  if (t2 > 0.0 && piece_peak_sq(vk, am, j2, t2) > v2_max) return false;
+  out->ramp = t1 + t2;
+  out->knot = t1;
+  out->jerk = j1;
+  out->jerk2 = j2;
+  out->knot_v = vk;
+  out->knot_a = am;
+  return true;
+}
+
+/** The shortest two-piece ramp (two_piece) whose middle acceleration am = -b v^ + c n^ (v^ along
+ *  v0, n^ along the part of a0 across it) lies on the grid b = a_max k / kMidGrid (k =
+ * 0..kMidGrid), c = a_max l / kMidGrid (|l| <= kMidGrid), |am| <= a_max, at kRampJerk j_max, else
+ * at kRampJerkMax j_max; false when none keeps the speed within sqrt(v2_max). */
+static bool two_piece_ramp(tdo_vec3 v0, tdo_vec3 a0, double a_max, double j_max, double v2_max,
+                           tdo_traj_entry* out) {
+  const double sp = norm(v0);
+  if (!(sp > 0.0)) return false;
+  const tdo_vec3 vh = mul(v0, 1.0 / sp), across = sub(a0, mul(vh, dot(a0, vh)));
+  const double na = norm(across);
+  const tdo_vec3 nh = na > 0.0 ? mul(across, 1.0 / na) : tdo_vec3{0.0, 0.0, 0.0};
+  const int lmax = na > 0.0 ? kMidGrid : 0;
+  for (int f = 0; f < 2; ++f) {
+    const double jerk = (f == 0 ? kRampJerk : kRampJerkMax) * j_max;
+    double best = HUGE_VAL;
+    for (int k = 0; k <= kMidGrid; ++k) {
+      for (int l = -lmax; l <= lmax; ++l) {
+        if (k * k + l * l > kMidGrid * kMidGrid) continue;
+        const double step = a_max / kMidGrid;
+        const tdo_vec3 am = add(mul(vh, -step * k), mul(nh, step * l));
+        const double dur = (norm(sub(am, a0)) + norm(am)) / jerk;
+        tdo_traj_entry e = *out;
+        if (!(dur < best) || !two_piece(v0, a0, am, jerk, v2_max, &e)) continue;
+        best = dur;
+        *out = e;
+      }
+    }
+    if (best < HUGE_VAL) return true;
+  }
+  return false;
+}
+
+/** The one-piece ramp's entry (jerk -a0 / ramp); false when its speed ends above v_max. */
+static bool one_piece(tdo_vec3 p0, tdo_vec3 v0, tdo_vec3 a0, double v_max, double j_max,
+                      tdo_traj_entry* out) {
+  const double acc = norm(a0);
+  // a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its norm
+  // never exceeds the larger end (the norm is convex).
+  double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
+  tdo_vec3 v1 = add(v0, mul(a0, 0.5 * ramp));
+  if (norm(v1) > v_max) ramp = steep_ramp(v0, a0, v_max, j_max, ramp);
+  v1 = add(v0, mul(a0, 0.5 * ramp));
+  if (!(norm(v1) <= v_max * (1.0 + kStateSlack))) return false;
+  out->ramp = ramp;
+  out->knot = ramp;
+  out->jerk = ramp > 0.0 ? mul(a0, -1.0 / ramp) : tdo_vec3{0.0, 0.0, 0.0};
+  out->p = add(p0, add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0)));
+  out->knot_p = out->p;
+  out->v = v1;
+  out->knot_v = v1;
+  return true;
+}
+
 extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max,
                                           double a_max, double j_max, tdo_traj_entry* out) {
   if (s == nullptr || out == nullptr || !finite3(p0) || !positive(v_max) || !positive(a_max) ||
@@ -1344,24 +1464,21 @@ extern "C" tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s,
   if (!finite3(s->v) || !finite3(s->a)) return TDO_ERR_STATE_NOT_FINITE;
   const tdo_vec3 v0 = s->v, a0 = s->a;
   if (norm(v0) > v_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_TOO_FAST;
-  const double acc = norm(a0);
-  if (acc > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
-  // Ramp: a(t) = a0 (1 - t / T), so v(t) runs along the segment from v0 to v0 + a0 T / 2 and its
-  // norm never exceeds the larger end (the norm is convex).
-  double ramp = acc > 0.0 ? acc / (kRampJerk * j_max) : 0.0;
-  tdo_vec3 v1 = add(v0, mul(a0, 0.5 * ramp));
-  if (norm(v1) > v_max) ramp = steep_ramp(v0, a0, v_max, j_max, ramp);
-  v1 = add(v0, mul(a0, 0.5 * ramp));
-  double speed = norm(v1);
-  if (!(speed <= v_max * (1.0 + kStateSlack))) return TDO_ERR_STATE_OVER_LIMITS;
+  if (norm(a0) > a_max * (1.0 + kStateSlack)) return TDO_ERR_STATE_OVER_LIMITS;
+  if (!one_piece(p0, v0, a0, v_max, j_max, out)) {
+    const double vs = v_max * (1.0 + kStateSlack);
+    if (!two_piece_ramp(v0, a0, a_max, j_max, vs * vs, out)) return TDO_ERR_STATE_OVER_LIMITS;
+    const double t1 = out->knot, t2 = out->ramp - out->knot;
+    const tdo_vec3 ak = out->knot_a, vk = out->knot_v, j1 = out->jerk, j2 = out->jerk2;
+    out->knot_p = add(p0, mul(add(v0, mul(add(mul(a0, 0.5), mul(j1, t1 / 6.0)), t1)), t1));
+    out->p = add(out->knot_p, mul(add(vk, mul(add(mul(ak, 0.5), mul(j2, t2 / 6.0)), t2)), t2));
+    out->v = piece_v(vk, ak, j2, t2);
+  }
+  double speed = norm(out->v);
   if (speed > v_max) {  // rounding only (kStateSlack): the path starts at exactly v_max
-    v1 = mul(v1, v_max / speed);
+    out->v = mul(out->v, v_max / speed);
     speed = v_max;
   }
-  out->ramp = ramp;
-  out->jerk = ramp > 0.0 ? mul(a0, -1.0 / ramp) : tdo_vec3{0.0, 0.0, 0.0};
-  out->p = add(p0, add(mul(v0, ramp), mul(a0, ramp * ramp / 3.0)));
-  out->v = v1;
   out->speed = speed;
   out->brake = dmax(
       scurve_dist(0.0, speed, kLineAcc * a_max, kJumpJerk * j_max) * (1.0 + kBrakeRel) + kBrakeAbs,

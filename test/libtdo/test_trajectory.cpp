@@ -1260,6 +1260,9 @@ TEST_F(MovingStart, GivenBadStates_WhenPlanned_ThenNamedStatusesAndNoPlan) {
       {tdo_vec3{1.0, 0.0, 0.0}, tdo_vec3{0.0, 3.1, 0.0}, TDO_ERR_STATE_OVER_LIMITS},
       // at v_max and still accelerating along the velocity: the ramp would exceed v_max
       {tdo_vec3{3.0, 0.0, 0.0}, tdo_vec3{2.0, 0.0, 0.0}, TDO_ERR_STATE_OVER_LIMITS},
+      // turning at v_max while still speeding up a little: a_t = 0.3 m/s^2 needs at least
+      // a_t^2 / (2 j_max) = 4.5 mm/s of speed above v_max, whatever the jerk
+      {tdo_vec3{3.0, 0.0, 0.0}, tdo_vec3{0.3, 2.9, 0.0}, TDO_ERR_STATE_OVER_LIMITS},
   };
   for (const Case& c : cases) {
     const tdo_plan_request r = request(p0, c.v, c.a);
@@ -1338,6 +1341,173 @@ TEST_F(MovingStart, GivenStatesOfItsOwnPlanAcceleratingToVMax_WhenReplanned_Then
     EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0)) << x.t;
   }
   EXPECT_GE(tried, 3u);
+}
+
+/** Largest finite-difference speed (m/s) over the samples: each is a mean of |v| over dt. */
+double max_fd_speed(const tdo_traj_output& o, double dt) {
+  double hi = 0.0;
+  for (uint32_t i = 0; i + 1 < o.n_samples; ++i)
+    hi = std::fmax(hi, len3(o.samples[i + 1].p - o.samples[i].p) / dt);
+  return hi;
+}
+
+TEST_F(MovingStart, GivenAStateAtVMaxTurningAtAMax_WhenPlanned_ThenItContinuesWithinLimits) {
+  // GIVEN a vehicle in the middle of the hall at v_max = 3 m/s in six horizontal directions,
+  // each turning at a_max = 3 m/s^2 across its velocity: left, right, up, down, and up-left (a
+  // one-piece ramp removing that acceleration would end at 3.037 m/s)
+  const tdo_vec3 zhat{0.0, 0.0, 1.0};
+  const double c = std::sqrt(0.5);
+  const tdo_vec3 dirs[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {c, c, 0}, {c, -c, 0}};
+  int planned = 0;
+  for (const tdo_vec3& d : dirs) {
+    const tdo_vec3 left{-d.y, d.x, 0.0};
+    const tdo_vec3 across[] = {left, left * -1.0, zhat, zhat * -1.0, (left + zhat) * c};
+    for (const tdo_vec3& n : across) {
+      const tdo_plan_request r = request(tdo_vec3{10.0, 6.0, 3.0}, d * 3.0, n * 3.0);
+      // WHEN planned
+      ASSERT_EQ(plan(r), TDO_OK) << "v " << d.x << " " << d.y << ", a " << n.x << " " << n.y << " "
+                                 << n.z << ": " << tdo_status_str(res_.status);
+      ++planned;
+      const tdo_traj_output o = samples_of(res_);
+      // THEN the samples begin with exactly that state and continue it (finite differences)
+      EXPECT_TRUE(continues(o, r.start, r.state, r.params.j_max, r.params.dt));
+      // AND stay within v, a, j and the turn radius from the first sample (independent check)
+      EXPECT_TRUE(within_limits(o, limits_of(r.params)));
+      // AND the speed never rises above v_max at all (a mean of |v| <= v_max; rounding only)
+      EXPECT_LE(max_fd_speed(o, r.params.dt), r.params.v_max + 1e-9);
+      // AND the plan ends at the goal, and the streamed planner hands out the same samples
+      EXPECT_TRUE(exactly(dist(o.samples[o.n_samples - 1].p, r.goal), 0.0));
+      EXPECT_TRUE(streams_the_same(r));
+    }
+  }
+  EXPECT_EQ(planned, 30);
+}
+
+TEST(TrajectoryStart,
+     GivenAStateAtVMaxTurning_WhenTheEntryIsPlanned_ThenTwoPiecesKeepEveryLimitAndEndAtRestAcc) {
+  // GIVEN v = (3, 0, 0) m/s at v_max and a = (-0.1, 2.998, 0) m/s^2 (|a| = a_max), limits 3/3/10
+  const tdo_vec3 p0{1.0, 2.0, 3.0};
+  tdo_start_state st{};
+  st.v = tdo_vec3{3.0, 0.0, 0.0};
+  st.a = tdo_vec3{-0.1, std::sqrt(9.0 - 0.01), 0.0};
+  tdo_traj_entry e{};
+  // WHEN its entry is planned
+  ASSERT_EQ(tdo_traj_entry_plan(p0, &st, 3.0, 3.0, 10.0, &e), TDO_OK);
+  // THEN the ramp has two pieces, each within 0.995 j_max, that bring the acceleration to zero
+  ASSERT_GT(e.knot, 0.0);
+  ASSERT_LT(e.knot, e.ramp);
+  EXPECT_LE(len3(e.jerk), 0.995 * 10.0 + 1e-12);
+  EXPECT_LE(len3(e.jerk2), 0.995 * 10.0 + 1e-12);
+  const double t1 = e.knot, t2 = e.ramp - e.knot;
+  EXPECT_LT(dist(e.knot_a, st.a + e.jerk * t1), 1e-12);
+  EXPECT_LT(len3(e.knot_a + e.jerk2 * t2), 1e-12);
+  EXPECT_LE(len3(e.knot_a), 3.0);
+  // AND the pieces join: the knot and the end are where the cubics put them
+  const auto at = [](tdo_vec3 p, tdo_vec3 v, tdo_vec3 a, tdo_vec3 j, double t) {
+    return p + v * t + a * (t * t / 2.0) + j * (t * t * t / 6.0);
+  };
+  EXPECT_LT(dist(e.knot_p, at(p0, st.v, st.a, e.jerk, t1)), 1e-12);
+  EXPECT_LT(dist(e.knot_v, st.v + st.a * t1 + e.jerk * (t1 * t1 / 2.0)), 1e-12);
+  EXPECT_LT(dist(e.p, at(e.knot_p, e.knot_v, e.knot_a, e.jerk2, t2)), 1e-12);
+  EXPECT_LT(dist(e.v, e.knot_v + e.knot_a * t2 + e.jerk2 * (t2 * t2 / 2.0)), 1e-12);
+  // AND the speed stays within v_max all along (2000 points per piece)
+  double hi = 0.0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double u = t1 * k / 2000.0, w = t2 * k / 2000.0;
+    hi = std::fmax(hi, len3(st.v + st.a * u + e.jerk * (u * u / 2.0)));
+    hi = std::fmax(hi, len3(e.knot_v + e.knot_a * w + e.jerk2 * (w * w / 2.0)));
+  }
+  EXPECT_LE(hi, 3.0 * (1.0 + 1e-9));
+  EXPECT_NEAR(e.speed, len3(e.v), 1e-15);
+  // AND a 12 m line from the ramp's end along its velocity is flown from exactly the state,
+  // within every limit (finite differences), never above v_max
+  const tdo_vec3 d = e.v * (1.0 / e.speed);
+  Traj t;
+  ASSERT_EQ(t.status(), TDO_OK);
+  const std::vector<tdo_path_segment> segs{line(e.p, e.p + d * 12.0)};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = make_input(path);
+  in.start_p = p0;
+  in.start = st;
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(t.ctx(), &in, &out), TDO_OK);
+  EXPECT_TRUE(continues(out, p0, st, in.j_max, in.dt));
+  EXPECT_TRUE(within_limits(out, in));
+  EXPECT_LE(max_fd_speed(out, in.dt), in.v_max + 1e-9);
+  EXPECT_TRUE(exactly(dist(out.samples[out.n_samples - 1].p, segs[0].p[1]), 0.0));
+}
+
+/** A random unit vector (rejection from the cube). */
+tdo_vec3 random_unit(tdo_test::Rng& rng) {
+  for (;;) {
+    const tdo_vec3 d{rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)};
+    const double n = len3(d);
+    if (n > 0.1 && n <= 1.0) return d * (1.0 / n);
+  }
+}
+
+TEST(
+    TrajectoryStart,
+    GivenRandomStatesWithinTheLimits_WhenTheEntryIsPlanned_ThenOnlyStatesThatMustSpeedUpAreRefused) {
+  // GIVEN 6000 random states per limit set (a third at v_max, half at a_max), for limit sets
+  // with a_max^2 <= 0.9 j_max v_max (the default 3/3/10 among them)
+  struct Limits {
+    double v, a, j;
+  };
+  const Limits sets[] = {
+      {3.0, 3.0, 10.0}, {3.0, 3.0, 5.0}, {1.0, 3.0, 10.0}, {5.0, 3.0, 25.0}, {2.0, 1.0, 1.0}};
+  tdo_test::Rng rng(2020u);
+  for (const Limits& L : sets) {
+    int refused = 0, accepted = 0;
+    for (int i = 0; i < 6000; ++i) {
+      const double sp = i % 3 == 0 ? L.v : L.v * std::sqrt(rng.uniform());
+      const double am = i % 2 == 0 ? L.a : L.a * std::sqrt(rng.uniform());
+      tdo_start_state st{};
+      st.v = random_unit(rng) * sp;
+      st.a = random_unit(rng) * am;
+      const double a_t = dot3(st.v, st.a) / sp;
+      // the speed rises at least by a_t^2 / (2 j_max) whatever the jerk (d a_t / dt >= -j_max)
+      const double bound = sp + (a_t > 0.0 ? a_t * a_t / (2.0 * L.j) : 0.0);
+      // docs/design.md s.5: a refused state lies less than 1.25 w^2 / (2 v_max) below that bound,
+      // w = a_max^2 / (1.9 j_max) (lat) the velocity a one-piece ramp adds to a lateral a_max
+      const double lat = L.a * L.a / (1.9 * L.j), band = 1.25 * lat * lat / (2.0 * L.v);
+      tdo_traj_entry e{};
+      // WHEN the entry is planned
+      const tdo_status got = tdo_traj_entry_plan(tdo_vec3{0, 0, 0}, &st, L.v, L.a, L.j, &e);
+      // THEN a state that must exceed v_max is refused, every state not speeding up (a_t <= 0)
+      // is accepted, and a refused state lies within `band` below the bound
+      if (bound > L.v * (1.0 + 1e-9) + 1e-12) {
+        EXPECT_EQ(got, TDO_ERR_STATE_OVER_LIMITS) << sp << " " << a_t;
+      } else if (!(a_t > 0.0)) {
+        EXPECT_EQ(got, TDO_OK) << sp << " " << a_t << " " << am;
+      } else if (got != TDO_OK) {
+        EXPECT_EQ(got, TDO_ERR_STATE_OVER_LIMITS);
+        EXPECT_GT(bound, L.v - band) << sp << " " << a_t << " " << am;
+      }
+      if (got != TDO_OK) {
+        ++refused;
+        continue;
+      }
+      ++accepted;
+      // AND an accepted ramp keeps |v| <= v_max, |a| <= a_max and |j| <= 0.995 j_max, and ends
+      // with zero acceleration (its pieces evaluated here at 200 points each)
+      const double t1 = e.knot, t2 = e.ramp - e.knot;
+      ASSERT_LE(len3(e.jerk), 0.995 * L.j * (1.0 + 1e-12));
+      ASSERT_LE(len3(e.jerk2), 0.995 * L.j * (1.0 + 1e-12));
+      ASSERT_LE(len3(e.knot_a), L.a * (1.0 + 1e-9));
+      ASSERT_LT(len3(e.knot_a + e.jerk2 * t2), 1e-9 * L.a);
+      double hi = 0.0;
+      for (int k = 0; k <= 200; ++k) {
+        const double u = t1 * k / 200.0, w = t2 * k / 200.0;
+        hi = std::fmax(hi, len3(st.v + st.a * u + e.jerk * (u * u / 2.0)));
+        hi = std::fmax(hi, len3(e.knot_v + e.knot_a * w + e.jerk2 * (w * w / 2.0)));
+      }
+      ASSERT_LE(hi, L.v * (1.0 + 1e-9)) << sp << " " << a_t << " " << am;
+      ASSERT_LE(e.speed, L.v);
+    }
+    EXPECT_GT(accepted, 3000);
+    EXPECT_GT(refused, 600);  // the states at v_max speeding up are many
+  }
 }
 
 TEST(TrajectoryStart,

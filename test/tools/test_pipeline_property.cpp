@@ -347,6 +347,39 @@ struct Seen {
   long lines = 0, beziers = 0, arcs = 0, junctions = 0, samples = 0;
 };
 
+/** Check 3: v, a, j by finite differences of the sampled positions, each within kLimitTol x its
+ *  limit, and the samples every dt. */
+::testing::AssertionResult check_dynamics(const tdo_plan_result& r, const Limits& lim) {
+  auto fail = [](const std::string& what) { return ::testing::AssertionFailure() << what; };
+  const double dt = lim.dt;
+  std::vector<V> v, a;
+  for (uint32_t i = 0; i < r.n_samples; ++i) {
+    if (std::fabs(r.samples[i].t - i * dt) > 1e-9 * std::max(1.0, i * dt))
+      return fail("sample " + std::to_string(i) + " at t = " + std::to_string(r.samples[i].t) +
+                  ", expected i * dt");
+    if (i + 1 < r.n_samples)
+      v.push_back((1.0 / dt) * (vec(r.samples[i + 1].p) - vec(r.samples[i].p)));
+  }
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (norm(v[i]) > kLimitTol * lim.v_max)
+      return fail("speed " + std::to_string(norm(v[i])) + " m/s at sample " + std::to_string(i) +
+                  " exceeds v_max " + std::to_string(lim.v_max));
+    if (i + 1 < v.size()) a.push_back((1.0 / dt) * (v[i + 1] - v[i]));
+  }
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (norm(a[i]) > kLimitTol * lim.a_max)
+      return fail("acceleration " + std::to_string(norm(a[i])) + " m/s^2 at sample " +
+                  std::to_string(i) + " exceeds a_max " + std::to_string(lim.a_max));
+    if (i + 1 < a.size()) {
+      const double j = norm((1.0 / dt) * (a[i + 1] - a[i]));
+      if (j > kLimitTol * lim.j_max)
+        return fail("jerk " + std::to_string(j) + " m/s^3 at sample " + std::to_string(i) +
+                    " exceeds j_max " + std::to_string(lim.j_max));
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 /**
  * Checks 1-4 on one successful plan. `trajectory`: the plan reached stage 5 (else only the
  * geometric path is checked: ends, clearance, junctions). Tangents are continuous at every
@@ -424,32 +457,8 @@ struct Seen {
   }
 
   // 3. dynamics by finite differences of the positions.
-  const double dt = lim.dt;
-  std::vector<V> v, a;
-  for (uint32_t i = 0; i < r.n_samples; ++i) {
-    if (std::fabs(r.samples[i].t - i * dt) > 1e-9 * std::max(1.0, i * dt))
-      return fail("sample " + std::to_string(i) + " at t = " + std::to_string(r.samples[i].t) +
-                  ", expected i * dt");
-    if (i + 1 < r.n_samples)
-      v.push_back((1.0 / dt) * (vec(r.samples[i + 1].p) - vec(r.samples[i].p)));
-  }
-  for (size_t i = 0; i < v.size(); ++i) {
-    if (norm(v[i]) > kLimitTol * lim.v_max)
-      return fail("speed " + std::to_string(norm(v[i])) + " m/s at sample " + std::to_string(i) +
-                  " exceeds v_max " + std::to_string(lim.v_max));
-    if (i + 1 < v.size()) a.push_back((1.0 / dt) * (v[i + 1] - v[i]));
-  }
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (norm(a[i]) > kLimitTol * lim.a_max)
-      return fail("acceleration " + std::to_string(norm(a[i])) + " m/s^2 at sample " +
-                  std::to_string(i) + " exceeds a_max " + std::to_string(lim.a_max));
-    if (i + 1 < a.size()) {
-      const double j = norm((1.0 / dt) * (a[i + 1] - a[i]));
-      if (j > kLimitTol * lim.j_max)
-        return fail("jerk " + std::to_string(j) + " m/s^3 at sample " + std::to_string(i) +
-                    " exceeds j_max " + std::to_string(lim.j_max));
-    }
-  }
+  const ::testing::AssertionResult dynamics = check_dynamics(r, lim);
+  if (!dynamics) return dynamics;
 
   // 4. junctions: positions always; tangents (not at stop points) and curvature vectors (g2).
   for (uint32_t i = 0; i + 1 < path.n; ++i) {
@@ -725,6 +734,87 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
   std::printf("maps 1-5: %d queries, A* ok %d, tdo ok %d\n", tally.queries, tally.astar_ok,
               tally.tdo_ok);
   EXPECT_GE(tally.tdo_ok, 20);  // the own queries: default, grid_first plain and terms (w 1, 2)
+}
+
+/** A moving start's plan: its first sample is exactly the state, its samples keep v, a, j (check
+ *  3) and the clearance, and it ends exactly at the goal. */
+::testing::AssertionResult check_moving_plan(const World& world, double clearance,
+                                             const tdo_sample& state, const tdo_vec3& goal,
+                                             const tdo_plan_result& r, const Limits& lim) {
+  if (r.n_samples < 3 || r.samples == nullptr) return ::testing::AssertionFailure() << "samples";
+  const tdo_sample& s0 = r.samples[0];
+  if (!same(s0.p, state.p) || !same(s0.v, state.v) || !same(s0.a, state.a))
+    return ::testing::AssertionFailure() << "sample 0 is not the start state";
+  if (!same(r.samples[r.n_samples - 1].p, goal))
+    return ::testing::AssertionFailure() << "the trajectory does not end at the goal";
+  for (uint32_t i = 0; i < r.n_samples; ++i) {
+    const double d = world.point(vec(r.samples[i].p), clearance + kCap);
+    if (d < clearance - kClearTol)
+      return ::testing::AssertionFailure()
+             << "sample " << i << " is " << d << " m from an obstacle";
+  }
+  return check_dynamics(r, lim);
+}
+
+// Replanning from the library's own motion (docs/design.md s.5, "Moving start"): states of the
+// plans of Map2 and Map5 (every second, and 40 random samples each) as start states. None is
+// refused as over the limits or too fast; the plans keep every limit from their first sample.
+TEST(PipelineMovingStart,
+     GivenStatesOfItsOwnPlansOnMap2AndMap5_WhenReplannedFromThem_ThenNoneIsRefusedAsOverLimits) {
+  int tried = 0, planned = 0, cannot_stop = 0, two_piece = 0;
+  for (int n : {2, 5}) {
+    const std::string name = "map" + std::to_string(n);
+    const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
+    const double clearance = 0.5;
+    Planner pl(map, clearance, 0u);
+    ASSERT_EQ(pl.status(), TDO_OK) << name;
+    const World world(map);
+    tdo_plan_request req{};
+    req.start = map.start;
+    req.goal = map.goal;
+    tdo_plan_params_default(&req.params);
+    const Limits lim{req.params.v_max, req.params.a_max, req.params.j_max, req.params.dt};
+    tdo_plan_result res{};
+    ASSERT_EQ(tdo_planner_plan(pl.get(), &req, &res), TDO_OK) << name;
+    const std::vector<tdo_sample> plan(res.samples, res.samples + res.n_samples);
+    std::vector<uint32_t> picks;
+    for (uint32_t i = 100; i + 1 < plan.size(); i += 100) picks.push_back(i);  // every second
+    TestRng rng(500u + static_cast<uint64_t>(n));
+    for (int q = 0; q < 40; ++q)
+      picks.push_back(static_cast<uint32_t>(rng.range(1, static_cast<int64_t>(plan.size()) - 2)));
+    for (uint32_t i : picks) {
+      const tdo_sample& x = plan[i];
+      SCOPED_TRACE(name + " sample " + std::to_string(i) + " at " + str(vec(x.p)) + ", v " +
+                   str(vec(x.v)) + ", a " + str(vec(x.a)));
+      // GIVEN the plan's state at sample i as a start state
+      tdo_plan_request r = req;
+      r.start = x.p;
+      r.state.v = x.v;
+      r.state.a = x.a;
+      // (a state whose entry needs the two-piece ramp: a one-piece one would exceed v_max)
+      tdo_traj_entry e{};
+      if (tdo_traj_entry_plan(x.p, &r.state, lim.v_max, lim.a_max, lim.j_max, &e) == TDO_OK &&
+          e.knot < e.ramp)
+        ++two_piece;
+      // WHEN planned from it
+      const tdo_status st = tdo_planner_plan(pl.get(), &r, &res);
+      ++tried;
+      // THEN it is not refused for its motion; a stop along the velocity that would come too
+      // close to a column (state_cannot_stop) is the only refusal
+      EXPECT_TRUE(st == TDO_OK || st == TDO_ERR_STATE_CANNOT_STOP) << tdo_status_str(st);
+      cannot_stop += st == TDO_ERR_STATE_CANNOT_STOP;
+      if (st != TDO_OK) continue;
+      ++planned;
+      // AND the plan starts in exactly that state and keeps every limit and the clearance
+      EXPECT_TRUE(check_moving_plan(world, clearance, x, map.goal, res, lim));
+    }
+  }
+  std::printf(
+      "moving starts from Map2/Map5 plans: %d tried (%d with a two-piece entry), %d planned, %d "
+      "state_cannot_stop\n",
+      tried, two_piece, planned, cannot_stop);
+  EXPECT_GE(planned, tried * 9 / 10);
+  EXPECT_GT(two_piece, 0);  // the states turning near v_max were among them
 }
 
 // tdo_capacity.stream_samples: the same plans, feasibility reports, metrics and samples (bit for

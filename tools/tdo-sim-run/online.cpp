@@ -183,39 +183,29 @@ bool check_blocked(const Loop* L, double ref_time, const tdo_apf_input* movers =
 }
 
 // A plan from the takeover state on the active trajectory (the switch at the takeover time). A
-// state the planner cannot enter within its limits (accelerating or turning close to v_max) is
-// followed by the next samples, up to 0.3 s on, until one is accepted.
+// refused one is counted by its status, and try_replan plans from the vehicle's state instead
+// (which states the planner refuses: docs/design.md s.5, "Moving start").
 tdo_status plan_takeover(Loop* L, const tdo_apf_output& out, double* t_switch) {
-  tdo_status st = TDO_ERR_STATE_OVER_LIMITS;
-  for (int k = 0; k <= 6 && st == TDO_ERR_STATE_OVER_LIMITS; ++k) {
-    tdo_replan_takeover_result tk{};
-    st = tdo_replan_takeover(L->active.data(), static_cast<uint32_t>(L->active.size()),
-                             std::max(0.0, out.ref_time), L->o.latency + 0.05 * k, &tk);
-    *t_switch = tk.t;
-    if (st == TDO_OK) st = plan(L, tk.p, tk.state, &L->staged);
-  }
+  tdo_replan_takeover_result tk{};
+  tdo_status st = tdo_replan_takeover(L->active.data(), static_cast<uint32_t>(L->active.size()),
+                                      std::max(0.0, out.ref_time), L->o.latency, &tk);
+  *t_switch = tk.t;
+  if (st == TDO_OK) st = plan(L, tk.p, tk.state, &L->staged);
   if (st != TDO_OK) L->m->failure_statuses.push_back(std::string("takeover:") + tdo_status_str(st));
   return st;
 }
 
-// A plan from the vehicle's own state (the switch at once). A state the planner refuses as over
-// its limits (the simulator's state at a limit, within rounding, or turning at v_max) is tried
-// again with the acceleration dropped and the speed at most 0.98 v_max: the switch is not
-// continuous anyway, and the follower's motion rule limits the difference.
+// A plan from the vehicle's own state (the switch at once). The simulator keeps it within the
+// limits it can stop from (tdo_motion_limit); a state the planner still refuses (e.g.
+// state_over_limits: its speed would have to rise above v_max while the acceleration is removed)
+// is counted by its status and tried again retry_period later, like any failed replan.
 tdo_status plan_from_vehicle(Loop* L, const tdo_apf_output& out, const tdo_vehicle_state& s,
                              double* t_switch) {
   *t_switch = std::max(0.0, out.ref_time);
   tdo_start_state vs{};
   vs.v = s.v;
   vs.a = s.a;
-  tdo_status st = plan(L, s.p, vs, &L->staged);
-  if (st == TDO_ERR_STATE_OVER_LIMITS) {
-    const double sp = std::sqrt(vs.v.x * vs.v.x + vs.v.y * vs.v.y + vs.v.z * vs.v.z);
-    const double f = sp > 0.98 * L->params.v_max ? 0.98 * L->params.v_max / sp : 1.0;
-    vs.v = tdo_vec3{vs.v.x * f, vs.v.y * f, vs.v.z * f};
-    vs.a = tdo_vec3{0.0, 0.0, 0.0};
-    st = plan(L, s.p, vs, &L->staged);
-  }
+  const tdo_status st = plan(L, s.p, vs, &L->staged);
   if (st != TDO_OK) L->m->failure_statuses.push_back(std::string("vehicle:") + tdo_status_str(st));
   return st;
 }

@@ -99,27 +99,41 @@ typedef struct tdo_start_state {
 } tdo_start_state;
 
 /**
- * How a moving start enters its path (tdo_traj_entry_plan): a ramp of constant jerk brings the
- * acceleration to zero, then the path begins with a straight line along the velocity left, at
- * least `brake` long, so that the vehicle can always stop on it within the limits.
+ * How a moving start enters its path (tdo_traj_entry_plan): a ramp of one or two constant-jerk
+ * pieces brings the acceleration to zero, then the path begins with a straight line along the
+ * velocity left, at least `brake` long, so that the vehicle can always stop on it within the
+ * limits. One piece (jerk -a / ramp) when its speed stays within v_max; otherwise two, through a
+ * middle acceleration that brakes along the velocity (docs/design.md s.5, "Moving start").
  */
 typedef struct tdo_traj_entry {
-  double ramp;   /**< s, duration of the jerk ramp (0 when the start acceleration is zero) */
-  tdo_vec3 jerk; /**< m/s^3, the ramp's constant jerk, -a / ramp, |jerk| = 0.95 j_max */
-  tdo_vec3 p;    /**< m, position at the end of the ramp: where the path must begin */
-  tdo_vec3 v;    /**< m/s, velocity there (acceleration zero): the path's initial tangent */
-  double speed;  /**< m/s, |v|, at most v_max */
-  double brake;  /**< m, the path's first line must be at least this long: the distance in which
-                      the speed profile's straight-line limits (0.99 a_max, 0.6 j_max) stop from
-                      `speed`, plus 1e-6 relative and 1e-9 m */
+  double ramp;     /**< s, duration of the whole ramp (0 when the start acceleration is zero) */
+  double knot;     /**< s, duration of its first piece (= ramp when it has one piece) */
+  tdo_vec3 jerk;   /**< m/s^3, the first piece's constant jerk; one piece: -a / ramp */
+  tdo_vec3 jerk2;  /**< m/s^3, the second piece's constant jerk (zero with one piece) */
+  tdo_vec3 knot_p; /**< m, position at the end of the first piece */
+  tdo_vec3 knot_v; /**< m/s, velocity there */
+  tdo_vec3 knot_a; /**< m/s^2, acceleration there (zero with one piece) */
+  tdo_vec3 p;      /**< m, position at the end of the ramp: where the path must begin */
+  tdo_vec3 v;      /**< m/s, velocity there (acceleration zero): the path's initial tangent */
+  double speed;    /**< m/s, |v|, at most v_max */
+  double brake;    /**< m, the path's first line must be at least this long: the distance in which
+                        the speed profile's straight-line limits (0.99 a_max, 0.6 j_max) stop from
+                        `speed`, plus 1e-6 relative and 1e-9 m */
 } tdo_traj_entry;
 
 /**
- * @brief The entry of the state (p0, s): the acceleration ramp and the braking line.
+ * @brief The entry of the state (p0, s): the acceleration ramp and the braking line. On the ramp
+ *        |v| <= v_max, |a| <= a_max and |j| <= 0.995 j_max throughout. Bounded work (at most
+ *        2 x 153 candidate two-piece ramps), no allocation, deterministic.
  * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, non-finite p0 or limits not > 0;
  *         TDO_ERR_STATE_NOT_FINITE (a NaN or infinity in s); TDO_ERR_STATE_TOO_FAST (|v| above
- *         v_max); TDO_ERR_STATE_OVER_LIMITS (|a| above a_max, or the speed at the end of the ramp,
- *         the highest speed on it, above v_max). Each limit allows 1e-9
+ *         v_max); TDO_ERR_STATE_OVER_LIMITS for |a| above a_max, and for a state speeding up
+ *         (a_t = a.v / |v| > 0) for which no candidate ramp keeps |v| <= v_max: every state with
+ *         |v| + a_t^2 / (2 j_max) > v_max (its speed must rise above v_max whatever the jerk,
+ *         since d a_t / dt >= -j_max), and a band below that bound, less than 1.25 w^2 / (2 v_max)
+ *         wide with w = a_max^2 / (1.9 j_max) (0.047 m/s at 3 m/s, 3 m/s^2, 10 m/s^3).
+ *         A state not speeding up (a_t <= 0) is accepted when a_max^2 <= 0.9 j_max v_max
+ *         (docs/design.md s.5 says how both statements are tested). Each limit allows 1e-9
  *         relative for rounding (a state sampled at v_max); the entry's speed is then v_max.
  */
 tdo_status tdo_traj_entry_plan(tdo_vec3 p0, const tdo_start_state* s, double v_max, double a_max,
