@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -240,10 +241,16 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
 
 // The table of a side: each key rounded down to a float, so a lower bound stays one (+inf stays
 // +inf: an unreachable voxel).
+// A float that rounded up is lowered by one unit in the last place: for the positive finite
+// floats a distance rounds to, the next float towards zero is the bit pattern minus one (what
+// nextafterf(f, 0) returns, without its call on every second value).
 void store_lower_bounds(const double* dist, uint32_t nvox, float* table) {
   for (uint32_t v = 0; v < nvox; ++v) {
     float f = static_cast<float>(dist[v]);
-    if (static_cast<double>(f) > dist[v]) f = nextafterf(f, 0.0f);
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof(bits));
+    bits -= static_cast<double>(f) > dist[v] ? 1u : 0u;
+    memcpy(&f, &bits, sizeof(f));
     table[v] = f;
   }
 }

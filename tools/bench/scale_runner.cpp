@@ -110,10 +110,10 @@ std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double 
   cfg.cap.exact_heuristic = 1u;  // the retry's tables (capacity_for sets them for 27 headings)
   // The coarse guide as tdo-plan sets it: grids of TDO_GUIDE_MIN_VOXELS or more, voxel states
   // included.
-  cfg.cap.guide_shift = guide && static_cast<double>(map.desc.nx) * map.desc.ny * map.desc.nz >=
-                                     TDO_GUIDE_MIN_VOXELS
-                            ? 2u
-                            : 0u;
+  cfg.cap.guide_shift =
+      guide && static_cast<double>(map.desc.nx) * map.desc.ny * map.desc.nz >= TDO_GUIDE_MIN_VOXELS
+          ? 2u
+          : 0u;
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";
