@@ -117,16 +117,26 @@ struct Plateau {
   uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
   // Filled per profile build:
-  double level;  // m/s, speed ceiling
-  double acc;    // m/s^2, tangential acceleration limit at the ceiling (moves use plateau_at)
-  double jerk;   // m/s^3, tangential jerk limit at the ceiling
-  double peak;   // m/s, on the first plateau of a move: the move's peak speed
+  double level;   // m/s, speed ceiling
+  double peak;    // m/s, on the first plateau of a move: the move's peak speed
+  double st, sn;  // shares of the jerk budget, tangential and normal (jerk_shares)
+  // Memo of the move starting here (choose_moves evaluates the same moves between the same
+  // speeds many times): each entry holds for the move [this plateau, its key) only, and all are
+  // cleared when the limits change (build_profile). Same results as recomputing them.
+  mutable uint32_t level_key;                          // move_level
+  mutable double level_v;                              // m/s
+  mutable uint32_t reach_key[2];                       // move_reach, forward and backward
+  mutable double reach_v0[2];                          // m/s, its start speed
+  mutable double reach_v[2];                           // m/s, its result
+  mutable uint32_t time_key;                           // move_time
+  mutable double time_v0, time_v1, time_t, time_peak;  // m/s, m/s, s, m/s
 };
 
 /** The boundary before plateau k (k = n_plateaus is the end of the path). */
 struct Boundary {
-  double cap;  // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
-  double v;    // m/s, speed of the profile (filled per build)
+  double cap;    // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
+  double v;      // m/s, speed of the profile (filled per build)
+  double saved;  // m/s, v before a trial change of the moves (sweep_moves)
 };
 
 /** One constant-jerk piece of the profile. */
@@ -630,8 +640,7 @@ void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, doub
     return;
   }
   const double k = p.kappa, dk = p.dkappa;
-  double st, sn;
-  jerk_shares(p, &st, &sn);
+  const double st = p.st, sn = p.sn;
   const double v3 = v * v * v;
   const double lat = k * v * v;
   const double circle = kAccCircle * lim.a_max;
@@ -641,7 +650,8 @@ void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, doub
   *acc = a * p.scale;
 }
 
-/** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale.
+/** Ceiling and jerk shares of each plateau under its refinement scale (its tangential limits at a
+ *  speed: plateau_at).
  *
  *  On a planar curve the jerk is (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N, so its
  *  tangential and normal parts get their own budgets kJerkT and kJerkN of jb (squares summing to
@@ -652,18 +662,17 @@ void plateau_limits(Plateau* p, const Limits& lim) {
   const double jb =
       (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   double level = p->cap;
+  jerk_shares(*p, &p->st, &p->sn);
+  p->level_key = p->reach_key[0] = p->reach_key[1] = p->time_key = UINT32_MAX;
   if (p->kappa > 0.0) {
     const double k = p->kappa, dk = p->dkappa;
     // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
     level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
     // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
-    double st, sn;
-    jerk_shares(*p, &st, &sn);
-    level = dmin(level, cbrt(kJerkGeo * st * jb / (k * k)));
-    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * sn * jb / dk));
+    level = dmin(level, cbrt(kJerkGeo * p->st * jb / (k * k)));
+    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * p->sn * jb / dk));
   }
   p->level = level * p->scale;
-  plateau_at(*p, lim, p->level, &p->acc, &p->jerk);
 }
 
 /** Appends a phase; false when the profile capacity is exhausted. */
@@ -724,12 +733,15 @@ struct Ramp {
  *  inner boundaries' caps. */
 double move_level(const tdo_traj* ctx, uint32_t k) {
   const Plateau* pl = ctx->plateaus;
+  if (pl[k].level_key == pl[k].next) return pl[k].level_v;
   double level = HUGE_VAL;
   for (uint32_t i = k; i < pl[k].next; ++i) {
     level = dmin(level, pl[i].level);
     // The cap of an inner boundary (a tiny tangent kink), scaled with its plateaus.
     if (i > k) level = dmin(level, ctx->bounds[i].cap * dmin(pl[i - 1u].scale, pl[i].scale));
   }
+  pl[k].level_key = pl[k].next;
+  pl[k].level_v = level;
   return level;
 }
 
@@ -764,6 +776,9 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
   return r;
 }
 
+/** Whether a and b are the same double, bit for bit (the memo keys of the moves). */
+inline bool same(double a, double b) { return memcmp(&a, &b, sizeof(double)) == 0; }
+
 /** The highest v in [lo, hi] with fits(v), by kBisections bisection steps; `lo` must fit and
  *  fits must be monotone (true below some speed, false above). */
 template <class Fits>
@@ -783,11 +798,16 @@ double bisect_highest(double lo, double hi, const Fits& fits) {
  *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
  *  (from_end 1). The length grows with the speed, so bisection finds it. */
 double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
+  const Plateau& p = ctx->plateaus[k];
+  if (p.reach_key[from_end] == p.next && same(p.reach_v0[from_end], v0)) return p.reach_v[from_end];
   const double cap = move_level(ctx, k), len = move_len(ctx, k);
-  if (!(cap > v0)) return cap;
+  double v = cap;
   const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
-  if (fits(cap)) return cap;
-  return bisect_highest(v0, cap, fits);  // v0 always reachable
+  if (cap > v0 && !fits(cap)) v = bisect_highest(v0, cap, fits);  // v0 always reachable
+  p.reach_key[from_end] = p.next;
+  p.reach_v0[from_end] = v0;
+  p.reach_v[from_end] = v;
+  return v;
 }
 
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
@@ -824,15 +844,27 @@ double boundary_top(const tdo_traj* ctx, uint32_t k) {
   return dmin(v, ctx->bounds[k].cap * scale);
 }
 
-/** s, flight time of the move starting at plateau k between its boundary speeds. */
-double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k) {
+/** s, flight time of the move starting at plateau k between its boundary speeds; its peak
+ *  speed (move_peak) into *peak. */
+double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k, double* peak) {
   const Boundary* bd = ctx->bounds;
-  const double v0 = bd[k].v, v1 = bd[ctx->plateaus[k].next].v;
+  const Plateau& p = ctx->plateaus[k];
+  const double v0 = bd[k].v, v1 = bd[p.next].v;
+  if (p.time_key == p.next && same(p.time_v0, v0) && same(p.time_v1, v1)) {
+    *peak = p.time_peak;
+    return p.time_t;
+  }
   const double vp = move_peak(ctx, lim, k, v0, v1);
   const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
   const double len = move_len(ctx, k), ramps = up.dist + down.dist;
   double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
   if (len > ramps && vp > 0.0) t += (len - ramps) / vp;
+  p.time_key = p.next;
+  p.time_v0 = v0;
+  p.time_v1 = v1;
+  p.time_t = t;
+  p.time_peak = vp;
+  *peak = vp;
   return t;
 }
 
@@ -861,7 +893,7 @@ double window_speeds(tdo_traj* ctx, const Limits& lim, uint32_t h, uint32_t e, i
     x = k;
   }
   double total = 0.0;
-  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k);
+  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k, &pl[k].peak);
   return total;
 }
 
@@ -893,7 +925,8 @@ void join_moves(Plateau* pl, uint32_t k) {
 /** One sweep over the segment joints: splits a move at an inner joint (`split`) or joins two
  *  moves at a joint that allows it (`free`), only where the flight of the moves it touches and
  *  kMoveWindow moves on either side gets shorter (the speeds at the ends of that window kept);
- *  2 evaluations of that window per joint. */
+ *  2 evaluations of that window per joint (the speeds before the change are restored from a copy).
+ */
 template <typename Free>
 void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) {
   const uint32_t n = ctx->n_plateaus;
@@ -905,6 +938,7 @@ void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) 
     for (uint32_t w = 0; w < kMoveWindow && a > 0; ++w) a = pl[a - 1u].head;
     for (uint32_t w = 0; w < kMoveWindow && b < n; ++w) b = pl[b].next;
     const double before = window_speeds(ctx, lim, a, b, 1);
+    for (uint32_t i = a; i <= b; ++i) ctx->bounds[i].saved = ctx->bounds[i].v;
     if (split)
       split_move(pl, k);
     else
@@ -914,7 +948,7 @@ void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) 
       join_moves(pl, k);
     else
       split_move(pl, k);
-    window_speeds(ctx, lim, a, b, 1);
+    for (uint32_t i = a; i <= b; ++i) ctx->bounds[i].v = ctx->bounds[i].saved;
   }
 }
 
@@ -957,7 +991,7 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   for (uint32_t k = 0; k < n; k = pl[k].next) {
     Plateau& p = pl[k];
     const double v0 = bd[k].v, v1 = bd[p.next].v;
-    p.peak = move_peak(ctx, lim, k, v0, v1);
+    move_time(ctx, lim, k, &p.peak);
     const Ramp up = move_ramp(ctx, lim, k, v0, p.peak, 0);
     const Ramp down = move_ramp(ctx, lim, k, p.peak, v1, 1);
     c.s = p.s0;  // anchor every move at its exact start
