@@ -59,27 +59,26 @@ constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre
 constexpr double kClearanceEvalMargin = 0.05;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
-constexpr double kLineShare = 0.99;     // tangential jerk on straight plateaus
-constexpr double kLineAcc = 0.99;       // tangential acceleration on straight plateaus
-constexpr double kAccCircle = 0.99;     // total acceleration on curved plateaus (friction circle)
-constexpr double kJerkT = 0.6;          // tangential part of the jerk budget on curved plateaus
-constexpr double kJerkN = 0.8;          // normal part (kJerkT^2 + kJerkN^2 = 1)
-constexpr double kShareFloor = 0.35;    // least share of either part (jerk_shares)
-constexpr double kJerkGeo = 0.98;       // of each part: the curvature terms at the ceiling
-constexpr double kCurveAccLat = 0.96;   // lateral acceleration at the ceiling (of a_max)
-constexpr double kCurveJerk = 0.99;     // total jerk on curved plateaus
-constexpr double kJumpJerk = 0.6;       // total smooth jerk on plateaus next to a curvature jump
-constexpr double kJumpShare = 0.3;      // jerk share of the curvature jump itself
-constexpr double kKinkShare = 0.05;     // a / j share of a tiny tangent kink (rounding)
-constexpr double kKinkStop = 1e-3;      // rad: tangent kinks above this are stop points
+constexpr double kLineShare = 0.99;    // tangential jerk on straight plateaus
+constexpr double kLineAcc = 0.99;      // tangential acceleration on straight plateaus
+constexpr double kAccCircle = 0.99;    // total acceleration on curved plateaus (friction circle)
+constexpr double kShareFloor = 0.35;   // least tangential share of jb in speed changes on curves
+constexpr double kLeftFloor = 1e-9;    // of a_max / jb: least limits of a speed change (plateau_at)
+constexpr double kJerkGeo = 0.98;      // of jb: the curvature terms at the ceiling
+constexpr double kCurveAccLat = 0.96;  // lateral acceleration at the ceiling (of a_max)
+constexpr double kCurveJerk = 0.99;    // total jerk on curved plateaus
+constexpr double kJumpJerk = 0.6;      // total smooth jerk on plateaus next to a curvature jump
+constexpr double kJumpShare = 0.3;     // jerk share of the curvature jump itself
+constexpr double kKinkShare = 0.05;    // a / j share of a tiny tangent kink (rounding)
+constexpr double kKinkStop = 1e-3;     // rad: tangent kinks above this are stop points
 constexpr double kGapTolerance = 1e-6;  // m: segment end points further apart are invalid input
 // Geometry summary of a curved segment.
 constexpr uint32_t kStations = 16;  // curvature stations per curved segment, shared by its parts
 constexpr uint32_t kSubMax = 4;     // plateaus per curved segment, at most (TDO_TRAJ_PIECES_...)
 constexpr uint32_t kPiecesPerPlateau =
-    8;                                 // 7 of the accelerate/cruise/decelerate profile + a dwell
-constexpr double kKappaMargin = 1.02;  // on the sampled curvature maximum
-constexpr double kDKappaMargin = 1.1;  // on the sampled curvature-rate maximum
+    8;                                  // 7 of the accelerate/cruise/decelerate profile + a dwell
+constexpr double kKappaMargin = 1.01;   // on the sampled curvature maximum
+constexpr double kDKappaMargin = 1.01;  // on the sampled curvature-rate maximum
 // Profile.
 constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
 constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^-30 of the range)
@@ -115,22 +114,35 @@ struct Plateau {
   double s0;      // m, path arclength at its start
   double len;     // m
   double kappa;   // 1/m, curvature bound (0 on lines)
-  double dkappa;  // 1/m^2, curvature-rate bound
+  // 1/m^2, bounds of the curvature rate dkappa/ds that adds to the normal jerk 3 kappa v a_t +
+  // dkappa/ds v^3 while the speed rises (the largest dkappa/ds) and while it falls (the largest
+  // -dkappa/ds); negative where it takes away: a corner's way out lets the speed rise faster,
+  // its way in lets it fall faster. dkappa_bound is the larger, the bound of |dkappa/ds|.
+  double dk_up, dk_down;
   double cap;     // m/s, min(v_max, v_limit)
   int near_jump;  // 1 when a boundary of it has a curvature jump (smaller jerk budget)
   uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
   // Filled per profile build:
   double level;  // m/s, speed ceiling
-  double acc;    // m/s^2, tangential acceleration limit at the ceiling (moves use plateau_at)
-  double jerk;   // m/s^3, tangential jerk limit at the ceiling
   double peak;   // m/s, on the first plateau of a move: the move's peak speed
+  // Memo of the move starting here (choose_moves evaluates the same moves between the same
+  // speeds many times): each entry holds for the move [this plateau, its key) only, and all are
+  // cleared when the limits change (build_profile). Same results as recomputing them.
+  mutable uint32_t level_key;                          // move_level
+  mutable uint32_t time_key;                           // move_time
+  mutable uint32_t reach_key[2];                       // move_reach, forward and backward
+  mutable double level_v;                              // m/s
+  mutable double reach_v0[2];                          // m/s, its start speed
+  mutable double reach_v[2];                           // m/s, its result
+  mutable double time_v0, time_v1, time_t, time_peak;  // m/s, m/s, s, m/s
 };
 
 /** The boundary before plateau k (k = n_plateaus is the end of the path). */
 struct Boundary {
-  double cap;  // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
-  double v;    // m/s, speed of the profile (filled per build)
+  double cap;    // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
+  double v;      // m/s, speed of the profile (filled per build)
+  double saved;  // m/s, v before a trial change of the moves (sweep_moves)
 };
 
 /** One constant-jerk piece of the profile. */
@@ -430,8 +442,8 @@ struct Limits {
  *  `stations` + 1 stations (the segment's kStations shared by its parts: the same evaluations
  *  as for the whole segment; what they miss, the verification finds and refinement corrects). */
 tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
-                           double* kappa, double* dkappa) {
-  double km = 0.0, dkm = 0.0, prev = 0.0;
+                           double* kappa, double* dk_up, double* dk_down) {
+  double km = 0.0, hi = -HUGE_VAL, lo = HUGE_VAL, prev = 0.0;
   const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
   const bool bez = seg.kind == TDO_SEGMENT_BEZIER;
@@ -448,12 +460,19 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
     }
     if (!isfinite(st.kappa) || !isfinite(st.dkappa_ds)) return TDO_ERR_INVALID_ARGUMENT;
     km = dmax(km, st.kappa);
-    dkm = dmax(dkm, fabs(st.dkappa_ds));
-    if (i > 0 && h > 0.0) dkm = dmax(dkm, fabs(st.kappa - prev) / h);
+    hi = dmax(hi, st.dkappa_ds);
+    lo = dmin(lo, st.dkappa_ds);
+    if (i > 0 && h > 0.0) {
+      hi = dmax(hi, (st.kappa - prev) / h);
+      lo = dmin(lo, (st.kappa - prev) / h);
+    }
     prev = st.kappa;
   }
+  // The margin of the largest |dkappa/ds| widens both ends of [lo, hi].
+  const double margin = (kDKappaMargin - 1.0) * dmax(fabs(hi), fabs(lo));
   *kappa = km * kKappaMargin;
-  *dkappa = dkm * kDKappaMargin;
+  *dk_up = hi + margin;
+  *dk_down = margin - lo;
   return TDO_OK;
 }
 
@@ -576,7 +595,7 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
         const tdo_status st =
-            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dkappa);
+            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dk_up, &p.dk_down);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];
@@ -608,24 +627,19 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
 // ---------------------------------------------------------------------------------------------
 // Profile (per refinement round).
 
-/** Shares of the jerk budget for its tangential and normal parts on a curved plateau (squares
- *  summing to 1): along the curvature terms kappa^2 v^3 and dkappa/ds v^3 at any one speed, so
- *  the ceiling uses the whole budget, but neither below kShareFloor, which leaves room for
- *  speed changes. */
-void jerk_shares(const Plateau& p, double* t, double* nn) {
-  const double wt = p.kappa * p.kappa, wn = p.dkappa, w = sqrt(wt * wt + wn * wn);
-  double a = w > 0.0 ? dmax(kShareFloor, wt / w) : kJerkT;
-  double b = w > 0.0 ? dmax(kShareFloor, wn / w) : kJerkN;
-  const double r = sqrt(a * a + b * b);
-  *t = a / r;
-  *nn = b / r;
-}
+/** 1/m^2, the bound of |dkappa/ds| on a plateau (0 on lines). */
+inline double dkappa_bound(const Plateau& p) { return dmax(p.dk_up, p.dk_down); }
 
-/** Tangential acceleration and jerk limits of a plateau for speeds up to v (<= its ceiling):
- *  what the budgets leave at v (plateau_limits), so a move whose peak is below the ceiling may
- *  change its speed faster. Both fall as v grows, so the limits at a move's peak hold at every
- *  speed of the move. */
-void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, double* jerk) {
+/** Tangential acceleration and jerk limits of a plateau for speeds up to v (<= its ceiling) while
+ *  the speed rises (falling 0) or falls (1): what the budgets leave at v, so a move whose peak is
+ *  below the ceiling may change its speed faster. On a curve the jerk is
+ *  (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N; at v its normal part gets the share
+ *  sn of jb that full acceleration needs (at most all but kShareFloor, at least the curvature
+ *  rate's term of either sign, which the acceleration does not cancel), the tangential part the
+ *  rest (squares summing to 1). Both limits fall as v grows, so the limits at a move's peak hold
+ *  at every speed of the move. */
+void plateau_at(const Plateau& p, const Limits& lim, double v, int falling, double* acc,
+                double* jerk) {
   const double jb =
       (p.near_jump ? kJumpJerk : (p.kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   if (!(p.kappa > 0.0)) {
@@ -633,41 +647,40 @@ void plateau_at(const Plateau& p, const Limits& lim, double v, double* acc, doub
     *jerk = jb * p.scale;
     return;
   }
-  const double k = p.kappa, dk = p.dkappa;
-  double st, sn;
-  jerk_shares(p, &st, &sn);
+  // The curvature rate's part of the normal jerk in this direction (negative: it takes away).
+  const double k = p.kappa, dk = falling ? p.dk_down : p.dk_up;
   const double v3 = v * v * v;
   const double lat = k * v * v;
   const double circle = kAccCircle * lim.a_max;
-  *jerk = (st * jb - k * k * v3) * p.scale;
-  double a = dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat)));
+  const double a_cap = dmin(kLineShare * lim.a_max, sqrt(dmax(0.0, circle * circle - lat * lat)));
+  const double rate = dkappa_bound(p) * v3 / jb;
+  const double sn =
+      dmin(sqrt(1.0 - kShareFloor * kShareFloor), (dk * v3 + 3.0 * k * v * a_cap) / jb);
+  const double st = sqrt(dmax(0.0, 1.0 - dmax(sn, rate) * dmax(sn, rate)));
+  // Near the ceiling little or nothing is left: a speed change there takes (almost) forever.
+  *jerk = dmax(kLeftFloor * jb, st * jb - k * k * v3) * p.scale;
+  double a = a_cap;
   if (v > 0.0) a = dmin(a, (sn * jb - dk * v3) / (3.0 * k * v));
-  *acc = a * p.scale;
+  *acc = dmax(kLeftFloor * lim.a_max, a) * p.scale;
 }
 
-/** Ceiling, tangential acceleration and jerk of each plateau under its refinement scale.
- *
- *  On a planar curve the jerk is (j_t - kappa^2 v^3) T + (3 kappa v a_t + dkappa/ds v^3) N, so its
- *  tangential and normal parts get their own budgets kJerkT and kJerkN of jb (squares summing to
- *  1): the curvature terms take at most kJerkGeo of each at the ceiling, the tangential jerk and
- *  the 3 kappa v a_t term the rest. The tangential acceleration shares a_max with the lateral one
- *  (a_t^2 + (kappa v^2)^2 <= (kAccCircle a_max)^2). */
+/** Ceiling of each plateau under its refinement scale (its tangential limits at a speed:
+ *  plateau_at). Cruising on a curve, the jerk is -kappa^2 v^3 T + dkappa/ds v^3 N: at the ceiling
+ *  it is at most kJerkGeo of jb, the rest is left for speed changes. The tangential acceleration
+ *  shares a_max with the lateral one (a_t^2 + (kappa v^2)^2 <= (kAccCircle a_max)^2). */
 void plateau_limits(Plateau* p, const Limits& lim) {
   const double jb =
       (p->near_jump ? kJumpJerk : (p->kappa > 0.0 ? kCurveJerk : kLineShare)) * lim.j_max;
   double level = p->cap;
+  p->level_key = p->reach_key[0] = p->reach_key[1] = p->time_key = UINT32_MAX;
   if (p->kappa > 0.0) {
-    const double k = p->kappa, dk = p->dkappa;
+    const double k = p->kappa, dk = dkappa_bound(*p);
     // Lateral acceleration kappa v^2 <= min(a_lat, kCurveAccLat a_max).
     level = dmin(level, sqrt(dmin(lim.a_lat, kCurveAccLat * lim.a_max) / k));
-    // Curvature terms of the jerk: kappa^2 v^3 and dkappa/ds v^3 within their shares.
-    double st, sn;
-    jerk_shares(*p, &st, &sn);
-    level = dmin(level, cbrt(kJerkGeo * st * jb / (k * k)));
-    if (dk > 0.0) level = dmin(level, cbrt(kJerkGeo * sn * jb / dk));
+    // Curvature terms of the jerk at cruise: v^3 |(kappa^2, dkappa/ds)| <= kJerkGeo jb.
+    level = dmin(level, cbrt(kJerkGeo * jb / sqrt(k * k * k * k + dk * dk)));
   }
   p->level = level * p->scale;
-  plateau_at(*p, lim, p->level, &p->acc, &p->jerk);
 }
 
 /** Appends a phase; false when the profile capacity is exhausted. */
@@ -728,12 +741,15 @@ struct Ramp {
  *  inner boundaries' caps. */
 double move_level(const tdo_traj* ctx, uint32_t k) {
   const Plateau* pl = ctx->plateaus;
+  if (pl[k].level_key == pl[k].next) return pl[k].level_v;
   double level = HUGE_VAL;
   for (uint32_t i = k; i < pl[k].next; ++i) {
     level = dmin(level, pl[i].level);
     // The cap of an inner boundary (a tiny tangent kink), scaled with its plateaus.
     if (i > k) level = dmin(level, ctx->bounds[i].cap * dmin(pl[i - 1u].scale, pl[i].scale));
   }
+  pl[k].level_key = pl[k].next;
+  pl[k].level_v = level;
   return level;
 }
 
@@ -758,7 +774,7 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
   for (uint32_t q = 0; q < e - k; ++q) {
     const Plateau& p = pl[from_end ? e - 1u - q : k + q];
     double acc, jerk;
-    plateau_at(p, lim, dmin(top, p.level), &acc, &jerk);
+    plateau_at(p, lim, dmin(top, p.level), from_end, &acc, &jerk);
     r.acc = dmin(r.acc, acc);
     r.jerk = dmin(r.jerk, jerk);
     covered += p.len;
@@ -767,6 +783,9 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
   }
   return r;
 }
+
+/** Whether a and b are the same double, bit for bit (the memo keys of the moves). */
+inline bool same(double a, double b) { return memcmp(&a, &b, sizeof(double)) == 0; }
 
 /** The highest v in [lo, hi] with fits(v), by kBisections bisection steps; `lo` must fit and
  *  fits must be monotone (true below some speed, false above). */
@@ -787,11 +806,16 @@ double bisect_highest(double lo, double hi, const Fits& fits) {
  *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
  *  (from_end 1). The length grows with the speed, so bisection finds it. */
 double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, int from_end) {
+  const Plateau& p = ctx->plateaus[k];
+  if (p.reach_key[from_end] == p.next && same(p.reach_v0[from_end], v0)) return p.reach_v[from_end];
   const double cap = move_level(ctx, k), len = move_len(ctx, k);
-  if (!(cap > v0)) return cap;
+  double v = cap;
   const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
-  if (fits(cap)) return cap;
-  return bisect_highest(v0, cap, fits);  // v0 always reachable
+  if (cap > v0 && !fits(cap)) v = bisect_highest(v0, cap, fits);  // v0 always reachable
+  p.reach_key[from_end] = p.next;
+  p.reach_v0[from_end] = v0;
+  p.reach_v[from_end] = v;
+  return v;
 }
 
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
@@ -828,15 +852,27 @@ double boundary_top(const tdo_traj* ctx, uint32_t k) {
   return dmin(v, ctx->bounds[k].cap * scale);
 }
 
-/** s, flight time of the move starting at plateau k between its boundary speeds. */
-double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k) {
+/** s, flight time of the move starting at plateau k between its boundary speeds; its peak
+ *  speed (move_peak) into *peak. */
+double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k, double* peak) {
   const Boundary* bd = ctx->bounds;
-  const double v0 = bd[k].v, v1 = bd[ctx->plateaus[k].next].v;
+  const Plateau& p = ctx->plateaus[k];
+  const double v0 = bd[k].v, v1 = bd[p.next].v;
+  if (p.time_key == p.next && same(p.time_v0, v0) && same(p.time_v1, v1)) {
+    *peak = p.time_peak;
+    return p.time_t;
+  }
   const double vp = move_peak(ctx, lim, k, v0, v1);
   const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
   const double len = move_len(ctx, k), ramps = up.dist + down.dist;
   double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
   if (len > ramps && vp > 0.0) t += (len - ramps) / vp;
+  p.time_key = p.next;
+  p.time_v0 = v0;
+  p.time_v1 = v1;
+  p.time_t = t;
+  p.time_peak = vp;
+  *peak = vp;
   return t;
 }
 
@@ -865,7 +901,7 @@ double window_speeds(tdo_traj* ctx, const Limits& lim, uint32_t h, uint32_t e, i
     x = k;
   }
   double total = 0.0;
-  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k);
+  for (uint32_t k = h; k < e; k = pl[k].next) total += move_time(ctx, lim, k, &pl[k].peak);
   return total;
 }
 
@@ -897,7 +933,8 @@ void join_moves(Plateau* pl, uint32_t k) {
 /** One sweep over the segment joints: splits a move at an inner joint (`split`) or joins two
  *  moves at a joint that allows it (`free`), only where the flight of the moves it touches and
  *  kMoveWindow moves on either side gets shorter (the speeds at the ends of that window kept);
- *  2 evaluations of that window per joint. */
+ *  2 evaluations of that window per joint (the speeds before the change are restored from a copy).
+ */
 template <typename Free>
 void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) {
   const uint32_t n = ctx->n_plateaus;
@@ -909,6 +946,7 @@ void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) 
     for (uint32_t w = 0; w < kMoveWindow && a > 0; ++w) a = pl[a - 1u].head;
     for (uint32_t w = 0; w < kMoveWindow && b < n; ++w) b = pl[b].next;
     const double before = window_speeds(ctx, lim, a, b, 1);
+    for (uint32_t i = a; i <= b; ++i) ctx->bounds[i].saved = ctx->bounds[i].v;
     if (split)
       split_move(pl, k);
     else
@@ -918,7 +956,7 @@ void sweep_moves(tdo_traj* ctx, const Limits& lim, int split, const Free& free) 
       join_moves(pl, k);
     else
       split_move(pl, k);
-    window_speeds(ctx, lim, a, b, 1);
+    for (uint32_t i = a; i <= b; ++i) ctx->bounds[i].v = ctx->bounds[i].saved;
   }
 }
 
@@ -961,7 +999,7 @@ tdo_status build_profile(tdo_traj* ctx, const Limits& lim) {
   for (uint32_t k = 0; k < n; k = pl[k].next) {
     Plateau& p = pl[k];
     const double v0 = bd[k].v, v1 = bd[p.next].v;
-    p.peak = move_peak(ctx, lim, k, v0, v1);
+    move_time(ctx, lim, k, &p.peak);
     const Ramp up = move_ramp(ctx, lim, k, v0, p.peak, 0);
     const Ramp down = move_ramp(ctx, lim, k, p.peak, v1, 1);
     c.s = p.s0;  // anchor every move at its exact start

@@ -27,6 +27,6 @@
 /* feasibility violations listed in the report (all are counted) */
 #define TDO_DEMO_MAX_VIOLATIONS 16u
 /* bytes of the static arena; the demo checks tdo_planner_footprint against it */
-#define TDO_DEMO_ARENA_BYTES (233u * 1024u)
+#define TDO_DEMO_ARENA_BYTES (236u * 1024u)
 
 #endif /* TDO_DEMO_CONFIG_H */
