@@ -46,7 +46,8 @@ endif()
 message(STATUS "ok: online bench table and summary line")
 
 foreach(c "--unknown;1.5" "--unknown;0.5;--sensor-range;0" "--unknown;0.5;--replanner;foo"
-          "--unknown;0.5;--latency;-1" "--unknown;0.5;--noise;0.1")
+          "--unknown;0.5;--latency;-1" "--unknown;0.5;--noise;0.1" "--unknown;0.5;--mover-replan;-1"
+          "--unknown;0.5;--mover-replan;nan")
   execute_process(COMMAND ${EXE} --map ${wall} ${c} RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err)
   if(NOT rc EQUAL 2 OR NOT err MATCHES "^tdo-sim-run: error: [^\n]+\n$")
