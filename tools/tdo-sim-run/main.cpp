@@ -327,7 +327,7 @@ int online_bench(int bench, uint64_t seed, const RandomSpec& r, const tdo_online
     std::printf("movers blocking the plan are replanned round (--mover-replan %.3g s)\n",
                 base.mover_window);
   else
-    std::printf("movers blocking the plan are left to the E-APF (no --mover-replan)\n");
+    std::printf("movers blocking the plan are left to the E-APF (--mover-replan 0)\n");
   print_online_table({{"tdo replan", agg[0]}, {"E-APF only", agg[1]}, {"MSF-MTPO replan", agg[2]}});
   for (int v = 0; v < 3; v += 2) {
     std::printf("failed plans (%s):", tdo_online::replanner_name(kinds[v]));
@@ -426,9 +426,9 @@ CLI::Option* add_online_options(CLI::App* app, tdo_online::Options* online,
   app->add_option("--replan-horizon", online->horizon,
                   "s, the active trajectory is checked this far ahead (default 5)");
   app->add_option("--mover-replan", online->mover_window,
-                  "s, W > 0: a mover blocking the trajectory within the horizon triggers a replan "
-                  "round the region it sweeps over W s around the conflict (temporary voxels, "
-                  "removed after planning); 0 (default): movers are left to the E-APF");
+                  "s, W > 0 (default 1): a mover blocking the trajectory within the horizon "
+                  "triggers a replan round the region it sweeps over W s around the conflict "
+                  "(temporary voxels, removed after planning); 0: movers are left to the E-APF");
   return unknown;
 }
 

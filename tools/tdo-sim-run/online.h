@@ -54,13 +54,13 @@ struct Options {
   bool movers = true;             /**< fly among the map's movers */
   double mover_margin = 0.5;      /**< m, a mover conflicts with the plan within its radius +
                                        vehicle_radius + this (the follower's default margin) */
-  double mover_window = 0.0;      /**< s; > 0: a mover conflict triggers a replan round the
+  double mover_window = 1.0;      /**< s; > 0: a mover conflict triggers a replan round the
                                        region the mover's sphere (radius + vehicle_radius) sweeps
                                        over this window centred on the conflict time, set as
                                        temporary voxels and cleared after planning; 0: movers are
                                        left to the follower's evasion */
   double mover_period = 1.0;      /**< s, at most one mover replan per this period */
-  double mover_keep_free = 1.5;   /**< m, no temporary voxel within this of the vehicle (the
+  double mover_keep_free = 2.5;   /**< m, no temporary voxel within this of the vehicle (the
                                        takeover start stays plannable) */
   uint32_t mover_cells = 40000;   /**< capacity of temporary voxels per mover replan (a larger
                                        region is not replanned round) */
