@@ -58,6 +58,8 @@ bool SimNode::start(std::string* error) {
     map_msg_.vehicle_id = -1;
     map_id_ = cfg_.map_id;
     has_map_ = true;
+    has_voxels_ = !map.voxels.empty();
+    true_boxes_ = map.boxes;  // the static check's boxes (exact), hidden or not
     if (!cfg_.has_goal) {
       has_goal_ = map.has_goal;
       goal_ = map.goal;
@@ -109,7 +111,11 @@ bool SimNode::start(std::string* error) {
   sp.bounds = bounds;
   sp.vehicle_radius = cfg_.vehicle_radius;
   sp.static_clearance = cfg_.static_clearance;
-  sp.grid = has_map_ ? grid_.grid() : nullptr;
+  // The true world's contact check, shared with tdo-sim-run: the file's boxes exactly
+  // (tdo_sense_distance); the grid only for a file of voxels (.3dmap, OcTrees).
+  sp.grid = has_voxels_ ? grid_.grid() : nullptr;
+  sp.boxes = true_boxes_.data();
+  sp.n_boxes = static_cast<uint32_t>(true_boxes_.size());
   sp.seed = cfg_.seed;
   sp.accel_noise = cfg_.accel_noise;
   st = tdo_sim_reset(sim_, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()));

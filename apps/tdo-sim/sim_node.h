@@ -69,7 +69,7 @@ struct SimConfig {
   double j_max = 10.0;          /**< m/s^3 */
   double vehicle_radius = 0.25; /**< m, for the mover collision flag */
   double static_clearance = 0.25;  /**< m, static collision when the centre comes closer */
-  uint64_t seed = 1;               /**< seed of the disturbance generator */
+  uint64_t seed = 1;               /**< seed of the disturbance and the hidden boxes */
   double accel_noise = 0.0;        /**< m/s^2, standard deviation of the disturbance */
   double setpoint_timeout_s = 0.5; /**< s, timed mode: brake when no setpoint came for this long */
   double brake_gain = 2.0;         /**< 1/s, braking command a = -gain v */
@@ -82,7 +82,7 @@ struct SimConfig {
   double request_delay_s = 1.0;    /**< s after start (timed mode) before the request goes out */
   double heartbeat_period_s = 1.0; /**< s between TDO_STATUS messages; <= 0: none from poll() */
   double unknown_fraction = 0.0;   /**< in [0, 1]: share of the map's boxes hidden until sensed
-                                        (chosen with `seed`); 0: the whole map is known */
+                                        (tdo_sense_hide with `seed`); 0: whole map known */
   double sensor_range = 5.0;       /**< m, > 0: reach of the range sensor (tdo_sense_run) */
 };
 
@@ -186,7 +186,8 @@ class SimNode {
   // sensing (sim_sensing.cpp): the map file (the true world), its boxes and what is known
   bool sensing_ = false;
   tdo_io::Map map_;
-  std::vector<tdo_box> true_boxes_;
+  std::vector<tdo_box> true_boxes_;  // the map file's boxes: the static check and the sensor
+  bool has_voxels_ = false;          // the map file has voxels: the grid joins the static check
   std::vector<uint8_t> known_;
   std::vector<uint32_t> revealed_;
   int64_t update_seq_ = 0;

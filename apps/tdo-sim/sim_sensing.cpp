@@ -1,10 +1,9 @@
 // tdo-sim's range sensor (sim_node.h, docs/lcm.md "Sensing"): a seeded share of the map's boxes is
 // hidden; after every step the boxes the vehicle sees (tdo_sense_run) are published as one
 // map_update_t of the map in use. The published map holds the known boxes only; the collision
-// check always uses the whole map file (the true world).
+// check always uses the whole map file (the true world: every box, tdo_sim_params.boxes).
 #include <cmath>
 #include <cstdint>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -15,18 +14,6 @@
 #include "tdo_lcm/wire.h"
 
 namespace tdo_lcm {
-namespace {
-
-// splitmix64: a fixed, portable sequence for the seeded choice of hidden boxes.
-uint64_t splitmix64(uint64_t* x) {
-  uint64_t z = (*x += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
-
 bool SimNode::start_sensing(const tdo_io::Map& map, std::string* error) {
   auto fail_with = [&](const std::string& msg) {
     if (error != nullptr) *error = msg;
@@ -41,21 +28,15 @@ bool SimNode::start_sensing(const tdo_io::Map& map, std::string* error) {
     return fail_with("hidden obstacles (--unknown) need a map file with boxes (.tdomap)");
   sensing_ = true;
   map_ = map;
-  true_boxes_ = map.boxes;
   const std::size_t n = true_boxes_.size();
   known_.assign(n, 1);
   revealed_.assign(n, 0);
-  // The first round(F n) of a seeded Fisher-Yates shuffle are hidden.
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  uint64_t state = cfg_.seed ^ 0x5EB5E5EB5E5EB5E5ull;
-  const auto hide =
-      static_cast<std::size_t>(std::llround(cfg_.unknown_fraction * static_cast<double>(n)));
-  for (std::size_t k = 0; k < hide; ++k) {
-    const std::size_t j = k + static_cast<std::size_t>(splitmix64(&state) % (n - k));
-    std::swap(order[k], order[j]);
-    known_[order[k]] = 0;
-  }
+  // The seeded choice shared with tdo-sim-run (tdo_sense_hide): the same seed hides the same boxes.
+  if (tdo_sense_hide(static_cast<uint32_t>(n), cfg_.unknown_fraction, cfg_.seed, known_.data()) !=
+      TDO_OK)
+    return fail_with("the unknown fraction must be in [0, 1]");
+  std::size_t hide = 0;
+  for (uint8_t k : known_) hide += k == 0u;
   counters_.boxes_hidden = static_cast<int64_t>(hide);
   sense(false);  // what the vehicle sees at its start is in the first map
   const Check c = known_map_msg();

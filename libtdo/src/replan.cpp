@@ -122,3 +122,71 @@ extern "C" tdo_status tdo_replan_takeover(const tdo_sample* samples, uint32_t n_
   out->state.a = s.a;
   return TDO_OK;
 }
+
+namespace {
+
+// Squared distance from x to the segment a-b.
+double segment_dist2(tdo_vec3 x, tdo_vec3 a, tdo_vec3 b) {
+  const tdo_vec3 ab = sub(b, a), ax = sub(x, a);
+  const double l2 = dot(ab, ab);
+  double s = l2 > 0.0 ? dot(ax, ab) / l2 : 0.0;
+  s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+  const tdo_vec3 d = sub(ax, mul(ab, s));
+  return dot(d, d);
+}
+
+// Voxel index range [lo, hi] on one axis covering world [a, b], clamped to [0, n - 1]; false when
+// empty.
+bool axis_range(double a, double b, double origin, double res, int32_t n, int32_t* lo,
+                int32_t* hi) {
+  const double fa = floor((a - origin) / res), fb = floor((b - origin) / res);
+  if (fb < 0.0 || fa > static_cast<double>(n - 1)) return false;
+  *lo = fa < 0.0 ? 0 : static_cast<int32_t>(fa);
+  *hi = fb > static_cast<double>(n - 1) ? n - 1 : static_cast<int32_t>(fb);
+  return true;
+}
+
+}  // namespace
+
+extern "C" tdo_status tdo_replan_mover_voxels(const tdo_grid* grid,
+                                              const tdo_replan_mover_region* r, tdo_voxel* out,
+                                              uint32_t capacity, uint32_t* n_out) {
+  if (n_out != nullptr) *n_out = 0u;
+  if (grid == nullptr || r == nullptr || n_out == nullptr || (capacity > 0u && out == nullptr))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (!movers_ok(&r->mover, 1u) || !isfinite(r->t0) || !isfinite(r->t1) || !(r->t1 >= r->t0) ||
+      !non_negative(r->pad) || !finite3(r->keep_free) || !non_negative(r->keep_radius))
+    return TDO_ERR_INVALID_ARGUMENT;
+  if (!(tdo_grid_clearance(grid) >= 0.0)) return TDO_ERR_MAP_NOT_READY;
+  const tdo_grid_desc d = tdo_grid_get_desc(grid);
+  const tdo_vec3 a = add(r->mover.p, mul(r->mover.v, r->t0));
+  const tdo_vec3 b = add(r->mover.p, mul(r->mover.v, r->t1));
+  const double reach = r->mover.radius + r->pad, reach2 = reach * reach;
+  const double keep2 = r->keep_radius * r->keep_radius;
+  int32_t lo[3], hi[3];
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  for (int ax = 0; ax < 3; ++ax) {
+    const double lo_w = dmin(vec_axis(a, ax), vec_axis(b, ax)) - reach;
+    const double hi_w = dmax(vec_axis(a, ax), vec_axis(b, ax)) + reach;
+    if (!axis_range(lo_w, hi_w, vec_axis(d.origin, ax), d.res, n[ax], &lo[ax], &hi[ax]))
+      return TDO_OK;
+  }
+  tdo_status st = TDO_OK;
+  for (int32_t k = lo[2]; k <= hi[2]; ++k) {
+    for (int32_t j = lo[1]; j <= hi[1]; ++j) {
+      for (int32_t i = lo[0]; i <= hi[0]; ++i) {
+        const tdo_voxel v{i, j, k};
+        const tdo_vec3 c = tdo_grid_voxel_center(grid, v);
+        if (segment_dist2(c, a, b) > reach2) continue;
+        const tdo_vec3 off = sub(c, r->keep_free);
+        if (dot(off, off) <= keep2 || tdo_grid_is_occupied(grid, v)) continue;
+        if (*n_out >= capacity) {
+          st = TDO_ERR_MAP_CAPACITY;
+          continue;
+        }
+        out[(*n_out)++] = v;
+      }
+    }
+  }
+  return st;
+}

@@ -155,3 +155,40 @@ extern "C" tdo_status tdo_sense_update(const tdo_box* boxes, uint32_t n_boxes,
   update->max_cells = 0u;
   return TDO_OK;
 }
+
+extern "C" tdo_status tdo_sense_hide(uint32_t n_boxes, double fraction, uint64_t seed,
+                                     uint8_t* known_out) {
+  if (!(fraction >= 0.0 && fraction <= 1.0)) return TDO_ERR_INVALID_ARGUMENT;
+  if (n_boxes > 0u && known_out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  // h <= n_boxes: fraction <= 1 and n_boxes + 0.5 is exact in a double.
+  uint32_t left = static_cast<uint32_t>(floor(fraction * static_cast<double>(n_boxes) + 0.5));
+  uint64_t state = seed;
+  for (uint32_t i = 0; i < n_boxes; ++i) {
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);  // splitmix64
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    const bool hide = left > 0u && z % static_cast<uint64_t>(n_boxes - i) < left;
+    known_out[i] = hide ? 0u : 1u;
+    if (hide) --left;
+  }
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_sense_distance(const tdo_box* boxes, uint32_t n_boxes, tdo_vec3 p,
+                                         double* out) {
+  if (out == nullptr || (n_boxes > 0u && boxes == nullptr)) return TDO_ERR_INVALID_ARGUMENT;
+  *out = HUGE_VAL;
+  if (!finite3(p)) return TDO_ERR_INVALID_ARGUMENT;
+  double best2 = HUGE_VAL;
+  for (uint32_t i = 0; i < n_boxes; ++i) {
+    const tdo_box& b = boxes[i];
+    if (!finite3(b.min) || !finite3(b.max) || b.max.x < b.min.x || b.max.y < b.min.y ||
+        b.max.z < b.min.z)
+      return TDO_ERR_INVALID_BOX;
+    const tdo_vec3 d = sub(p, closest_point(b, p));
+    best2 = dmin(best2, dot(d, d));
+  }
+  *out = n_boxes > 0u ? sqrt(best2) : HUGE_VAL;
+  return TDO_OK;
+}

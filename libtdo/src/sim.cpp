@@ -8,6 +8,7 @@
 #include "arena_typed.h"
 #include "scalar.h"
 #include "tdo/collision.h"
+#include "tdo/sense.h"
 #include "vec3.h"
 
 using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
@@ -87,6 +88,10 @@ void fill_output(const tdo_sim* c, tdo_sim_output* out) {
   out->static_dist = HUGE_VAL;
   if (c->prm.grid != nullptr)
     out->static_dist = tdo_collision_point_distance(c->prm.grid, c->state.p, kStaticCap);
+  double box_dist = HUGE_VAL;
+  if (c->prm.n_boxes > 0u &&
+      tdo_sense_distance(c->prm.boxes, c->prm.n_boxes, c->state.p, &box_dist) == TDO_OK)
+    out->static_dist = dmin(out->static_dist, dmin(box_dist, kStaticCap));
   out->collision_mover = out->mover_gap < 0.0 ? 1 : 0;
   out->collision_static = out->static_dist < c->prm.static_clearance ? 1 : 0;
 }
@@ -180,6 +185,8 @@ extern "C" void tdo_sim_params_default(tdo_sim_params* p) {
   p->vehicle_radius = 0.25;
   p->static_clearance = 0.25;
   p->grid = nullptr;
+  p->boxes = nullptr;
+  p->n_boxes = 0u;
   p->seed = 1u;
   p->accel_noise = 0.0;
 }
@@ -223,6 +230,11 @@ extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
       return TDO_ERR_INVALID_ARGUMENT;
   if (n_movers > c->cfg.max_movers) return TDO_ERR_OBSTACLE_CAPACITY;
   if (prm->grid != nullptr && !(tdo_grid_clearance(prm->grid) >= 0.0)) return TDO_ERR_MAP_NOT_READY;
+  if (prm->n_boxes > 0u) {  // the boxes are checked once: the steps cannot fail on them
+    double d = 0.0;
+    const tdo_status bs = tdo_sense_distance(prm->boxes, prm->n_boxes, initial->p, &d);
+    if (bs != TDO_OK) return bs;
+  }
   c->prm = *prm;
   c->state = *initial;
   c->t_start = initial->t;

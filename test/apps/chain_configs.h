@@ -69,6 +69,35 @@ inline tdo::plan_request_t map6_request(tdo_vec3 goal, int64_t request_id) {
   return rm;
 }
 
+/** The closed loop started on Map6 (the set-up test_chain.cpp and test_replan.cpp share): the
+ *  three nodes on `bus`, the map's goal and the request to it. Declare the bus first; call
+ *  start() (asserted by the caller) before using the nodes. */
+struct Map6Chain {
+  Map6Chain(tdo_lcm::Bus* bus, const ChainConfigs& c, int64_t request_id)
+      : nodes(bus, c), id(request_id) {}
+  /** Start the nodes, read the goal the simulator's map gives, build the request. */
+  bool start(std::string* error) {
+    if (!nodes.start(error)) return false;
+    if (!nodes.sim.goal(&goal)) {
+      *error = "the simulator's map has no goal";
+      return false;
+    }
+    goal_p[0] = goal.x;
+    goal_p[1] = goal.y;
+    goal_p[2] = goal.z;
+    request = map6_request(goal, id);
+    return true;
+  }
+  ChainNodes nodes;
+  tdo_lcm::PlannerNode& planner = nodes.planner;
+  tdo_lcm::AvoidNode& avoid = nodes.avoid;
+  tdo_lcm::SimNode& sim = nodes.sim;
+  int64_t id;
+  tdo_vec3 goal{};
+  double goal_p[3] = {0.0, 0.0, 0.0}; /**< m, the goal as an array */
+  tdo::plan_request_t request{};      /**< Map6's start to the goal, request `id` */
+};
+
 /** m, Euclidean distance from p to an axis-aligned box xmin ymin zmin xmax ymax zmax (0 inside). */
 inline double box_distance(const double* p, const std::vector<double>& b) {
   double s = 0.0;

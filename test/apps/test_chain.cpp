@@ -60,19 +60,9 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
   tdo_test::ChainConfigs cc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap");
   cc.avoid.kind = kind;
   const tdo_lcm::AvoidConfig& ac = cc.avoid;
-  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
+  tdo_test::Map6Chain chain(&bus, cc, 600);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(nodes.start(&error)) << error;
-  tdo_lcm::PlannerNode& planner = nodes.planner;
-  tdo_lcm::AvoidNode& avoid = nodes.avoid;
-  tdo_lcm::SimNode& sim = nodes.sim;
-  tdo_vec3 goal{};
-  ASSERT_TRUE(sim.goal(&goal));
-
-  // The request, as a ground station would send it once the planner has the map.
-  const tdo::plan_request_t rm = tdo_test::map6_request(goal, 600);
-
-  const double goal_p[3] = {goal.x, goal.y, goal.z};
+  ASSERT_TRUE(chain.start(&error)) << error;
   std::vector<std::vector<double>> boxes;
   bool requested = false;
   Flight run;
@@ -81,8 +71,8 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
   const int max_messages = 3 * 50 * 60;
   for (int i = 0; i < max_messages && !run.arrived; ++i) {
     if (bus.handle_timeout(0) <= 0) break;  // nothing in flight: the chain stopped
-    if (!requested && planner.map_id() == 1) {
-      ASSERT_TRUE(bus.publish(tdo_lcm::kChannelPlanRequest, rm));
+    if (!requested && chain.planner.map_id() == 1) {
+      ASSERT_TRUE(bus.publish(tdo_lcm::kChannelPlanRequest, chain.request));
       requested = true;
     }
     if (boxes.empty() && !maps.empty()) boxes = maps[0].boxes;
@@ -98,7 +88,7 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
       for (int k = 0; k < o.n; ++k)
         run.min_mover = std::min(run.min_mover, tdo_test::dist3(s.position, o.position[k].data()) -
                                                     o.radius[k] - ac.vehicle_radius);
-      if (tdo_test::dist3(s.position, goal_p) < 0.25) {
+      if (tdo_test::dist3(s.position, chain.goal_p) < 0.25) {
         run.arrived = true;
         run.time_s = static_cast<double>(s.utime - kT0) * 1e-6;
       }
@@ -132,10 +122,10 @@ void fly_map6(tdo_follower_kind kind, std::vector<tdo::vehicle_state_t>* states_
   EXPECT_GE(run.min_static, ac.vehicle_radius) << "closest approach to a column";
   EXPECT_GT(run.min_mover, 0.0) << "smallest gap to a mover";
   // The simulator's own counters agree.
-  EXPECT_EQ(sim.counters().collision_steps, 0);
-  EXPECT_EQ(sim.counters().rejected, 0);
-  EXPECT_EQ(avoid.counters().rejected, 0);
-  EXPECT_EQ(planner.counters().rejected, 0);
+  EXPECT_EQ(chain.sim.counters().collision_steps, 0);
+  EXPECT_EQ(chain.sim.counters().rejected, 0);
+  EXPECT_EQ(chain.avoid.counters().rejected, 0);
+  EXPECT_EQ(chain.planner.counters().rejected, 0);
   std::printf(
       "[chain] %s: arrived %d after %.2f s of simulated time, %zu states, closest column "
       "%.3f m, smallest mover gap %.3f m\n",

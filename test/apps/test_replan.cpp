@@ -85,25 +85,17 @@ void fly(Wall kind, Flight* f) {
 
   tdo_test::ChainConfigs cc = tdo_test::map6_chain(std::string(TDO_MAPS_DIR) + "/map6.tdomap");
   cc.sim.movers = false;
-  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
+  tdo_test::Map6Chain chain(&bus, cc, 700);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(nodes.start(&error)) << error;
-  tdo_lcm::PlannerNode& planner = nodes.planner;
-  tdo_lcm::AvoidNode& avoid = nodes.avoid;
-  tdo_lcm::SimNode& sim = nodes.sim;
-  tdo_vec3 goal{};
-  ASSERT_TRUE(sim.goal(&goal));
-  const double goal_p[3] = {goal.x, goal.y, goal.z};
-
-  const tdo::plan_request_t rm = tdo_test::map6_request(goal, 700);
+  ASSERT_TRUE(chain.start(&error)) << error;
 
   bool requested = false, walled = false;
   std::size_t seen = 0;
   const int max_messages = 6 * 50 * 120;  // bounded: 120 s of flight, with requests and answers
   for (int i = 0; i < max_messages && !f->arrived; ++i) {
     if (bus.handle_timeout(0) <= 0) break;  // nothing in flight: the chain stopped
-    if (!requested && planner.map_id() == 1) {
-      ASSERT_TRUE(bus.publish(tdo_lcm::kChannelPlanRequest, rm));
+    if (!requested && chain.planner.map_id() == 1) {
+      ASSERT_TRUE(bus.publish(tdo_lcm::kChannelPlanRequest, chain.request));
       requested = true;
     }
     if (f->world.empty() && !maps.empty()) f->world = maps[0].boxes;
@@ -111,7 +103,7 @@ void fly(Wall kind, Flight* f) {
       const tdo::vehicle_state_t& s = f->states[seen];
       for (const auto& b : f->world)
         f->min_static = std::min(f->min_static, box_distance(s.position, b));
-      if (dist3(s.position, goal_p) < 0.25) f->arrived = true;
+      if (dist3(s.position, chain.goal_p) < 0.25) f->arrived = true;
       if (!walled && s.utime - kT0 >= 6000000) {  // t = 6 s: the wall, as a map update
         tdo::map_update_t u{};
         u.utime = s.utime;
@@ -135,8 +127,8 @@ void fly(Wall kind, Flight* f) {
   while (f->wall_setpoint < f->setpoints.size() &&
          f->setpoints[f->wall_setpoint].utime <= wall_utime)
     ++f->wall_setpoint;
-  f->avoid = avoid.counters();
-  f->sim = sim.counters();
+  f->avoid = chain.avoid.counters();
+  f->sim = chain.sim.counters();
 }
 
 /** Independent finite differences of consecutive setpoints (one step dt apart) at index k. */
@@ -263,16 +255,11 @@ void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
   cc.sim.sensor_range = range;
   cc.sim.seed = seed;
   cc.sim.request_goal = true;  // the flight's request, from the simulator as a ground station
-  tdo_test::ChainNodes nodes(&bus, cc);  // the simulator publishes the map and the first state
+  tdo_test::Map6Chain chain(&bus, cc, 0);  // the simulator publishes the map and the first state
   std::string error;
-  ASSERT_TRUE(nodes.start(&error)) << error;
-  tdo_lcm::AvoidNode& avoid = nodes.avoid;
-  tdo_lcm::SimNode& sim = nodes.sim;
-  tdo_vec3 goal{};
-  ASSERT_TRUE(sim.goal(&goal));
-  const double goal_p[3] = {goal.x, goal.y, goal.z};
+  ASSERT_TRUE(chain.start(&error)) << error;
   std::vector<std::vector<double>> world;  // the true world, from the map file, not the bus
-  for (const tdo_box& b : sim.true_boxes())
+  for (const tdo_box& b : chain.sim.true_boxes())
     world.push_back({b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z});
   ASSERT_FALSE(world.empty());
   std::size_t seen = 0;
@@ -287,14 +274,14 @@ void fly_sensed(double unknown, double range, uint64_t seed, SensedFlight* f) {
       for (int k = 0; k < o.n; ++k)
         f->min_mover =
             std::min(f->min_mover, dist3(s.position, o.position[k].data()) - o.radius[k] - kRadius);
-      if (dist3(s.position, goal_p) < 0.25) f->arrived = true;
+      if (dist3(s.position, chain.goal_p) < 0.25) f->arrived = true;
     }
   }
   for (std::size_t k = 0; k < updates.size(); ++k) EXPECT_EQ(updates[k].seq, k + 1) << k;
   f->updates = static_cast<int64_t>(updates.size());
-  f->revealed = sim.counters().boxes_revealed;
-  f->hidden = sim.counters().boxes_hidden;
-  f->avoid = avoid.counters();
+  f->revealed = chain.sim.counters().boxes_revealed;
+  f->hidden = chain.sim.counters().boxes_hidden;
+  f->avoid = chain.avoid.counters();
 }
 
 // tdo-sim alone: the first map holds the known boxes only, each update the boxes just seen (none
@@ -321,6 +308,18 @@ TEST(Replan, GivenHiddenColumns_ThenTheSimulatorPublishesWhatItSeesAsNumberedUpd
   ASSERT_EQ(maps.size(), 1u);
   const int64_t seen_at_start = sim.counters().boxes_revealed;
   EXPECT_EQ(maps[0].n_boxes, static_cast<int32_t>(350 + seen_at_start));
+  // The hidden boxes are libtdo's seeded choice (tdo_sense_hide, as tdo-sim-run's): every box it
+  // keeps known is known, and of those it hides only the ones seen at the start are known.
+  std::vector<uint8_t> chosen(n, 7u);
+  ASSERT_EQ(tdo_sense_hide(static_cast<uint32_t>(n), 0.3, 7u, chosen.data()), TDO_OK);
+  int64_t hidden_but_known = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (chosen[i] == 1u) {
+      EXPECT_EQ(sim.known()[i], 1u) << "box " << i;
+    }
+    hidden_but_known += chosen[i] == 0u && sim.known()[i] == 1u;
+  }
+  EXPECT_EQ(hidden_but_known, seen_at_start);
   // Fly the vehicle along the diagonal at 2 m/s for 10 s (setpoint accelerations towards that
   // velocity, from the states it publishes): it sees more columns.
   std::vector<tdo::vehicle_state_t> states;

@@ -117,6 +117,118 @@ TEST_F(Replan, WallAddedByAnUpdateBlocksThePlan) {
   EXPECT_EQ(r.blocked, 0);
 }
 
+// Independent: distance from x to the segment a-b by ternary search on the segment parameter
+// (the distance is convex along it).
+double seg_dist(tdo_vec3 x, tdo_vec3 a, tdo_vec3 b) {
+  double lo = 0.0, hi = 1.0;
+  auto at = [&](double u) {
+    return dist3(x, tdo_vec3{a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u, a.z + (b.z - a.z) * u});
+  };
+  for (int it = 0; it < 200; ++it) {
+    const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+    if (at(m1) < at(m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  return at(0.5 * (lo + hi));
+}
+
+// GIVEN a mover crossing the route and a box beside it WHEN its swept region over a window is
+// listed THEN exactly the voxels an independent scan of the whole grid finds (centre within
+// radius + pad of the swept segment, not occupied, outside the kept-free ball); a plan on the grid
+// with them set keeps the planner's clearance from the region; clearing them restores every
+// voxel's occupied and blocked state; a small buffer and bad input are named.
+TEST_F(Replan, GivenAMoverRegion_WhenSetPlannedAndCleared_ThenThePlanAvoidsItAndTheGridIsRestored) {
+  ASSERT_EQ(add_box(tdo_box{{9.0, 12.0, 0.0}, {11.0, 13.0, 6.0}}), TDO_OK);
+  const tdo_grid_desc d = tdo_grid_get_desc(pl_.grid());
+  std::vector<uint8_t> occ0, blk0;
+  for (int32_t k = 0; k < d.nz; ++k)
+    for (int32_t j = 0; j < d.ny; ++j)
+      for (int32_t i = 0; i < d.nx; ++i) {
+        occ0.push_back(static_cast<uint8_t>(tdo_grid_is_occupied(pl_.grid(), {i, j, k})));
+        blk0.push_back(static_cast<uint8_t>(tdo_grid_is_blocked(pl_.grid(), {i, j, k})));
+      }
+  tdo_replan_mover_region rg{};
+  rg.mover = tdo_mover{4u, {10.0, 4.0, 2.5}, {0.0, 1.0, 0.0}, 0.6};  // crosses y = 10.5 at t = 6.5
+  rg.t0 = 5.5;
+  rg.t1 = 7.5;
+  rg.pad = 0.25;
+  rg.keep_free = kStart;
+  rg.keep_radius = 1.5;
+  std::vector<tdo_voxel> cells(5000);
+  uint32_t n = 0;
+  ASSERT_EQ(tdo_replan_mover_voxels(pl_.grid(), &rg, cells.data(), 5000u, &n), TDO_OK);
+  const tdo_vec3 a{10.0, 9.5, 2.5}, b{10.0, 11.5, 2.5};
+  std::vector<tdo_voxel> want;
+  for (int32_t k = 0; k < d.nz; ++k)
+    for (int32_t j = 0; j < d.ny; ++j)
+      for (int32_t i = 0; i < d.nx; ++i) {
+        const tdo_vec3 c{i + 0.5, j + 0.5, k + 0.5};
+        if (seg_dist(c, a, b) <= 0.85 + 1e-9 && dist3(c, kStart) > 1.5 &&
+            occ0[static_cast<size_t>((k * d.ny + j) * d.nx + i)] == 0u)
+          want.push_back(tdo_voxel{i, j, k});
+      }
+  ASSERT_EQ(n, want.size());
+  ASSERT_GT(n, 5u);
+  for (uint32_t q = 0; q < n; ++q) {
+    EXPECT_EQ(cells[q].i, want[q].i);
+    EXPECT_EQ(cells[q].j, want[q].j);
+    EXPECT_EQ(cells[q].k, want[q].k);
+  }
+  tdo_grid_update up{};
+  up.set = cells.data();
+  up.n_set = n;
+  ASSERT_EQ(tdo_grid_apply_update(pl_.grid(), &up, nullptr), TDO_OK);
+  std::vector<tdo_sample> s;
+  ASSERT_EQ(plan(kStart, tdo_start_state{}, kGoal, &s), TDO_OK);
+  for (const tdo_sample& x : s) {  // the plan keeps 0.49 m from every set cube
+    for (uint32_t q = 0; q < n; ++q) {
+      const tdo_box cube{{cells[q].i * 1.0, cells[q].j * 1.0, cells[q].k * 1.0},
+                         {cells[q].i + 1.0, cells[q].j + 1.0, cells[q].k + 1.0}};
+      ASSERT_GE(box_dist(cube, x.p), 0.49) << "t " << x.t;
+    }
+  }
+  up.set = nullptr;
+  up.n_set = 0u;
+  up.clear = cells.data();
+  up.n_clear = n;
+  ASSERT_EQ(tdo_grid_apply_update(pl_.grid(), &up, nullptr), TDO_OK);
+  size_t idx = 0;
+  for (int32_t k = 0; k < d.nz; ++k)
+    for (int32_t j = 0; j < d.ny; ++j)
+      for (int32_t i = 0; i < d.nx; ++i, ++idx) {
+        ASSERT_EQ(tdo_grid_is_occupied(pl_.grid(), {i, j, k}), occ0[idx]) << i << " " << j;
+        ASSERT_EQ(tdo_grid_is_blocked(pl_.grid(), {i, j, k}), blk0[idx]) << i << " " << j;
+      }
+  // A buffer too small: named, the first ones listed.
+  uint32_t m = 0;
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &rg, cells.data(), 3u, &m), TDO_ERR_MAP_CAPACITY);
+  EXPECT_EQ(m, 3u);
+  EXPECT_EQ(cells[0].i, want[0].i);
+  // Bad input.
+  tdo_replan_mover_region bad = rg;
+  bad.t1 = 5.0;  // before t0
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &bad, cells.data(), 5000u, &m),
+            TDO_ERR_INVALID_ARGUMENT);
+  bad = rg;
+  bad.mover.radius = 0.0;
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &bad, cells.data(), 5000u, &m),
+            TDO_ERR_INVALID_ARGUMENT);
+  bad = rg;
+  bad.pad = std::nan("");
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &bad, cells.data(), 5000u, &m),
+            TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_replan_mover_voxels(nullptr, &rg, cells.data(), 5000u, &m),
+            TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &rg, nullptr, 5000u, &m), TDO_ERR_INVALID_ARGUMENT);
+  // A region outside the grid: nothing.
+  bad = rg;
+  bad.mover.p = tdo_vec3{100.0, 100.0, 100.0};
+  EXPECT_EQ(tdo_replan_mover_voxels(pl_.grid(), &bad, cells.data(), 5000u, &m), TDO_OK);
+  EXPECT_EQ(m, 0u);
+}
+
 // GIVEN a straight plan and a mover that will sit on it WHEN checked with the mover THEN blocked by
 // that mover (its id); a mover moving away is clear.
 TEST_F(Replan, MoverPredictedOnThePlanBlocksIt) {

@@ -247,4 +247,135 @@ TEST(Sense, UpdateAddsTheRevealedBoxesToAGrid) {
   EXPECT_TRUE(tdo_grid_is_blocked(tp.grid(), v));
 }
 
+// ---- The seeded choice of hidden boxes (tdo_sense_hide) ----
+
+std::vector<uint8_t> hide(uint32_t n, double f, uint64_t seed) {
+  std::vector<uint8_t> known(n, 7u);
+  EXPECT_EQ(tdo_sense_hide(n, f, seed, known.data()), TDO_OK);
+  return known;
+}
+
+uint32_t hidden_count(const std::vector<uint8_t>& known) {
+  uint32_t h = 0;
+  for (uint8_t k : known) {
+    EXPECT_TRUE(k == 0u || k == 1u);
+    h += k == 0u;
+  }
+  return h;
+}
+
+// GIVEN box counts and fractions (ties at .5 included) WHEN boxes are hidden THEN exactly
+// floor(F n + 0.5) are hidden and every flag is 0 or 1.
+TEST(SenseHide, HidesExactlyTheDocumentedCount) {
+  const uint32_t ns[] = {0u, 1u, 2u, 3u, 7u, 10u, 100u, 300u, 1001u};
+  const double fs[] = {0.0, 0.1, 0.25, 0.3, 1.0 / 3.0, 0.5, 0.75, 0.999, 1.0};
+  for (uint32_t n : ns) {
+    for (double f : fs) {
+      const auto want = static_cast<uint32_t>(std::floor(f * n + 0.5));
+      for (uint64_t seed = 1; seed <= 5; ++seed)
+        EXPECT_EQ(hidden_count(hide(n, f, seed)), want) << "n " << n << " f " << f;
+    }
+  }
+  EXPECT_EQ(hidden_count(hide(3u, 0.5, 9u)), 2u);  // 1.5 rounds up
+  EXPECT_EQ(hidden_count(hide(1u, 0.5, 9u)), 1u);  // 0.5 rounds up
+  EXPECT_EQ(hidden_count(hide(300u, 1.0, 9u)), 300u);
+}
+
+// GIVEN one seed THEN the same boxes every call; GIVEN 50 seeds THEN 50 different sets.
+TEST(SenseHide, DeterministicAndSeedsDiffer) {
+  EXPECT_EQ(hide(300u, 0.3, 1001u), hide(300u, 0.3, 1001u));
+  std::vector<std::vector<uint8_t>> sets;
+  for (uint64_t seed = 1; seed <= 50; ++seed) sets.push_back(hide(300u, 0.3, seed));
+  for (size_t a = 0; a < sets.size(); ++a)
+    for (size_t b = a + 1; b < sets.size(); ++b) EXPECT_NE(sets[a], sets[b]) << a << " " << b;
+}
+
+// GIVEN 4000 seeds, 10 boxes, F = 0.3 THEN every box is hidden in about 30 % of them (binomial
+// standard deviation 29 of 1200; 5 deviations allowed): no position is favoured.
+TEST(SenseHide, EveryBoxIsEquallyLikely) {
+  uint32_t times[10] = {};
+  for (uint64_t seed = 0; seed < 4000u; ++seed) {
+    const std::vector<uint8_t> k = hide(10u, 0.3, seed);
+    for (int i = 0; i < 10; ++i) times[i] += k[static_cast<size_t>(i)] == 0u;
+  }
+  for (int i = 0; i < 10; ++i) EXPECT_NEAR(times[i], 1200.0, 145.0) << "box " << i;
+}
+
+// GIVEN a fraction that is NaN, infinite or outside [0, 1], or no output THEN invalid_argument
+// and the flags untouched.
+TEST(SenseHide, BadInputIsRefusedByName) {
+  std::vector<uint8_t> known(5u, 7u);
+  const double bad[] = {std::nan(""), -0.01, 1.01, HUGE_VAL, -HUGE_VAL};
+  for (double f : bad) {
+    EXPECT_EQ(tdo_sense_hide(5u, f, 1u, known.data()), TDO_ERR_INVALID_ARGUMENT) << f;
+    EXPECT_EQ(known, std::vector<uint8_t>(5u, 7u));
+  }
+  EXPECT_EQ(tdo_sense_hide(5u, 0.5, 1u, nullptr), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_sense_hide(0u, 0.5, 1u, nullptr), TDO_OK);
+  EXPECT_STREQ(tdo_status_str(TDO_ERR_INVALID_ARGUMENT), "invalid_argument");
+}
+
+// ---- The true world's contact distance (tdo_sense_distance) ----
+
+// Reference: per axis the gap outside the box (0 inside), then the Euclidean norm of the gaps;
+// the smallest over every box.
+double reference_distance(const std::vector<tdo_box>& boxes, tdo_vec3 p) {
+  double best = HUGE_VAL;
+  for (const tdo_box& b : boxes) {
+    const double gx = std::fmax(0.0, std::fmax(b.min.x - p.x, p.x - b.max.x));
+    const double gy = std::fmax(0.0, std::fmax(b.min.y - p.y, p.y - b.max.y));
+    const double gz = std::fmax(0.0, std::fmax(b.min.z - p.z, p.z - b.max.z));
+    best = std::fmin(best, std::hypot(gx, std::hypot(gy, gz)));
+  }
+  return best;
+}
+
+// GIVEN 200 random worlds of 1-40 boxes and 50 random points each (some inside, some on faces)
+// WHEN the distance is asked THEN it equals the brute-force reference to 1e-12 m.
+TEST(SenseDistance, MatchesBruteForceOnRandomBoxes) {
+  tdo_test::Rng rng(20u);
+  int inside = 0, on_face = 0;
+  for (int w = 0; w < 200; ++w) {
+    std::vector<tdo_box> boxes(1u + rng.below(40u));
+    for (tdo_box& b : boxes) {
+      b.min = tdo_vec3{rng.uniform(0, 20), rng.uniform(0, 20), rng.uniform(0, 10)};
+      b.max = tdo_vec3{b.min.x + rng.uniform(0.1, 4), b.min.y + rng.uniform(0.1, 4),
+                       b.min.z + rng.uniform(0.1, 4)};
+    }
+    for (int k = 0; k < 50; ++k) {
+      tdo_vec3 p{rng.uniform(-3, 27), rng.uniform(-3, 27), rng.uniform(-3, 17)};
+      if (k % 10 == 0) {  // on a face of a box
+        const tdo_box& b = boxes[rng.below(static_cast<uint32_t>(boxes.size()))];
+        p = tdo_vec3{rng.uniform(b.min.x, b.max.x), rng.uniform(b.min.y, b.max.y), b.max.z};
+      }
+      double d = -1.0;
+      ASSERT_EQ(tdo_sense_distance(boxes.data(), static_cast<uint32_t>(boxes.size()), p, &d),
+                TDO_OK);
+      const double want = reference_distance(boxes, p);
+      EXPECT_NEAR(d, want, 1e-12);
+      inside += !(want > 0.0);
+      on_face += k % 10 == 0;
+      EXPECT_EQ(d > 0.0, want > 0.0);
+    }
+  }
+  EXPECT_GT(inside, 1000);  // the worlds are dense enough to test inside points
+  EXPECT_EQ(on_face, 1000);
+}
+
+TEST(SenseDistance, EdgeCasesAndBadInputAreNamed) {
+  const std::vector<tdo_box> boxes{tdo_box{{0, 0, 0}, {1, 1, 1}}};
+  double d = 0.0;
+  ASSERT_EQ(tdo_sense_distance(boxes.data(), 1u, {4.0, 5.0, 1.0}, &d), TDO_OK);
+  EXPECT_DOUBLE_EQ(d, 5.0);  // 3-4-5 from the edge x = 1, y = 1
+  ASSERT_EQ(tdo_sense_distance(nullptr, 0u, {0, 0, 0}, &d), TDO_OK);
+  EXPECT_EQ(d, HUGE_VAL);
+  EXPECT_EQ(tdo_sense_distance(boxes.data(), 1u, {std::nan(""), 0, 0}, &d),
+            TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_sense_distance(nullptr, 1u, {0, 0, 0}, &d), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_sense_distance(boxes.data(), 1u, {0, 0, 0}, nullptr), TDO_ERR_INVALID_ARGUMENT);
+  const std::vector<tdo_box> bad{tdo_box{{0, 0, 0}, {1, 1, 1}}, tdo_box{{0, 2, 0}, {1, 1, 1}}};
+  EXPECT_EQ(tdo_sense_distance(bad.data(), 2u, {5, 5, 5}, &d), TDO_ERR_INVALID_BOX);
+  EXPECT_EQ(d, HUGE_VAL);
+}
+
 }  // namespace

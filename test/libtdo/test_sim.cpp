@@ -189,6 +189,45 @@ TEST(Sim, CollisionFlags) {
   EXPECT_EQ(o.collision_static, 0);
 }
 
+// GIVEN the true world as boxes off the voxel lattice (no grid) WHEN the vehicle steps past them
+// THEN the static distance is the exact distance to the nearest box (independent per-axis gaps)
+// at every step, the flag follows static_clearance, and a bad box is refused at the reset.
+TEST(Sim, StaticCheckAgainstBoxesIsExact) {
+  const std::vector<tdo_box> boxes{tdo_box{{6.13, 0.0, 0.0}, {7.0, 4.0, 5.0}},
+                                   tdo_box{{6.13, 6.0, 0.0}, {7.0, 10.0, 5.0}}};
+  Sim s(1u);
+  tdo_sim_params p = box_params();
+  p.boxes = boxes.data();
+  p.n_boxes = 2u;
+  p.static_clearance = 0.3;
+  tdo_vehicle_state v0{};
+  v0.p = tdo_vec3{5.0, 4.2, 2.5};  // 0.2 m from the first box's face y = 4
+  ASSERT_EQ(tdo_sim_reset(s.sim, &p, &v0, nullptr, 0u), TDO_OK);
+  tdo_sim_input in{};
+  in.setpoint.a = tdo_vec3{1.0, 0.0, 0.0};
+  bool flagged = false, clear = false;
+  for (int k = 0; k < 100; ++k) {
+    tdo_sim_output o{};
+    ASSERT_EQ(tdo_sim_run(s.sim, &in, &o), TDO_OK);
+    const tdo_vec3 q = o.state.p;
+    const double gx = std::fmax(0.0, std::fmax(6.13 - q.x, q.x - 7.0));
+    const double gy = 1.0 - std::fabs(q.y - 5.0);  // gap to y = 4 or y = 6 (between them)
+    const double want = std::fmin(std::hypot(gx, gy), 10.0);
+    ASSERT_NEAR(o.static_dist, want, 1e-12) << "step " << k;
+    EXPECT_EQ(o.collision_static, want < 0.3 ? 1 : 0);
+    flagged = flagged || o.collision_static != 0;
+    clear = clear || o.collision_static == 0;
+  }
+  EXPECT_TRUE(flagged);
+  EXPECT_TRUE(clear);
+  const tdo_box bad{{1.0, 1.0, 1.0}, {0.0, 2.0, 2.0}};
+  p.boxes = &bad;
+  p.n_boxes = 1u;
+  EXPECT_EQ(tdo_sim_reset(s.sim, &p, &v0, nullptr, 0u), TDO_ERR_INVALID_BOX);
+  p.boxes = nullptr;
+  EXPECT_EQ(tdo_sim_reset(s.sim, &p, &v0, nullptr, 0u), TDO_ERR_INVALID_ARGUMENT);
+}
+
 TEST(Sim, StatusesAndBadParameters) {
   tdo_sim_config cfg{0u};
   EXPECT_EQ(tdo_sim_footprint(&cfg), 0u);

@@ -44,9 +44,23 @@ if(NOT out MATCHES "\nonline: episodes=3 success=[0-3] collisions=[0-3] replans=
   message(FATAL_ERROR "online bench: summary line not in its form:\n${out}")
 endif()
 message(STATUS "ok: online bench table and summary line")
+# Movers blocking the plan trigger replans round their swept region (default --mover-replan 1);
+# with --mover-replan 0 they are left to the E-APF (conflicts counted, no mover replan).
+if(NOT out MATCHES "\nmover conflicts / replans \\(skipped\\) +[0-9]+ / [1-9][0-9]* \\(")
+  message(FATAL_ERROR "online bench: no replan round a blocking mover:\n${out}")
+endif()
+execute_process(COMMAND ${EXE} --bench 3 --seed 5 --size 20 20 10 --columns 25 --movers 2
+                        --unknown 0.5 --sensor-range 5 --mover-replan 0
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "left to the E-APF"
+   OR NOT out MATCHES "\nmover conflicts / replans \\(skipped\\) +[1-9][0-9]* / 0 \\(0\\)")
+  message(FATAL_ERROR "online bench --mover-replan 0: expected conflicts without replans:\n${out}")
+endif()
+message(STATUS "ok: movers trigger replans, and not with --mover-replan 0")
 
 foreach(c "--unknown;1.5" "--unknown;0.5;--sensor-range;0" "--unknown;0.5;--replanner;foo"
-          "--unknown;0.5;--latency;-1" "--unknown;0.5;--noise;0.1")
+          "--unknown;0.5;--latency;-1" "--unknown;0.5;--noise;0.1" "--unknown;0.5;--mover-replan;-1"
+          "--unknown;0.5;--mover-replan;nan")
   execute_process(COMMAND ${EXE} --map ${wall} ${c} RESULT_VARIABLE rc OUTPUT_VARIABLE out
                   ERROR_VARIABLE err)
   if(NOT rc EQUAL 2 OR NOT err MATCHES "^tdo-sim-run: error: [^\n]+\n$")

@@ -213,7 +213,7 @@ void print_table(const std::vector<std::pair<std::string, Agg>>& cols) {
 struct OnlineAgg : Outcomes {
   int over_limits = 0, escape_failed = 0;
   long replans = 0, failures = 0, blocked = 0, stuck = 0, mover_conflicts = 0, switches = 0,
-       stale = 0, hidden = 0, revealed = 0;
+       stale = 0, hidden = 0, revealed = 0, mover_replans = 0, mover_skipped = 0;
   double min_static = HUGE_VAL, min_gap = HUGE_VAL, max_v = 0.0, max_a = 0.0, max_j = 0.0;
   std::vector<double> ms, cpu, times;
   std::map<std::string, int> failed;  // failed plans by "takeover:" / "vehicle:" status
@@ -227,6 +227,8 @@ struct OnlineAgg : Outcomes {
     blocked += m.triggers_blocked;
     stuck += m.triggers_stuck;
     mover_conflicts += m.mover_conflicts;
+    mover_replans += m.mover_replans;
+    mover_skipped += m.mover_skipped;
     switches += m.switches;
     stale += m.stale_switches;
     revealed += m.revealed;
@@ -273,8 +275,9 @@ void print_online_table(const std::vector<std::pair<std::string, OnlineAgg>>& co
       [&](const OnlineAgg& a) { return n(a.hidden) + " / " + n(a.revealed); });
   row("blocked checks / stuck reports",
       [&](const OnlineAgg& a) { return n(a.blocked) + " / " + n(a.stuck); });
-  row("mover conflicts (left to evasion)",
-      [&](const OnlineAgg& a) { return n(a.mover_conflicts); });
+  row("mover conflicts / replans (skipped)", [&](const OnlineAgg& a) {
+    return n(a.mover_conflicts) + " / " + n(a.mover_replans) + " (" + n(a.mover_skipped) + ")";
+  });
   row("replans (failed attempts)",
       [&](const OnlineAgg& a) { return n(a.replans) + " (" + n(a.failures) + ")"; });
   row("plan switches (stale, replaced)",
@@ -320,6 +323,11 @@ int online_bench(int bench, uint64_t seed, const RandomSpec& r, const tdo_online
       bench, r.size[0], r.size[1], r.size[2], r.columns, 100.0 * base.unknown, base.sensor_range,
       r.movers, static_cast<unsigned long long>(seed),
       static_cast<unsigned long long>(seed + static_cast<uint64_t>(bench) - 1));
+  if (base.mover_window > 0.0)
+    std::printf("movers blocking the plan are replanned round (--mover-replan %.3g s)\n",
+                base.mover_window);
+  else
+    std::printf("movers blocking the plan are left to the E-APF (--mover-replan 0)\n");
   print_online_table({{"tdo replan", agg[0]}, {"E-APF only", agg[1]}, {"MSF-MTPO replan", agg[2]}});
   for (int v = 0; v < 3; v += 2) {
     std::printf("failed plans (%s):", tdo_online::replanner_name(kinds[v]));
@@ -417,6 +425,10 @@ CLI::Option* add_online_options(CLI::App* app, tdo_online::Options* online,
                   "s, the new plan takes over this long after the trigger (default 0.1)");
   app->add_option("--replan-horizon", online->horizon,
                   "s, the active trajectory is checked this far ahead (default 5)");
+  app->add_option("--mover-replan", online->mover_window,
+                  "s, W > 0 (default 1): a mover blocking the trajectory within the horizon "
+                  "triggers a replan round the region it sweeps over W s around the conflict "
+                  "(temporary voxels, removed after planning); 0: movers are left to the E-APF");
   return unknown;
 }
 
@@ -431,6 +443,8 @@ int online_main(const tdo_online::Options& online, int bench, uint64_t seed, con
     throw BadInput{"--latency must be in [0, 10]"};
   if (!std::isfinite(online.horizon) || online.horizon < 0.0)
     throw BadInput{"--replan-horizon must be finite and >= 0"};
+  if (!(online.mover_window >= 0.0 && online.mover_window <= 10.0))
+    throw BadInput{"--mover-replan must be in [0, 10]"};
   if (bench > 0) return online_bench(bench, seed, r, online);
   tdo_io::Map map;
   if (random) {

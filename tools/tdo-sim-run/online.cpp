@@ -15,18 +15,6 @@ double dist(tdo_vec3 a, tdo_vec3 b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
-// Distance from p to the true world: every box, brute force (independent of libtdo's grid).
-double true_distance(const std::vector<tdo_box>& boxes, tdo_vec3 p) {
-  double best = HUGE_VAL;
-  for (const tdo_box& b : boxes) {
-    const tdo_vec3 c{std::min(std::max(p.x, b.min.x), b.max.x),
-                     std::min(std::max(p.y, b.min.y), b.max.y),
-                     std::min(std::max(p.z, b.min.z), b.max.z)};
-    best = std::min(best, dist(p, c));
-  }
-  return best;
-}
-
 double now_ms() {
   return std::chrono::duration<double, std::milli>(
              std::chrono::steady_clock::now().time_since_epoch())
@@ -65,7 +53,10 @@ struct Loop {
   double pending_deadline = 0.0;  // s, vehicle time by which the staged switch must have happened
   double next_attempt = 0.0;      // s, vehicle time of the next allowed replanning attempt
   bool blocked = false;           // the last check found the active trajectory blocked
-  double lookahead = 0.1;         // s, the follower's reference lead over its clock
+  tdo_replan_check_result mover_block{};  // the last check's mover conflict (blocked = 0: none)
+  double next_mover_attempt = 0.0;        // s, vehicle time of the next mover replan allowed
+  std::vector<tdo_voxel> mover_cells;     // temporary voxels of a mover's swept region
+  double lookahead = 0.1;                 // s, the follower's reference lead over its clock
   Loop(const tdo_io::Map& mp, const Options& op, Metrics* me) : map(mp), o(op), m(me) {}
 };
 
@@ -162,7 +153,7 @@ bool sense(Loop* L, tdo_vec3 p, uint32_t* n_revealed, std::string* error) {
 // Is the active trajectory blocked within the horizon from ref_time: on the known grid, or (when
 // `movers` is given) by a mover's predicted position (constant velocity from `t_clock`)?
 bool check_blocked(const Loop* L, double ref_time, const tdo_apf_input* movers = nullptr,
-                   double t_clock = 0.0) {
+                   double t_clock = 0.0, tdo_replan_check_result* result = nullptr) {
   tdo_replan_check_input ci{};
   ci.grid = L->grid;
   ci.samples = L->active.data();
@@ -178,8 +169,10 @@ bool check_blocked(const Loop* L, double ref_time, const tdo_apf_input* movers =
     ci.mover_clearance = L->o.vehicle_radius + L->o.mover_margin;
   }
   tdo_replan_check_result cr{};
-  return tdo_replan_check(&ci, &cr) == TDO_OK && cr.blocked != 0 &&
-         (movers == nullptr || cr.cause == TDO_REPLAN_MOVER);
+  const bool blocked = tdo_replan_check(&ci, &cr) == TDO_OK && cr.blocked != 0 &&
+                       (movers == nullptr || cr.cause == TDO_REPLAN_MOVER);
+  if (result != nullptr) *result = cr;
+  return blocked;
 }
 
 // A plan from the takeover state on the active trajectory (the switch at the takeover time). A
@@ -244,6 +237,63 @@ bool try_replan(Loop* L, tdo_apf* apf, const tdo_apf_output& out, const tdo_vehi
   return true;
 }
 
+// A replan round a mover (docs/design.md s.4, "Replanning", movers): the region the blocking
+// mover's sphere (radius + vehicle radius) sweeps over mover_window seconds around the time it
+// blocks the trajectory is set as temporary voxels (only voxels that were free), a plan is made
+// on that grid as for a blocked trajectory, and the same voxels are cleared again before the
+// follower's next step: the grid is exactly as before. False with `error` only when the grid
+// cannot be restored; *staged tells whether a plan was staged.
+bool mover_replan(Loop* L, tdo_apf* apf, const tdo_apf_input& in, const tdo_apf_output& out,
+                  bool* staged, std::string* error) {
+  *staged = false;
+  const double t0 = now_ms(), c0 = cpu_ms();
+  const tdo_replan_check_result& cr = L->mover_block;
+  const tdo_mover* mv = nullptr;
+  for (uint32_t i = 0; i < in.n_movers; ++i)
+    if (in.movers[i].id == cr.mover_id) mv = &in.movers[i];
+  if (mv == nullptr) return true;
+  // The movers are given at trajectory time t_clock (check_blocked); t_blocked is on that clock.
+  const double t_clock = std::max(0.0, out.ref_time - L->lookahead);
+  const double tc = std::max(0.0, cr.t_blocked - t_clock);
+  tdo_replan_mover_region rg{};
+  rg.mover = *mv;
+  rg.t0 = std::max(0.0, tc - 0.5 * L->o.mover_window);
+  rg.t1 = tc + 0.5 * L->o.mover_window;
+  rg.pad = L->o.vehicle_radius;
+  rg.keep_free = in.state.p;
+  rg.keep_radius = L->o.mover_keep_free;
+  uint32_t n = 0;
+  if (tdo_replan_mover_voxels(L->grid, &rg, L->mover_cells.data(),
+                              static_cast<uint32_t>(L->mover_cells.size()), &n) != TDO_OK ||
+      n == 0u) {
+    ++L->m->mover_skipped;
+    return true;
+  }
+  tdo_grid_update up{};
+  up.set = L->mover_cells.data();
+  up.n_set = n;
+  if (tdo_grid_apply_update(L->grid, &up, nullptr) != TDO_OK) {
+    ++L->m->mover_skipped;
+    return true;
+  }
+  *staged = try_replan(L, apf, out, in.state, false);
+  up.set = nullptr;
+  up.n_set = 0u;
+  up.clear = L->mover_cells.data();
+  up.n_clear = n;
+  const tdo_status st = tdo_grid_apply_update(L->grid, &up, nullptr);
+  if (st != TDO_OK) {
+    *error = std::string("restoring the grid after a mover replan: ") + tdo_status_str(st);
+    return false;
+  }
+  if (*staged) {  // the whole trigger-to-plan time: the region, the plan and the restore
+    ++L->m->mover_replans;
+    L->m->replan_ms.back() = now_ms() - t0;
+    L->m->replan_cpu_ms.back() = cpu_ms() - c0;
+  }
+  return true;
+}
+
 // Sensing, checking and replanning of one step (before the follower's command is applied).
 bool online_step(Loop* L, tdo_apf* apf, const tdo_apf_input& in, const tdo_apf_output& out,
                  bool sense_now, std::string* error) {
@@ -254,12 +304,22 @@ bool online_step(Loop* L, tdo_apf* apf, const tdo_apf_input& in, const tdo_apf_o
     if (L->o.replanner != Replanner::None && !L->pending) {
       L->blocked = check_blocked(L, out.ref_time);
       if (L->blocked) ++L->m->triggers_blocked;
-      // Movers over the same horizon: counted, left to the follower's evasion (the planner plans
-      // on the static map and cannot route round a moving sphere).
+      // Movers over the same horizon: counted; with mover_window > 0 replanned round the
+      // blocking mover's swept region (below), else left to the follower's evasion.
+      L->mover_block = tdo_replan_check_result{};
       if (!L->blocked && in.n_movers > 0u &&
-          check_blocked(L, out.ref_time, &in, out.ref_time - L->lookahead))
+          check_blocked(L, out.ref_time, &in, out.ref_time - L->lookahead, &L->mover_block))
         ++L->m->mover_conflicts;
     }
+  }
+  if (sense_now && L->o.replanner != Replanner::None && L->o.mover_window > 0.0 && !L->pending &&
+      !L->blocked && L->mover_block.blocked != 0 && s.t >= L->next_mover_attempt &&
+      s.t >= L->next_attempt) {
+    bool staged = false;
+    if (!mover_replan(L, apf, in, out, &staged, error)) return false;
+    L->mover_block = tdo_replan_check_result{};
+    L->next_mover_attempt = s.t + L->o.mover_period;
+    if (!staged) L->next_attempt = s.t + L->o.retry_period;
   }
   if (L->o.replanner == Replanner::None) return true;
   bool stale = false;
@@ -338,7 +398,10 @@ bool start_flight(Loop* L, Flight* f, const tdo_apf_config& acfg, const tdo_sim_
   sp.bounds.max =
       tdo_vec3{d.origin.x + d.nx * d.res, d.origin.y + d.ny * d.res, d.origin.z + d.nz * d.res};
   sp.vehicle_radius = L->o.vehicle_radius;
-  sp.grid = nullptr;  // static contacts are measured against the true world here
+  sp.grid = nullptr;  // static contacts are measured against the true world: every box, exactly
+  sp.boxes = L->map.boxes.data();
+  sp.n_boxes = static_cast<uint32_t>(L->map.boxes.size());
+  sp.static_clearance = L->o.static_clearance;
   tdo_vehicle_state s0{};
   s0.p = L->map.start;
   if ((st = tdo_sim_reset(f->sim, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()))) !=
@@ -380,10 +443,9 @@ bool fly(Loop* L, Flight* f, double dt, std::vector<tdo_vec3>* pos, std::string*
     tdo_sim_run(f->sim, &si, &so);
     ++m.steps;
     pos->push_back(so.state.p);
-    const double d = true_distance(L->map.boxes, so.state.p);
-    m.min_true_static = std::min(m.min_true_static, d);
+    m.min_true_static = std::min(m.min_true_static, so.static_dist);
     m.min_mover_gap = std::min(m.min_mover_gap, so.mover_gap);
-    if (d < L->o.static_clearance) m.collision_static = true;
+    if (so.collision_static) m.collision_static = true;
     if (so.collision_mover) m.collision_mover = true;
     if (dist(so.state.p, L->map.goal) <= L->o.goal_tol) {
       m.success = true;
@@ -400,23 +462,6 @@ const char* replanner_name(Replanner r) {
   return r == Replanner::None ? "none" : (r == Replanner::MsfMtpo ? "msf-mtpo" : "tdo");
 }
 
-std::vector<uint8_t> hidden_boxes(uint32_t n, double fraction, uint64_t seed) {
-  std::vector<uint32_t> idx(n);
-  for (uint32_t i = 0; i < n; ++i) idx[i] = i;
-  uint64_t x = seed * 0x9E3779B97F4A7C15ull + 0x2545F4914F6CDD1Dull;
-  auto next = [&x]() {  // splitmix64
-    uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
-  for (uint32_t i = n; i > 1u; --i) std::swap(idx[i - 1u], idx[next() % i]);  // Fisher-Yates
-  const auto hide = static_cast<uint32_t>(std::lround(std::min(1.0, std::max(0.0, fraction)) * n));
-  std::vector<uint8_t> known(n, 1u);
-  for (uint32_t i = 0; i < hide; ++i) known[idx[i]] = 0u;
-  return known;
-}
-
 bool run(const tdo_io::Map& map, const Options& o, Metrics* out, std::string* error) {
   *out = Metrics{};
   if (!map.has_start || !map.has_goal) {
@@ -425,10 +470,15 @@ bool run(const tdo_io::Map& map, const Options& o, Metrics* out, std::string* er
   }
   Loop L(map, o, out);
   const auto n = static_cast<uint32_t>(map.boxes.size());
-  L.known = hidden_boxes(n, o.unknown, o.hide_seed);
+  L.known.assign(n, 1u);
+  if (tdo_sense_hide(n, o.unknown, o.hide_seed, L.known.data()) != TDO_OK) {
+    *error = "the unknown fraction must be in [0, 1]";
+    return false;
+  }
   for (uint8_t k : L.known) out->hidden += k == 0u;
   L.revealed.assign(std::max<uint32_t>(n, 1u), 0u);
   L.update_boxes.assign(std::max<uint32_t>(n, 1u), tdo_box{});
+  L.mover_cells.assign(o.mover_window > 0.0 ? o.mover_cells : 0u, tdo_voxel{});
   if (!setup_planner(&L, error)) return false;
   uint32_t first_seen = 0;
   if (!sense(&L, map.start, &first_seen, error)) return false;  // what the start already sees

@@ -37,7 +37,7 @@ const char* replanner_name(Replanner r);
 struct Options {
   Replanner replanner = Replanner::Tdo;
   double unknown = 0.0;         /**< fraction of the map's boxes hidden at the start, [0, 1] */
-  uint64_t hide_seed = 1;       /**< seed of which boxes are hidden */
+  uint64_t hide_seed = 1;       /**< seed of which boxes are hidden (tdo_sense_hide) */
   double sensor_range = 5.0;    /**< m, > 0 */
   double sense_period = 0.1;    /**< s, sensing (and checking) period, a multiple of the step */
   double horizon = 5.0;         /**< s, the active trajectory is checked this far ahead */
@@ -54,6 +54,16 @@ struct Options {
   bool movers = true;             /**< fly among the map's movers */
   double mover_margin = 0.5;      /**< m, a mover conflicts with the plan within its radius +
                                        vehicle_radius + this (the follower's default margin) */
+  double mover_window = 1.0;      /**< s; > 0: a mover conflict triggers a replan round the
+                                       region the mover's sphere (radius + vehicle_radius) sweeps
+                                       over this window centred on the conflict time, set as
+                                       temporary voxels and cleared after planning; 0: movers are
+                                       left to the follower's evasion */
+  double mover_period = 1.0;      /**< s, at most one mover replan per this period */
+  double mover_keep_free = 2.5;   /**< m, no temporary voxel within this of the vehicle (the
+                                       takeover start stays plannable) */
+  uint32_t mover_cells = 40000;   /**< capacity of temporary voxels per mover replan (a larger
+                                       region is not replanned round) */
 };
 
 /** Metrics of one online episode. */
@@ -71,8 +81,12 @@ struct Metrics {
   uint32_t triggers_blocked = 0;     /**< checks that found the active trajectory blocked */
   uint32_t triggers_stuck = 0;       /**< follower local-minimum reports that asked for a replan */
   uint32_t mover_conflicts = 0;      /**< checks (static clear) whose trajectory meets a mover's
-                                          predicted position within the horizon: left to the
-                                          follower's evasion, no replan */
+                                          predicted position within the horizon (replanned
+                                          round with mover_window > 0, else left to the
+                                          follower's evasion) */
+  uint32_t mover_replans = 0;        /**< of the replans, those round a mover (mover_window) */
+  uint32_t mover_skipped = 0;        /**< mover conflicts not replanned: no free voxel in the
+                                          region, or more than mover_cells */
   uint32_t replans = 0;              /**< new plans handed to the follower */
   uint32_t replan_failures = 0;      /**< replanning attempts without a plan (retried later) */
   std::vector<double> replan_ms;     /**< ms, wall time from trigger to new plan, per replan */
@@ -91,9 +105,6 @@ struct Metrics {
   double v_limit = 0.0, a_limit = 0.0, j_limit = 0.0;    /**< the limits flown with */
   uint32_t steps = 0;
 };
-
-/** Which of n boxes start hidden: round(fraction * n) of them, chosen by a seeded shuffle. */
-std::vector<uint8_t> hidden_boxes(uint32_t n, double fraction, uint64_t seed);
 
 /**
  * @brief Fly one online episode on `map` (its start, goal, boxes and movers).

@@ -100,6 +100,36 @@ typedef struct tdo_replan_takeover_result {
 tdo_status tdo_replan_takeover(const tdo_sample* samples, uint32_t n_samples, double t,
                                double latency, tdo_replan_takeover_result* out);
 
+/** Where a mover will be: the region it sweeps over a time window, as temporary voxels. */
+typedef struct tdo_replan_mover_region {
+  tdo_mover mover;    /**< the mover at time 0 of the window's clock (constant velocity) */
+  double t0, t1;      /**< s, window on that clock, t0 <= t1: the centre moves from
+                           p + v t0 to p + v t1 */
+  double pad;         /**< m, >= 0: added to the mover's radius */
+  tdo_vec3 keep_free; /**< m, world frame: no voxel whose centre is within keep_radius of this
+                           point is listed (the vehicle and its takeover point) */
+  double keep_radius; /**< m, >= 0 */
+} tdo_replan_mover_region;
+
+/**
+ * @brief The voxels a mover occupies over a time window, for a replan that must route round
+ *        where the mover will be (docs/design.md s.4, "Replanning", movers): every voxel inside
+ *        the grid whose centre is within radius + pad of the segment the mover's centre sweeps
+ *        over [t0, t1], that is not occupied already (tdo_grid_is_occupied) and whose centre is
+ *        farther than keep_radius from keep_free; in index order (k, then j, then i).
+ *        Apply them as `set` of a tdo_grid_update, plan, then apply the same list as `clear`:
+ *        the grid is exactly as before (only voxels that were free were set).
+ * @param out caller-owned, capacity voxels
+ * @param[out] n_out voxels listed
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers, a non-finite mover or window,
+ *         t1 < t0, a radius not > 0, a negative or non-finite pad or keep_radius;
+ *         TDO_ERR_MAP_NOT_READY for an unfinished grid; TDO_ERR_MAP_CAPACITY when more than
+ *         `capacity` voxels qualify (the first `capacity` are listed). Work: the voxels of the
+ *         region's bounding box (bounded by the grid).
+ */
+tdo_status tdo_replan_mover_voxels(const tdo_grid* grid, const tdo_replan_mover_region* region,
+                                   tdo_voxel* out, uint32_t capacity, uint32_t* n_out);
+
 #ifdef __cplusplus
 }
 #endif

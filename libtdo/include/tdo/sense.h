@@ -78,6 +78,32 @@ tdo_status tdo_sense_update(const tdo_box* boxes, uint32_t n_boxes, const uint32
                             uint32_t n_revealed, tdo_box* buffer, uint32_t capacity,
                             tdo_grid_update* update);
 
+/**
+ * @brief Which of n_boxes true boxes start hidden: the one seeded choice shared by every
+ *        simulator (tdo-sim, tdo-sim-run), so one seed hides the same boxes everywhere.
+ *
+ * Exactly h = floor(fraction * n_boxes + 0.5) boxes are hidden (known_out[i] = 0), the others
+ * known (known_out[i] = 1). The choice is sequential selection sampling (Knuth's Algorithm S):
+ * box i is hidden when r_i mod (n_boxes - i) < h - (boxes hidden before i), with r_i the i-th
+ * output of a splitmix64 sequence started at `seed`; every h-subset is equally likely (up to the
+ * modulo's bias below 2^-32). Deterministic and portable (integer arithmetic only), no heap, one
+ * pass over the boxes.
+ * @param known_out caller-owned, n_boxes flags (may be NULL when n_boxes is 0)
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for a fraction that is NaN or outside [0, 1], or a
+ *         NULL known_out with n_boxes > 0 (known_out untouched).
+ */
+tdo_status tdo_sense_hide(uint32_t n_boxes, double fraction, uint64_t seed, uint8_t* known_out);
+
+/**
+ * @brief Exact Euclidean distance from p to the union of the boxes (closed boxes: 0 inside or on
+ *        a face): the true world's contact check, shared by the simulators (tdo_sim_params.boxes).
+ * @param[out] out m; HUGE_VAL when n_boxes is 0
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers (boxes with n_boxes > 0, out) or a
+ *         non-finite p; TDO_ERR_INVALID_BOX for a box with max < min on an axis or a non-finite
+ *         corner (out = HUGE_VAL). One pass over the boxes.
+ */
+tdo_status tdo_sense_distance(const tdo_box* boxes, uint32_t n_boxes, tdo_vec3 p, double* out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -64,6 +64,10 @@ typedef struct tdo_sim_params {
                                 than this to the static geometry (default 0.25 = radius) */
   const tdo_grid* grid;    /**< finished grid for the static distance, or NULL (no static check);
                                 must stay alive and unchanged while stepping */
+  const tdo_box* boxes;    /**< m, world frame: the true world's boxes for the static distance
+                                (tdo_sense_distance, exact), or NULL; may be given with a grid
+                                (the smaller distance counts); must stay alive while stepping */
+  uint32_t n_boxes;        /**< count of boxes (default 0) */
   uint64_t seed;           /**< seed of the disturbance generator (default 1) */
   double accel_noise;      /**< m/s^2, standard deviation of the disturbance, >= 0 (default 0) */
 } tdo_sim_params;
@@ -88,8 +92,8 @@ typedef struct tdo_sim_output {
   uint32_t steps;          /**< steps since the reset */
   double mover_gap;        /**< m, smallest |p - q| - radius - vehicle_radius (HUGE_VAL none) */
   uint32_t nearest_mover;  /**< id of the mover with that gap (0 when none) */
-  double static_dist;      /**< m, exact distance to the static geometry capped at 10 m
-                                (HUGE_VAL without a grid) */
+  double static_dist;      /**< m, exact distance to the static geometry (the grid's voxels and
+                                the boxes) capped at 10 m (HUGE_VAL without a grid or boxes) */
   int collision_mover;     /**< 1 when mover_gap < 0 */
   int collision_static;    /**< 1 when static_dist < static_clearance */
 } tdo_sim_output;
@@ -108,7 +112,8 @@ tdo_status tdo_sim_init(tdo_sim** ctx, tdo_arena* arena, const tdo_sim_config* c
  * @brief Start an episode: parameters, initial vehicle state, movers at state.t (copied).
  * @return TDO_ERR_INVALID_ARGUMENT for null pointers, parameters outside their ranges, a
  *         non-finite state or mover, a mover radius not > 0; TDO_ERR_OBSTACLE_CAPACITY for more
- *         than max_movers movers; TDO_ERR_MAP_NOT_READY for an unfinished grid. On error steps
+ *         than max_movers movers; TDO_ERR_MAP_NOT_READY for an unfinished grid;
+ *         TDO_ERR_INVALID_BOX for a box with max < min or a non-finite corner. On error steps
  *         return TDO_ERR_NOT_CONFIGURED.
  */
 tdo_status tdo_sim_reset(tdo_sim* ctx, const tdo_sim_params* params,
