@@ -376,13 +376,12 @@ inline int64_t first_above(int64_t num, int64_t den) {
   return fl + 1;
 }
 
-// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to out[0..n),
-// the line f was copied from (a line without a site is left as it is). Keys F <= 3 * 32767^2 and
-// denominators <= 2 * 32767, so the cross products stay below 2^48 and the results below 2^32.
-// Bounded: every site is pushed and popped at most once, and the evaluation sweep advances
-// monotonically. The keys of the two topmost sites and the crossing of the current and next
-// parabola are kept, not recomputed.
-void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
+// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site): its sites into v[0..m)
+// and their values, in place, into f[0..m) (f[j] = f[v[j]]; v[j] >= j, so each value is read
+// before an entry over it is written); returns m, 0 without a site. Keys F <= 3 * 32767^2 and
+// denominators <= 2 * 32767, so the cross products stay below 2^48. Bounded: every site is pushed
+// and popped at most once. The keys of the two topmost sites are kept, not recomputed.
+int32_t edt_envelope(uint32_t* f, int32_t* v, int32_t n) {
   int32_t k = -1;
   int64_t fa = 0, fb = 0;  // keys of v[k - 1] and v[k]
   for (int32_t q = 0; q < n; ++q) {
@@ -403,30 +402,42 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
     fb = fq;
     v[++k] = q;
   }
-  if (k < 0) return;  // no site: the line read from df is infinite already, and stays so
-  // Parabola j is the lowest from q on while q < bound, its crossing with parabola j + 1:
-  // s(v[j], v[j+1]) < q.
+  for (int32_t j = 0; j <= k; ++j) f[j] = f[v[j]];
+  return k + 1;
+}
+
+// F of envelope site j (compacted values fs, sites v).
+inline int64_t site_key(const uint32_t* fs, const int32_t* v, int32_t j) {
+  return static_cast<int64_t>(fs[j]) + static_cast<int64_t>(v[j]) * v[j];
+}
+
+// The envelope of m >= 1 sites evaluated at q = 0 .. n-1, put(q, squared distance) in increasing q
+// (the results stay below 2^32). Parabola j is the lowest from q on while q < bound, its crossing
+// with parabola j + 1: s(v[j], v[j+1]) < q. The sweep advances monotonically.
+template <class Put>
+void edt_eval(const uint32_t* fs, const int32_t* v, int32_t m, int32_t n, Put&& put) {
+  const int32_t k = m - 1;
   int32_t j = 0;
-  int64_t fj = parabola_key(f, v[0]);
-  int64_t fj1 = k >= 1 ? parabola_key(f, v[1]) : 0;
+  int64_t fj = site_key(fs, v, 0);
+  int64_t fj1 = k >= 1 ? site_key(fs, v, 1) : 0;
   int64_t bound = k >= 1 ? first_above(fj1 - fj, 2 * static_cast<int64_t>(v[1] - v[0])) : n;
   for (int32_t q = 0; q < n; ++q) {
     while (j < k && q >= bound) {
       ++j;
       fj = fj1;
       if (j < k) {
-        fj1 = parabola_key(f, v[j + 1]);
+        fj1 = site_key(fs, v, j + 1);
         bound = first_above(fj1 - fj, 2 * static_cast<int64_t>(v[j + 1] - v[j]));
       }
     }
     const int64_t dq = q - v[j];
-    out[q] = static_cast<uint32_t>(dq * dq + f[v[j]]);
+    put(q, static_cast<uint32_t>(dq * dq + fs[j]));
   }
 }
 
 // The x pass of the EDT for row (j, k): squared distance to the nearest occupied voxel of the row
-// (the same values as edt_line: the lower envelope of (q - s)^2 is the nearest site's), by one
-// sweep each way; kDfInfinite for the whole row when it has no occupied voxel.
+// (the same values as edt_envelope + edt_eval: the lower envelope of (q - s)^2 is the nearest
+// site's), by one sweep each way; kDfInfinite for the whole row when it has no occupied voxel.
 void edt_row_x(tdo_grid* g, int64_t j, int64_t k) {
   const int64_t n = g->desc.nx, base = index_of(g, 0, j, k);
   const uint8_t* row = g->flags + base;
@@ -468,55 +479,54 @@ float df_metres(uint32_t d2, double res) {
   return m;
 }
 
-// dst[c * rows + r] = src[r * cols + c] for a rows x cols matrix of 4-byte words (either may be
-// the float distance field, so words are moved with memcpy), in 16 x 16 tiles.
-void transpose_words(const void* src, void* dst, int64_t rows, int64_t cols) {
-  constexpr int64_t kTile = 16;
-  const unsigned char* s = static_cast<const unsigned char*>(src);
-  unsigned char* t = static_cast<unsigned char*>(dst);
-  for (int64_t r0 = 0; r0 < rows; r0 += kTile) {
-    const int64_t r1 = r0 + kTile < rows ? r0 + kTile : rows;
-    for (int64_t c0 = 0; c0 < cols; c0 += kTile) {
-      const int64_t c1 = c0 + kTile < cols ? c0 + kTile : cols;
-      for (int64_t r = r0; r < r1; ++r)
-        for (int64_t c = c0; c < c1; ++c) memcpy(t + 4 * (c * rows + r), s + 4 * (r * cols + c), 4);
-    }
+// One EDT pass over the line of n entries of df from `base` with step `stride` (voxels), in place.
+// The lines of a pass are visited in memory order (a y line after the y line of the next x, a z
+// line after that of the next (x, y)), so consecutive lines share their cache lines. `last`: the
+// final pass, which writes metres (df_metres) instead of squared distances.
+void edt_strided(tdo_grid* g, int64_t base, int64_t stride, int32_t n, bool last) {
+  uint32_t* f = g->df_f;
+  for (int32_t q = 0; q < n; ++q) f[q] = df_load(g->df, base + q * stride);
+  const int32_t m = edt_envelope(f, g->df_v, n);
+  const double res = g->desc.res;
+  if (m == 0) {  // no site: every entry is kDfInfinite already
+    if (last)
+      for (int32_t q = 0; q < n; ++q) g->df[base + q * stride] = HUGE_VALF;
+    return;
   }
+  if (last)
+    edt_eval(f, g->df_v, m, n,
+             [&](int32_t q, uint32_t d2) { g->df[base + q * stride] = df_metres(d2, res); });
+  else
+    edt_eval(f, g->df_v, m, n,
+             [&](int32_t q, uint32_t d2) { df_store(g->df, base + q * stride, d2); });
 }
 
-// EDT pass over one contiguous line of n squared distances, in place.
-void edt_in_place(tdo_grid* g, uint32_t* line, int64_t n) {
-  memcpy(g->df_f, line, static_cast<size_t>(n) * sizeof(uint32_t));
-  edt_line(g->df_f, g->df_v, static_cast<int32_t>(n), line);
-}
-
-// df of every voxel; see tdo_grid::df. Three passes (x, y, z lines) then conversion to metres.
+// df of every voxel; see tdo_grid::df. Three passes (x, y, z lines), the last in metres. Needs no
+// scratch beyond the two line buffers, so it can run after compute_moves (df_ensure).
 void build_distance_field(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
-  const int32_t n_axis[3] = {d.nx, d.ny, d.nz};
-  const uint32_t line_cap = df_line_capacity(g->cap);
-  g->df_valid = 1;
-  for (int a = 0; a < 3; ++a)
-    if (static_cast<uint32_t>(n_axis[a]) > line_cap) g->df_valid = 0;
   if (!g->df_valid) {  // 0 everywhere: a valid lower bound, collision queries stay exact
     for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
     return;
   }
   for (int64_t k = 0; k < d.nz; ++k)
     for (int64_t j = 0; j < d.ny; ++j) edt_row_x(g, j, k);
-  // The y and z lines are made contiguous in the moves array (free until compute_moves, which
-  // runs after this), transformed there and copied back: strided lines missed the cache.
-  uint32_t* scratch = g->moves;
   const int64_t plane = g->stride_z;
-  for (int64_t k = 0; k < d.nz; ++k) {  // y lines: plane k as [ny][nx] -> [nx][ny]
-    transpose_words(g->df + k * plane, scratch, d.ny, d.nx);
-    for (int64_t x = 0; x < d.nx; ++x) edt_in_place(g, scratch + x * d.ny, d.ny);
-    transpose_words(scratch, g->df + k * plane, d.nx, d.ny);
-  }
-  transpose_words(g->df, scratch, d.nz, plane);  // z lines: [nz][plane] -> [plane][nz]
-  for (int64_t p = 0; p < plane; ++p) edt_in_place(g, scratch + p * d.nz, d.nz);
-  transpose_words(scratch, g->df, plane, d.nz);
-  for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = df_metres(df_load(g->df, v), d.res);
+  const bool flat = d.nz == 1;  // then the y pass is the last
+  if (d.ny > 1 || flat)
+    for (int64_t k = 0; k < d.nz; ++k)
+      for (int64_t x = 0; x < d.nx; ++x) edt_strided(g, k * plane + x, d.nx, d.ny, flat);
+  if (!flat)
+    for (int64_t p = 0; p < plane; ++p) edt_strided(g, p, plane, d.nz, true);
+}
+
+// Whether every axis fits the exact transform (kDfMaxAxis and the line buffers).
+int df_fits(const tdo_grid* g) {
+  const uint32_t line_cap = df_line_capacity(g->cap);
+  const int32_t n_axis[3] = {g->desc.nx, g->desc.ny, g->desc.nz};
+  for (int a = 0; a < 3; ++a)
+    if (static_cast<uint32_t>(n_axis[a]) > line_cap) return 0;
+  return 1;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -681,6 +691,15 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
   return TDO_OK;
 }
 
+void df_ensure(const tdo_grid* cg) {
+  if (cg == nullptr || cg->df == nullptr || cg->df_built || cg->nvox == 0) return;
+  // The grid is never defined const (it is carved from the caller's arena): the field is a cache
+  // of the const queries, filled once per finish.
+  tdo_grid* g = const_cast<tdo_grid*>(cg);
+  build_distance_field(g);
+  g->df_built = 1;
+}
+
 }  // namespace tdo_internal
 
 using namespace tdo_internal;
@@ -708,6 +727,7 @@ extern "C" tdo_status tdo_grid_reset(tdo_grid* g, const tdo_grid_desc* desc) {
   g->n_blocked = 0;
   g->clearance = -1.0;
   g->ready = 0;
+  g->df_built = 0;
   return TDO_OK;
 }
 
@@ -758,10 +778,11 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
   g->n_blocked = blocked;
   // Collision-query structures (collision.h): they change no blocked flag and no move. The
-  // distance field borrows the moves array as scratch, so it comes first.
+  // distance field is built on first use (df_ensure; docs/design.md s.0).
   if (g->n_cubes > 0) mark_surface(g);
   surface_index_build(g);
-  if (g->cap.boxes_only == 0u) build_distance_field(g);
+  g->df_built = 0;
+  g->df_valid = g->cap.boxes_only == 0u ? df_fits(g) : 0;
   g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
   compute_moves(g);
   const tdo_status bst = build_buckets(g, clearance);

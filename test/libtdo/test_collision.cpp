@@ -266,6 +266,7 @@ TEST_F(CollisionTest, GivenRandomMaps_WhenFinished_ThenTheDistanceFieldIsExactAn
     for (size_t n = 0; n < w.m.size(); ++n)
       if (tdo_grid_is_occupied(g, w.m.voxel(n))) occ.push_back(w.m.voxel(n));
     ASSERT_EQ(g->df_valid, 1);
+    tdo_internal::df_ensure(g);  // the field is built on first use
     for (size_t n = 0; n < w.m.size(); ++n) {
       const tdo_voxel v = w.m.voxel(n);
       if (!occ.empty()) ++compared;
