@@ -370,12 +370,6 @@ inline int64_t parabola_key(const uint32_t* f, int32_t x) {
   return static_cast<int64_t>(f[x]) + static_cast<int64_t>(x) * x;
 }
 
-// Smallest integer q with num < q * den (den > 0): floor(num / den) + 1.
-inline int64_t first_above(int64_t num, int64_t den) {
-  const int64_t fl = num >= 0 ? num / den : -((-num + den - 1) / den);
-  return fl + 1;
-}
-
 // 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site): its sites into v[0..m)
 // and their values, in place, into f[0..m) (f[j] = f[v[j]]; v[j] >= j, so each value is read
 // before an entry over it is written); returns m, 0 without a site. Keys F <= 3 * 32767^2 and
@@ -412,22 +406,24 @@ inline int64_t site_key(const uint32_t* fs, const int32_t* v, int32_t j) {
 }
 
 // The envelope of m >= 1 sites evaluated at q = 0 .. n-1, put(q, squared distance) in increasing q
-// (the results stay below 2^32). Parabola j is the lowest from q on while q < bound, its crossing
-// with parabola j + 1: s(v[j], v[j+1]) < q. The sweep advances monotonically.
+// (the results stay below 2^32). Parabola j is the lowest from q on until its crossing with
+// parabola j + 1, s(v[j], v[j+1]) = num / den: the sweep moves on once q > num / den, tested as
+// q * den > num (no division). The sweep advances monotonically.
 template <class Put>
 void edt_eval(const uint32_t* fs, const int32_t* v, int32_t m, int32_t n, Put&& put) {
   const int32_t k = m - 1;
   int32_t j = 0;
   int64_t fj = site_key(fs, v, 0);
   int64_t fj1 = k >= 1 ? site_key(fs, v, 1) : 0;
-  int64_t bound = k >= 1 ? first_above(fj1 - fj, 2 * static_cast<int64_t>(v[1] - v[0])) : n;
+  int64_t num = fj1 - fj, den = k >= 1 ? 2 * static_cast<int64_t>(v[1] - v[0]) : 1;
   for (int32_t q = 0; q < n; ++q) {
-    while (j < k && q >= bound) {
+    while (j<k&& static_cast<int64_t>(q) * den> num) {
       ++j;
       fj = fj1;
       if (j < k) {
         fj1 = site_key(fs, v, j + 1);
-        bound = first_above(fj1 - fj, 2 * static_cast<int64_t>(v[j + 1] - v[j]));
+        num = fj1 - fj;
+        den = 2 * static_cast<int64_t>(v[j + 1] - v[j]);
       }
     }
     const int64_t dq = q - v[j];
@@ -435,29 +431,38 @@ void edt_eval(const uint32_t* fs, const int32_t* v, int32_t m, int32_t n, Put&& 
   }
 }
 
-// The x pass of the EDT for row (j, k): squared distance to the nearest occupied voxel of the row
-// (the same values as edt_envelope + edt_eval: the lower envelope of (q - s)^2 is the nearest
-// site's), by one sweep each way; kDfInfinite for the whole row when it has no occupied voxel.
-void edt_row_x(tdo_grid* g, int64_t j, int64_t k) {
-  const int64_t n = g->desc.nx, base = index_of(g, 0, j, k);
-  const uint8_t* row = g->flags + base;
-  float* out = g->df + base;
-  if (next_flagged(row, 0, n, kFlagOccupied) == n) {
-    memset(out, 0xFF, static_cast<size_t>(n) * sizeof(float));  // kDfInfinite in every entry
-    return;
+// The first pass of the EDT, along z: per voxel the squared distance to the nearest occupied voxel
+// of its z line (kDfInfinite: none; the same values as the envelope of that line), by one sweep up
+// and one down over whole planes, so every access is contiguous. Linear distances (< nz <=
+// kDfMaxAxis) until a plane is no longer read, then squared.
+void edt_pass_z(tdo_grid* g) {
+  const int64_t plane = g->stride_z, nz = g->desc.nz;
+  float* df = g->df;
+  for (int64_t k = 0; k < nz; ++k) {
+    const uint8_t* f = g->flags + k * plane;
+    float* row = df + k * plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t below = k > 0 ? df_load(row - plane, p) : kDfInfinite;
+      const uint32_t up = below != kDfInfinite ? below + 1u : kDfInfinite;
+      df_store(row, p, (f[p] & kFlagOccupied) != 0 ? 0u : up);
+    }
   }
-  int64_t last = -1;
-  for (int64_t q = 0; q < n; ++q) {
-    if ((row[q] & kFlagOccupied) != 0) last = q;
-    df_store(out, q, last < 0 ? kDfInfinite : static_cast<uint32_t>((q - last) * (q - last)));
+  const auto square = [df, plane](int64_t k) {
+    float* row = df + k * plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t v = df_load(row, p);
+      if (v != kDfInfinite) df_store(row, p, v * v);
+    }
+  };
+  for (int64_t k = nz - 2; k >= 0; --k) {
+    float* row = df + k * plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t above = df_load(row + plane, p);
+      if (above != kDfInfinite && above + 1u < df_load(row, p)) df_store(row, p, above + 1u);
+    }
+    square(k + 1);
   }
-  int64_t next = -1;
-  for (int64_t q = n - 1; q >= 0; --q) {
-    if ((row[q] & kFlagOccupied) != 0) next = q;
-    if (next < 0) continue;
-    const uint32_t d2 = static_cast<uint32_t>((next - q) * (next - q));
-    if (d2 < df_load(out, q)) df_store(out, q, d2);
-  }
+  square(0);
 }
 
 // Metres from a squared distance in voxel^2, rounded down (see tdo_grid::df).
@@ -485,39 +490,41 @@ float df_metres(uint32_t d2, double res) {
 // final pass, which writes metres (df_metres) instead of squared distances.
 void edt_strided(tdo_grid* g, int64_t base, int64_t stride, int32_t n, bool last) {
   uint32_t* f = g->df_f;
-  for (int32_t q = 0; q < n; ++q) f[q] = df_load(g->df, base + q * stride);
+  float* line = g->df + base;
+  for (int32_t q = 0; q < n; ++q) f[q] = df_load(line, q * stride);
   const int32_t m = edt_envelope(f, g->df_v, n);
   const double res = g->desc.res;
   if (m == 0) {  // no site: every entry is kDfInfinite already
     if (last)
-      for (int32_t q = 0; q < n; ++q) g->df[base + q * stride] = HUGE_VALF;
+      for (int32_t q = 0; q < n; ++q) line[q * stride] = HUGE_VALF;
     return;
   }
   if (last)
-    edt_eval(f, g->df_v, m, n,
-             [&](int32_t q, uint32_t d2) { g->df[base + q * stride] = df_metres(d2, res); });
+    edt_eval(f, g->df_v, m, n, [line, stride, res](int32_t q, uint32_t d2) {
+      line[q * stride] = df_metres(d2, res);
+    });
   else
     edt_eval(f, g->df_v, m, n,
-             [&](int32_t q, uint32_t d2) { df_store(g->df, base + q * stride, d2); });
+             [line, stride](int32_t q, uint32_t d2) { df_store(line, q * stride, d2); });
 }
 
-// df of every voxel; see tdo_grid::df. Three passes (x, y, z lines), the last in metres. Needs no
-// scratch beyond the two line buffers, so it can run after compute_moves (df_ensure).
+// df of every voxel; see tdo_grid::df. Three passes: z (plane sweeps), y (strided lines within a
+// plane, consecutive lines sharing cache lines) and x (contiguous lines, written in metres). The
+// squared distance is separable, so the pass order gives the same integers as any other. Needs
+// no scratch beyond the two line buffers, so it can run after compute_moves (df_ensure).
 void build_distance_field(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
   if (!g->df_valid) {  // 0 everywhere: a valid lower bound, collision queries stay exact
     for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
     return;
   }
-  for (int64_t k = 0; k < d.nz; ++k)
-    for (int64_t j = 0; j < d.ny; ++j) edt_row_x(g, j, k);
+  edt_pass_z(g);
   const int64_t plane = g->stride_z;
-  const bool flat = d.nz == 1;  // then the y pass is the last
-  if (d.ny > 1 || flat)
+  if (d.ny > 1)
     for (int64_t k = 0; k < d.nz; ++k)
-      for (int64_t x = 0; x < d.nx; ++x) edt_strided(g, k * plane + x, d.nx, d.ny, flat);
-  if (!flat)
-    for (int64_t p = 0; p < plane; ++p) edt_strided(g, p, plane, d.nz, true);
+      for (int64_t x = 0; x < d.nx; ++x) edt_strided(g, k * plane + x, d.nx, d.ny, false);
+  for (int64_t r = 0; r < static_cast<int64_t>(d.ny) * d.nz; ++r)
+    edt_strided(g, r * d.nx, 1, d.nx, true);
 }
 
 // Whether every axis fits the exact transform (kDfMaxAxis and the line buffers).
