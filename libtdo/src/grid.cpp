@@ -139,19 +139,6 @@ void inflate_run(tdo_grid* g, uint32_t n_rows, int64_t i0, int64_t i1, int64_t j
   }
 }
 
-// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
-int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
-  const uint64_t bytes = 0x0101010101010101ull * bit;
-  while (i + 8 <= n) {
-    uint64_t w;
-    memcpy(&w, row + i, sizeof w);
-    if ((w & bytes) != 0) break;
-    i += 8;
-  }
-  while (i < n && (row[i] & bit) == 0) ++i;
-  return i;
-}
-
 // Per voxel, the stencil at every cube: the general form, used when stencil_rows refuses.
 void inflate_cells(tdo_grid* g, uint32_t n_cells) {
   const tdo_grid_desc& d = g->desc;
@@ -194,37 +181,6 @@ tdo_status inflate_cubes(tdo_grid* g, double c) {
     }
   }
   return TDO_OK;
-}
-
-// Cells of the 3x3x3 block that a step in direction d sweeps: the 2x2 square or 2x2x2 cube.
-uint32_t swept_cells(int d) {
-  uint32_t m = 0;
-  const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
-  for (int a = 0; a <= 1; ++a)
-    for (int b = 0; b <= 1; ++b)
-      for (int e = 0; e <= 1; ++e) m |= 1u << cell_of(a * dx, b * dy, e * dz);
-  return m;
-}
-
-// Legal steps of voxel (i, j, k) from its 3x3x3 block (any voxel of the grid).
-uint32_t moves_of(const tdo_grid* g, const uint32_t need[kNumDirs], int64_t i, int64_t j,
-                  int64_t k) {
-  const int64_t v = index_of(g, i, j, k);
-  if ((g->flags[v] & kFlagBlocked) != 0) return 0;
-  uint32_t free27 = 0;
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!in_grid(g, i + dx, j + dy, k + dz)) continue;
-        const int64_t w = v + dx + dy * g->stride_y + dz * g->stride_z;
-        if ((g->flags[w] & kFlagBlocked) == 0) free27 |= 1u << cell_of(dx, dy, dz);
-      }
-    }
-  }
-  uint32_t mask = 0;
-  for (int d = 0; d < kNumDirs; ++d)
-    if ((free27 & need[d]) == need[d]) mask |= 1u << d;
-  return mask;
 }
 
 // Steps from the 3x3 free squares of the three planes around a voxel (dz = -1, 0, 1), bit
@@ -286,6 +242,25 @@ struct Squares {
   }
 };
 
+// Legal steps of voxel (i, j, k) from its 3x3x3 block (any voxel of the grid; cells outside it
+// count as blocked): the free squares of its planes, gathered within the grid's bounds only.
+uint32_t moves_of(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
+  const int64_t v = index_of(g, i, j, k);
+  if ((g->flags[v] & kFlagBlocked) != 0) return 0;
+  const tdo_grid_desc& d = g->desc;
+  const int x0 = i > 0 ? -1 : 0, x1 = i < d.nx - 1 ? 1 : 0;
+  const int y0 = j > 0 ? -1 : 0, y1 = j < d.ny - 1 ? 1 : 0;
+  const int z0 = k > 0 ? -1 : 0, z1 = k < d.nz - 1 ? 1 : 0;
+  Squares sq{{0u, 0u, 0u}};
+  for (int dz = z0; dz <= z1; ++dz)
+    for (int dy = y0; dy <= y1; ++dy) {
+      const uint8_t* row = g->flags + v + dy * g->stride_y + dz * g->stride_z;
+      for (int dx = x0; dx <= x1; ++dx)
+        if ((row[dx] & kFlagBlocked) == 0) sq.p[dz + 1] |= 1u << ((dy + 1) * 3 + (dx + 1));
+    }
+  return sq.moves();
+}
+
 // Blocked bits of the 8 voxels x .. x+7 of the 3x3 rows around row (j, k), ORed (one byte each).
 uint64_t blocked_9rows(const tdo_grid* g, const uint8_t* row, int64_t x) {
   constexpr uint64_t kBlockedBytes = 0x0404040404040404ull;  // kFlagBlocked in every byte
@@ -313,17 +288,17 @@ void span_moves(const tdo_grid* g, const uint8_t* row, uint32_t* moves, int64_t 
 // Moves of one row (j, k) with 0 < j < ny - 1 and 0 < k < nz - 1: 8 voxels at a time whose
 // 3x3x3 blocks hold no blocked voxel get every step, the others span_moves; the row's two end
 // voxels go through moves_of.
-void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k) {
+void row_moves(tdo_grid* g, int64_t j, int64_t k) {
   constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;
   const int64_t nx = g->desc.nx, v0 = index_of(g, 0, j, k);
   const uint8_t* row = g->flags + v0;
   uint32_t* moves = g->moves + v0;
   if (nx < 3) {
-    for (int64_t i = 0; i < nx; ++i) moves[i] = moves_of(g, need, i, j, k);
+    for (int64_t i = 0; i < nx; ++i) moves[i] = moves_of(g, i, j, k);
     return;
   }
-  moves[0] = moves_of(g, need, 0, j, k);
-  moves[nx - 1] = moves_of(g, need, nx - 1, j, k);
+  moves[0] = moves_of(g, 0, j, k);
+  moves[nx - 1] = moves_of(g, nx - 1, j, k);
   int64_t i = 1;
   for (; i + 8 < nx; i += 8) {  // voxels i .. i+7 and their neighbours i-1 .. i+8
     if ((blocked_9rows(g, row, i - 1) | blocked_9rows(g, row, i) | blocked_9rows(g, row, i + 1)) ==
@@ -337,17 +312,14 @@ void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k)
 }
 
 void compute_moves(tdo_grid* g) {
-  uint32_t need[kNumDirs];
-  for (int d = 0; d < kNumDirs; ++d) need[d] = swept_cells(d);
   const tdo_grid_desc& desc = g->desc;
   for (int64_t k = 0; k < desc.nz; ++k) {
     for (int64_t j = 0; j < desc.ny; ++j) {
       if (j > 0 && k > 0 && j < desc.ny - 1 && k < desc.nz - 1) {
-        row_moves(g, need, j, k);
+        row_moves(g, j, k);
         continue;
       }
-      for (int64_t i = 0; i < desc.nx; ++i)
-        g->moves[index_of(g, i, j, k)] = moves_of(g, need, i, j, k);
+      for (int64_t i = 0; i < desc.nx; ++i) g->moves[index_of(g, i, j, k)] = moves_of(g, i, j, k);
     }
   }
 }
@@ -626,11 +598,12 @@ tdo_status build_buckets(tdo_grid* g, double clearance) {
 void mark_surface(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
   for (int64_t k = 0; k < d.nz; ++k)
-    for (int64_t j = 0; j < d.ny; ++j)
-      for (int64_t i = 0; i < d.nx; ++i) {
-        uint8_t& f = g->flags[index_of(g, i, j, k)];
-        if ((f & kFlagCube) != 0 && !is_buried(g, i, j, k)) f |= kFlagSurface;
-      }
+    for (int64_t j = 0; j < d.ny; ++j) {
+      uint8_t* row = g->flags + index_of(g, 0, j, k);
+      for (int64_t i = next_flagged(row, 0, d.nx, kFlagCube); i < d.nx;
+           i = next_flagged(row, i + 1, d.nx, kFlagCube))
+        if (!is_buried(g, i, j, k)) row[i] |= kFlagSurface;
+    }
 }
 
 }  // namespace
