@@ -409,28 +409,34 @@ void edt_eval(const uint32_t* fs, const int32_t* v, int32_t m, int32_t n, Put&& 
 // kDfMaxAxis) until a plane is no longer read, then squared.
 void edt_pass_z(tdo_grid* g) {
   const int64_t plane = g->stride_z, nz = g->desc.nz;
-  float* df = g->df;
-  for (int64_t k = 0; k < nz; ++k) {
+  // Only uint32 accesses in this pass (the field is read as float after the last pass); the
+  // loops are branch-free so that they vectorise.
+  uint32_t* df = reinterpret_cast<uint32_t*>(g->df);
+  for (int64_t p = 0; p < plane; ++p) df[p] = (g->flags[p] & kFlagOccupied) != 0 ? 0u : kDfInfinite;
+  for (int64_t k = 1; k < nz; ++k) {
     const uint8_t* f = g->flags + k * plane;
-    float* row = df + k * plane;
+    uint32_t* row = df + k * plane;
+    const uint32_t* below = row - plane;
     for (int64_t p = 0; p < plane; ++p) {
-      const uint32_t below = k > 0 ? df_load(row - plane, p) : kDfInfinite;
-      const uint32_t up = below != kDfInfinite ? below + 1u : kDfInfinite;
-      df_store(row, p, (f[p] & kFlagOccupied) != 0 ? 0u : up);
+      const uint32_t b = below[p];
+      const uint32_t up = b != kDfInfinite ? b + 1u : kDfInfinite;
+      row[p] = (f[p] & kFlagOccupied) != 0 ? 0u : up;
     }
   }
   const auto square = [df, plane](int64_t k) {
-    float* row = df + k * plane;
+    uint32_t* row = df + k * plane;
     for (int64_t p = 0; p < plane; ++p) {
-      const uint32_t v = df_load(row, p);
-      if (v != kDfInfinite) df_store(row, p, v * v);
+      const uint32_t v = row[p];
+      row[p] = v != kDfInfinite ? v * v : kDfInfinite;
     }
   };
   for (int64_t k = nz - 2; k >= 0; --k) {
-    float* row = df + k * plane;
+    uint32_t* row = df + k * plane;
+    const uint32_t* above = row + plane;
     for (int64_t p = 0; p < plane; ++p) {
-      const uint32_t above = df_load(row + plane, p);
-      if (above != kDfInfinite && above + 1u < df_load(row, p)) df_store(row, p, above + 1u);
+      const uint32_t a = above[p];
+      const uint32_t down = a != kDfInfinite ? a + 1u : kDfInfinite;
+      row[p] = down < row[p] ? down : row[p];
     }
     square(k + 1);
   }
