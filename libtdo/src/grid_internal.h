@@ -81,8 +81,8 @@ struct tdo_grid {
   // Euclidean distance (m) from its centre to the centre of the nearest occupied voxel, rounded
   // down to float; +inf without any. df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is
   // then 0, still a lower bound; also after a map update cleared a cube (grid_update.cpp): entries
-  // are lower bounds only. Only the collision queries against voxel obstacles read it; boxes_only
-  // grids have none.
+  // are lower bounds only. Read by the collision queries against voxel obstacles, the coarse guide
+  // and map updates, each through df_ensure; boxes_only grids have none.
   float* df;       // m, max_voxels entries (nullptr when boxes_only)
   uint32_t* df_f;  // EDT line scratch: squared distances (voxel^2), df_line_capacity entries
   int32_t* df_v;   // EDT line scratch: parabola sites (voxel index), df_line_capacity entries
