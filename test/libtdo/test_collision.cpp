@@ -287,6 +287,22 @@ TEST_F(CollisionTest, GivenRandomMaps_WhenFinished_ThenTheDistanceFieldIsExactAn
   EXPECT_GT(compared, 5000u);
 }
 
+// The distance field is not part of the load: tdo_grid_finish leaves it unbuilt, the first query
+// that needs it builds it (the exact field, checked above), and the next finish unbuilds it.
+TEST_F(CollisionTest, GivenAFinishedGrid_WhenTheFirstCubeQueryRuns_ThenItBuildsTheDistanceField) {
+  Rng rng(15);
+  World w = random_world(rng, 12, 12, 8, 0.5, 2, 1.5, 0.05);
+  ASSERT_EQ(load(grid(), w, 0.3), TDO_OK);
+  const tdo_grid* g = grid();
+  ASSERT_GT(g->n_cubes, 0u);
+  EXPECT_EQ(g->df_built, 0);
+  const tdo_voxel mid{6, 6, 4};
+  EXPECT_GE(tdo_collision_point_distance(g, tdo_grid_voxel_center(g, mid), 10.0), 0.0);
+  EXPECT_EQ(g->df_built, 1);
+  ASSERT_EQ(tdo_grid_finish(grid(), 0.3), TDO_OK);
+  EXPECT_EQ(g->df_built, 0);
+}
+
 // An explicit bucket capacity (tdo_capacity::max_box_refs) too small for the map is a named
 // status of tdo_grid_finish, never a silent truncation; 0 derives a capacity that always fits.
 TEST(CollisionBuckets, GivenAnExplicitBoxRefCapacity_WhenTheMapNeedsMore_ThenBoxCapacityStatus) {
