@@ -446,6 +446,7 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   const tdo_vec3 c = tdo_grid_voxel_center(g, v);
   const double dx = m[0] - c.x, dy = m[1] - c.y, dz = m[2] - c.z;
   const double off = sqrt(dx * dx + dy * dy + dz * dz);
+  df_ensure(g);  // built on the first query after a finish
   const double df = static_cast<double>(g->df[idx]);
   const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;  // map updates
   pi.lb = df_lb - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);

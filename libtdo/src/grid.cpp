@@ -139,19 +139,6 @@ void inflate_run(tdo_grid* g, uint32_t n_rows, int64_t i0, int64_t i1, int64_t j
   }
 }
 
-// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
-int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
-  const uint64_t bytes = 0x0101010101010101ull * bit;
-  while (i + 8 <= n) {
-    uint64_t w;
-    memcpy(&w, row + i, sizeof w);
-    if ((w & bytes) != 0) break;
-    i += 8;
-  }
-  while (i < n && (row[i] & bit) == 0) ++i;
-  return i;
-}
-
 // Per voxel, the stencil at every cube: the general form, used when stencil_rows refuses.
 void inflate_cells(tdo_grid* g, uint32_t n_cells) {
   const tdo_grid_desc& d = g->desc;
@@ -194,37 +181,6 @@ tdo_status inflate_cubes(tdo_grid* g, double c) {
     }
   }
   return TDO_OK;
-}
-
-// Cells of the 3x3x3 block that a step in direction d sweeps: the 2x2 square or 2x2x2 cube.
-uint32_t swept_cells(int d) {
-  uint32_t m = 0;
-  const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
-  for (int a = 0; a <= 1; ++a)
-    for (int b = 0; b <= 1; ++b)
-      for (int e = 0; e <= 1; ++e) m |= 1u << cell_of(a * dx, b * dy, e * dz);
-  return m;
-}
-
-// Legal steps of voxel (i, j, k) from its 3x3x3 block (any voxel of the grid).
-uint32_t moves_of(const tdo_grid* g, const uint32_t need[kNumDirs], int64_t i, int64_t j,
-                  int64_t k) {
-  const int64_t v = index_of(g, i, j, k);
-  if ((g->flags[v] & kFlagBlocked) != 0) return 0;
-  uint32_t free27 = 0;
-  for (int dz = -1; dz <= 1; ++dz) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if (!in_grid(g, i + dx, j + dy, k + dz)) continue;
-        const int64_t w = v + dx + dy * g->stride_y + dz * g->stride_z;
-        if ((g->flags[w] & kFlagBlocked) == 0) free27 |= 1u << cell_of(dx, dy, dz);
-      }
-    }
-  }
-  uint32_t mask = 0;
-  for (int d = 0; d < kNumDirs; ++d)
-    if ((free27 & need[d]) == need[d]) mask |= 1u << d;
-  return mask;
 }
 
 // Steps from the 3x3 free squares of the three planes around a voxel (dz = -1, 0, 1), bit
@@ -286,6 +242,25 @@ struct Squares {
   }
 };
 
+// Legal steps of voxel (i, j, k) from its 3x3x3 block (any voxel of the grid; cells outside it
+// count as blocked): the free squares of its planes, gathered within the grid's bounds only.
+uint32_t moves_of(const tdo_grid* g, int64_t i, int64_t j, int64_t k) {
+  const int64_t v = index_of(g, i, j, k);
+  if ((g->flags[v] & kFlagBlocked) != 0) return 0;
+  const tdo_grid_desc& d = g->desc;
+  const int x0 = i > 0 ? -1 : 0, x1 = i < d.nx - 1 ? 1 : 0;
+  const int y0 = j > 0 ? -1 : 0, y1 = j < d.ny - 1 ? 1 : 0;
+  const int z0 = k > 0 ? -1 : 0, z1 = k < d.nz - 1 ? 1 : 0;
+  Squares sq{{0u, 0u, 0u}};
+  for (int dz = z0; dz <= z1; ++dz)
+    for (int dy = y0; dy <= y1; ++dy) {
+      const uint8_t* row = g->flags + v + dy * g->stride_y + dz * g->stride_z;
+      for (int dx = x0; dx <= x1; ++dx)
+        if ((row[dx] & kFlagBlocked) == 0) sq.p[dz + 1] |= 1u << ((dy + 1) * 3 + (dx + 1));
+    }
+  return sq.moves();
+}
+
 // Blocked bits of the 8 voxels x .. x+7 of the 3x3 rows around row (j, k), ORed (one byte each).
 uint64_t blocked_9rows(const tdo_grid* g, const uint8_t* row, int64_t x) {
   constexpr uint64_t kBlockedBytes = 0x0404040404040404ull;  // kFlagBlocked in every byte
@@ -313,17 +288,17 @@ void span_moves(const tdo_grid* g, const uint8_t* row, uint32_t* moves, int64_t 
 // Moves of one row (j, k) with 0 < j < ny - 1 and 0 < k < nz - 1: 8 voxels at a time whose
 // 3x3x3 blocks hold no blocked voxel get every step, the others span_moves; the row's two end
 // voxels go through moves_of.
-void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k) {
+void row_moves(tdo_grid* g, int64_t j, int64_t k) {
   constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;
   const int64_t nx = g->desc.nx, v0 = index_of(g, 0, j, k);
   const uint8_t* row = g->flags + v0;
   uint32_t* moves = g->moves + v0;
   if (nx < 3) {
-    for (int64_t i = 0; i < nx; ++i) moves[i] = moves_of(g, need, i, j, k);
+    for (int64_t i = 0; i < nx; ++i) moves[i] = moves_of(g, i, j, k);
     return;
   }
-  moves[0] = moves_of(g, need, 0, j, k);
-  moves[nx - 1] = moves_of(g, need, nx - 1, j, k);
+  moves[0] = moves_of(g, 0, j, k);
+  moves[nx - 1] = moves_of(g, nx - 1, j, k);
   int64_t i = 1;
   for (; i + 8 < nx; i += 8) {  // voxels i .. i+7 and their neighbours i-1 .. i+8
     if ((blocked_9rows(g, row, i - 1) | blocked_9rows(g, row, i) | blocked_9rows(g, row, i + 1)) ==
@@ -337,17 +312,14 @@ void row_moves(tdo_grid* g, const uint32_t need[kNumDirs], int64_t j, int64_t k)
 }
 
 void compute_moves(tdo_grid* g) {
-  uint32_t need[kNumDirs];
-  for (int d = 0; d < kNumDirs; ++d) need[d] = swept_cells(d);
   const tdo_grid_desc& desc = g->desc;
   for (int64_t k = 0; k < desc.nz; ++k) {
     for (int64_t j = 0; j < desc.ny; ++j) {
       if (j > 0 && k > 0 && j < desc.ny - 1 && k < desc.nz - 1) {
-        row_moves(g, need, j, k);
+        row_moves(g, j, k);
         continue;
       }
-      for (int64_t i = 0; i < desc.nx; ++i)
-        g->moves[index_of(g, i, j, k)] = moves_of(g, need, i, j, k);
+      for (int64_t i = 0; i < desc.nx; ++i) g->moves[index_of(g, i, j, k)] = moves_of(g, i, j, k);
     }
   }
 }
@@ -370,19 +342,12 @@ inline int64_t parabola_key(const uint32_t* f, int32_t x) {
   return static_cast<int64_t>(f[x]) + static_cast<int64_t>(x) * x;
 }
 
-// Smallest integer q with num < q * den (den > 0): floor(num / den) + 1.
-inline int64_t first_above(int64_t num, int64_t den) {
-  const int64_t fl = num >= 0 ? num / den : -((-num + den - 1) / den);
-  return fl + 1;
-}
-
-// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site), written to out[0..n),
-// the line f was copied from (a line without a site is left as it is). Keys F <= 3 * 32767^2 and
-// denominators <= 2 * 32767, so the cross products stay below 2^48 and the results below 2^32.
-// Bounded: every site is pushed and popped at most once, and the evaluation sweep advances
-// monotonically. The keys of the two topmost sites and the crossing of the current and next
-// parabola are kept, not recomputed.
-void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
+// 1D lower envelope of the parabolas over f[0..n) (kDfInfinite = no site): its sites into v[0..m)
+// and their values, in place, into f[0..m) (f[j] = f[v[j]]; v[j] >= j, so each value is read
+// before an entry over it is written); returns m, 0 without a site. Keys F <= 3 * 32767^2 and
+// denominators <= 2 * 32767, so the cross products stay below 2^48. Bounded: every site is pushed
+// and popped at most once. The keys of the two topmost sites are kept, not recomputed.
+int32_t edt_envelope(uint32_t* f, int32_t* v, int32_t n) {
   int32_t k = -1;
   int64_t fa = 0, fb = 0;  // keys of v[k - 1] and v[k]
   for (int32_t q = 0; q < n; ++q) {
@@ -403,50 +368,79 @@ void edt_line(const uint32_t* f, int32_t* v, int32_t n, uint32_t* out) {
     fb = fq;
     v[++k] = q;
   }
-  if (k < 0) return;  // no site: the line read from df is infinite already, and stays so
-  // Parabola j is the lowest from q on while q < bound, its crossing with parabola j + 1:
-  // s(v[j], v[j+1]) < q.
+  for (int32_t j = 0; j <= k; ++j) f[j] = f[v[j]];
+  return k + 1;
+}
+
+// F of envelope site j (compacted values fs, sites v).
+inline int64_t site_key(const uint32_t* fs, const int32_t* v, int32_t j) {
+  return static_cast<int64_t>(fs[j]) + static_cast<int64_t>(v[j]) * v[j];
+}
+
+// The envelope of m >= 1 sites evaluated at q = 0 .. n-1, put(q, squared distance) in increasing q
+// (the results stay below 2^32). Parabola j is the lowest from q on until its crossing with
+// parabola j + 1, s(v[j], v[j+1]) = num / den: the sweep moves on once q > num / den, tested as
+// q * den > num (no division). The sweep advances monotonically.
+template <class Put>
+void edt_eval(const uint32_t* fs, const int32_t* v, int32_t m, int32_t n, Put&& put) {
+  const int32_t k = m - 1;
   int32_t j = 0;
-  int64_t fj = parabola_key(f, v[0]);
-  int64_t fj1 = k >= 1 ? parabola_key(f, v[1]) : 0;
-  int64_t bound = k >= 1 ? first_above(fj1 - fj, 2 * static_cast<int64_t>(v[1] - v[0])) : n;
+  int64_t fj = site_key(fs, v, 0);
+  int64_t fj1 = k >= 1 ? site_key(fs, v, 1) : 0;
+  int64_t num = fj1 - fj, den = k >= 1 ? 2 * static_cast<int64_t>(v[1] - v[0]) : 1;
   for (int32_t q = 0; q < n; ++q) {
-    while (j < k && q >= bound) {
+    while (j<k&& static_cast<int64_t>(q) * den> num) {
       ++j;
       fj = fj1;
       if (j < k) {
-        fj1 = parabola_key(f, v[j + 1]);
-        bound = first_above(fj1 - fj, 2 * static_cast<int64_t>(v[j + 1] - v[j]));
+        fj1 = site_key(fs, v, j + 1);
+        num = fj1 - fj;
+        den = 2 * static_cast<int64_t>(v[j + 1] - v[j]);
       }
     }
     const int64_t dq = q - v[j];
-    out[q] = static_cast<uint32_t>(dq * dq + f[v[j]]);
+    put(q, static_cast<uint32_t>(dq * dq + fs[j]));
   }
 }
 
-// The x pass of the EDT for row (j, k): squared distance to the nearest occupied voxel of the row
-// (the same values as edt_line: the lower envelope of (q - s)^2 is the nearest site's), by one
-// sweep each way; kDfInfinite for the whole row when it has no occupied voxel.
-void edt_row_x(tdo_grid* g, int64_t j, int64_t k) {
-  const int64_t n = g->desc.nx, base = index_of(g, 0, j, k);
-  const uint8_t* row = g->flags + base;
-  float* out = g->df + base;
-  if (next_flagged(row, 0, n, kFlagOccupied) == n) {
-    memset(out, 0xFF, static_cast<size_t>(n) * sizeof(float));  // kDfInfinite in every entry
-    return;
+// The first pass of the EDT, along z: per voxel the squared distance to the nearest occupied voxel
+// of its z line (kDfInfinite: none; the same values as the envelope of that line), by one sweep up
+// and one down over whole planes, so every access is contiguous. Linear distances (< nz <=
+// kDfMaxAxis) until a plane is no longer read, then squared.
+void edt_pass_z(tdo_grid* g) {
+  const int64_t plane = g->stride_z, nz = g->desc.nz;
+  // Only uint32 accesses in this pass (the field is read as float after the last pass); the
+  // loops are branch-free so that they vectorise.
+  uint32_t* df = reinterpret_cast<uint32_t*>(g->df);
+  for (int64_t p = 0; p < plane; ++p) df[p] = (g->flags[p] & kFlagOccupied) != 0 ? 0u : kDfInfinite;
+  for (int64_t k = 1; k < nz; ++k) {
+    const uint8_t* f = g->flags + k * plane;
+    uint32_t* row = df + k * plane;
+    const uint32_t* below = row - plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t b = below[p];
+      const uint32_t up = b != kDfInfinite ? b + 1u : kDfInfinite;
+      row[p] = (f[p] & kFlagOccupied) != 0 ? 0u : up;
+    }
   }
-  int64_t last = -1;
-  for (int64_t q = 0; q < n; ++q) {
-    if ((row[q] & kFlagOccupied) != 0) last = q;
-    df_store(out, q, last < 0 ? kDfInfinite : static_cast<uint32_t>((q - last) * (q - last)));
+  const auto square = [df, plane](int64_t k) {
+    uint32_t* row = df + k * plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t v = row[p];
+      row[p] = v != kDfInfinite ? v * v : kDfInfinite;
+    }
+  };
+  for (int64_t k = nz - 2; k >= 0; --k) {
+    uint32_t* row = df + k * plane;
+    const uint32_t* above = row + plane;
+    for (int64_t p = 0; p < plane; ++p) {
+      const uint32_t a = above[p];
+      const uint32_t down = a != kDfInfinite ? a + 1u : kDfInfinite;
+      row[p] = down < row[p] ? down : row[p];
+    }
+    square(k + 1);
   }
-  int64_t next = -1;
-  for (int64_t q = n - 1; q >= 0; --q) {
-    if ((row[q] & kFlagOccupied) != 0) next = q;
-    if (next < 0) continue;
-    const uint32_t d2 = static_cast<uint32_t>((next - q) * (next - q));
-    if (d2 < df_load(out, q)) df_store(out, q, d2);
-  }
+  square(0);
 }
 
 // Metres from a squared distance in voxel^2, rounded down (see tdo_grid::df).
@@ -468,55 +462,56 @@ float df_metres(uint32_t d2, double res) {
   return m;
 }
 
-// dst[c * rows + r] = src[r * cols + c] for a rows x cols matrix of 4-byte words (either may be
-// the float distance field, so words are moved with memcpy), in 16 x 16 tiles.
-void transpose_words(const void* src, void* dst, int64_t rows, int64_t cols) {
-  constexpr int64_t kTile = 16;
-  const unsigned char* s = static_cast<const unsigned char*>(src);
-  unsigned char* t = static_cast<unsigned char*>(dst);
-  for (int64_t r0 = 0; r0 < rows; r0 += kTile) {
-    const int64_t r1 = r0 + kTile < rows ? r0 + kTile : rows;
-    for (int64_t c0 = 0; c0 < cols; c0 += kTile) {
-      const int64_t c1 = c0 + kTile < cols ? c0 + kTile : cols;
-      for (int64_t r = r0; r < r1; ++r)
-        for (int64_t c = c0; c < c1; ++c) memcpy(t + 4 * (c * rows + r), s + 4 * (r * cols + c), 4);
-    }
+// One EDT pass over the line of n entries of df from `base` with step `stride` (voxels), in place.
+// The lines of a pass are visited in memory order (a y line after the y line of the next x, a z
+// line after that of the next (x, y)), so consecutive lines share their cache lines. `last`: the
+// final pass, which writes metres (df_metres) instead of squared distances.
+void edt_strided(tdo_grid* g, int64_t base, int64_t stride, int32_t n, bool last) {
+  uint32_t* f = g->df_f;
+  float* line = g->df + base;
+  for (int32_t q = 0; q < n; ++q) f[q] = df_load(line, q * stride);
+  const int32_t m = edt_envelope(f, g->df_v, n);
+  const double res = g->desc.res;
+  if (m == 0) {  // no site: every entry is kDfInfinite already
+    if (last)
+      for (int32_t q = 0; q < n; ++q) line[q * stride] = HUGE_VALF;
+    return;
   }
+  if (last)
+    edt_eval(f, g->df_v, m, n, [line, stride, res](int32_t q, uint32_t d2) {
+      line[q * stride] = df_metres(d2, res);
+    });
+  else
+    edt_eval(f, g->df_v, m, n,
+             [line, stride](int32_t q, uint32_t d2) { df_store(line, q * stride, d2); });
 }
 
-// EDT pass over one contiguous line of n squared distances, in place.
-void edt_in_place(tdo_grid* g, uint32_t* line, int64_t n) {
-  memcpy(g->df_f, line, static_cast<size_t>(n) * sizeof(uint32_t));
-  edt_line(g->df_f, g->df_v, static_cast<int32_t>(n), line);
-}
-
-// df of every voxel; see tdo_grid::df. Three passes (x, y, z lines) then conversion to metres.
+// df of every voxel; see tdo_grid::df. Three passes: z (plane sweeps), y (strided lines within a
+// plane, consecutive lines sharing cache lines) and x (contiguous lines, written in metres). The
+// squared distance is separable, so the pass order gives the same integers as any other. Needs
+// no scratch beyond the two line buffers, so it can run after compute_moves (df_ensure).
 void build_distance_field(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
-  const int32_t n_axis[3] = {d.nx, d.ny, d.nz};
-  const uint32_t line_cap = df_line_capacity(g->cap);
-  g->df_valid = 1;
-  for (int a = 0; a < 3; ++a)
-    if (static_cast<uint32_t>(n_axis[a]) > line_cap) g->df_valid = 0;
   if (!g->df_valid) {  // 0 everywhere: a valid lower bound, collision queries stay exact
     for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = 0.0f;
     return;
   }
-  for (int64_t k = 0; k < d.nz; ++k)
-    for (int64_t j = 0; j < d.ny; ++j) edt_row_x(g, j, k);
-  // The y and z lines are made contiguous in the moves array (free until compute_moves, which
-  // runs after this), transformed there and copied back: strided lines missed the cache.
-  uint32_t* scratch = g->moves;
+  edt_pass_z(g);
   const int64_t plane = g->stride_z;
-  for (int64_t k = 0; k < d.nz; ++k) {  // y lines: plane k as [ny][nx] -> [nx][ny]
-    transpose_words(g->df + k * plane, scratch, d.ny, d.nx);
-    for (int64_t x = 0; x < d.nx; ++x) edt_in_place(g, scratch + x * d.ny, d.ny);
-    transpose_words(scratch, g->df + k * plane, d.nx, d.ny);
-  }
-  transpose_words(g->df, scratch, d.nz, plane);  // z lines: [nz][plane] -> [plane][nz]
-  for (int64_t p = 0; p < plane; ++p) edt_in_place(g, scratch + p * d.nz, d.nz);
-  transpose_words(scratch, g->df, plane, d.nz);
-  for (uint32_t v = 0; v < g->nvox; ++v) g->df[v] = df_metres(df_load(g->df, v), d.res);
+  if (d.ny > 1)
+    for (int64_t k = 0; k < d.nz; ++k)
+      for (int64_t x = 0; x < d.nx; ++x) edt_strided(g, k * plane + x, d.nx, d.ny, false);
+  for (int64_t r = 0; r < static_cast<int64_t>(d.ny) * d.nz; ++r)
+    edt_strided(g, r * d.nx, 1, d.nx, true);
+}
+
+// Whether every axis fits the exact transform (kDfMaxAxis and the line buffers).
+int df_fits(const tdo_grid* g) {
+  const uint32_t line_cap = df_line_capacity(g->cap);
+  const int32_t n_axis[3] = {g->desc.nx, g->desc.ny, g->desc.nz};
+  for (int a = 0; a < 3; ++a)
+    if (static_cast<uint32_t>(n_axis[a]) > line_cap) return 0;
+  return 1;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -609,11 +604,12 @@ tdo_status build_buckets(tdo_grid* g, double clearance) {
 void mark_surface(tdo_grid* g) {
   const tdo_grid_desc& d = g->desc;
   for (int64_t k = 0; k < d.nz; ++k)
-    for (int64_t j = 0; j < d.ny; ++j)
-      for (int64_t i = 0; i < d.nx; ++i) {
-        uint8_t& f = g->flags[index_of(g, i, j, k)];
-        if ((f & kFlagCube) != 0 && !is_buried(g, i, j, k)) f |= kFlagSurface;
-      }
+    for (int64_t j = 0; j < d.ny; ++j) {
+      uint8_t* row = g->flags + index_of(g, 0, j, k);
+      for (int64_t i = next_flagged(row, 0, d.nx, kFlagCube); i < d.nx;
+           i = next_flagged(row, i + 1, d.nx, kFlagCube))
+        if (!is_buried(g, i, j, k)) row[i] |= kFlagSurface;
+    }
 }
 
 }  // namespace
@@ -681,6 +677,15 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap) 
   return TDO_OK;
 }
 
+void df_ensure(const tdo_grid* cg) {
+  if (cg == nullptr || cg->df == nullptr || cg->df_built || cg->nvox == 0) return;
+  // The grid is never defined const (it is carved from the caller's arena): the field is a cache
+  // of the const queries, filled once per finish.
+  tdo_grid* g = const_cast<tdo_grid*>(cg);
+  build_distance_field(g);
+  g->df_built = 1;
+}
+
 }  // namespace tdo_internal
 
 using namespace tdo_internal;
@@ -708,6 +713,7 @@ extern "C" tdo_status tdo_grid_reset(tdo_grid* g, const tdo_grid_desc* desc) {
   g->n_blocked = 0;
   g->clearance = -1.0;
   g->ready = 0;
+  g->df_built = 0;
   return TDO_OK;
 }
 
@@ -758,10 +764,11 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
   g->n_blocked = blocked;
   // Collision-query structures (collision.h): they change no blocked flag and no move. The
-  // distance field borrows the moves array as scratch, so it comes first.
+  // distance field is built on first use (df_ensure; docs/design.md s.0).
   if (g->n_cubes > 0) mark_surface(g);
   surface_index_build(g);
-  if (g->cap.boxes_only == 0u) build_distance_field(g);
+  g->df_built = 0;
+  g->df_valid = g->cap.boxes_only == 0u ? df_fits(g) : 0;
   g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
   compute_moves(g);
   const tdo_status bst = build_buckets(g, clearance);

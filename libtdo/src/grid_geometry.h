@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "grid_internal.h"
 
@@ -53,6 +54,19 @@ inline double axis_gap(double p, double a, double b) {
   if (p < a) return a - p;
   if (p > b) return p - b;
   return 0.0;
+}
+
+// Next x >= i in `row` (n voxels) whose flags have any bit of `bit`, or n; 8 voxels per word.
+inline int64_t next_flagged(const uint8_t* row, int64_t i, int64_t n, uint8_t bit) {
+  const uint64_t bytes = 0x0101010101010101ull * bit;
+  while (i + 8 <= n) {
+    uint64_t w;
+    memcpy(&w, row + i, sizeof w);
+    if ((w & bytes) != 0) break;
+    i += 8;
+  }
+  while (i < n && (row[i] & bit) == 0) ++i;
+  return i;
 }
 
 }  // namespace tdo_internal

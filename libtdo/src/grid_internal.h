@@ -54,6 +54,9 @@ tdo_status grid_init(tdo_grid** out, tdo_arena* arena, const GridCapacity& cap);
 // The clearance stencil of c into g->stencil (*count offsets), TDO_ERR_CLEARANCE_CAPACITY when it
 // does not fit; grid.cpp (tdo_grid_finish) and grid_update.cpp share it.
 tdo_status build_stencil(tdo_grid* g, double c, uint32_t* count);
+// Build the distance field (tdo_grid::df) of the last tdo_grid_finish when it is not built yet:
+// every reader calls this first. O(voxels) once per finish, nothing after (docs/design.md s.0).
+void df_ensure(const tdo_grid* g);
 }  // namespace tdo_internal
 
 struct tdo_grid {
@@ -74,15 +77,17 @@ struct tdo_grid {
   uint32_t version;    // changes with every finish: whoever derives data from the grid (the
                        // search's coarse guide, guide.cpp) rebuilds it when this moves on
 
-  // Distance field (tdo_grid_finish): per voxel, the exact Euclidean distance (m) from its centre
-  // to the centre of the nearest occupied voxel, rounded down to float; +inf without any.
-  // df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is then 0, still a lower bound;
-  // also after a map update cleared a cube (grid_update.cpp): entries are lower bounds only.
-  // Only the collision queries against voxel obstacles read it; boxes_only grids have none.
+  // Distance field (built on first use after tdo_grid_finish, df_ensure): per voxel, the exact
+  // Euclidean distance (m) from its centre to the centre of the nearest occupied voxel, rounded
+  // down to float; +inf without any. df_valid = 0 when an axis exceeds kDfMaxAxis: every entry is
+  // then 0, still a lower bound; also after a map update cleared a cube (grid_update.cpp): entries
+  // are lower bounds only. Read by the collision queries against voxel obstacles, the coarse guide
+  // and map updates, each through df_ensure; boxes_only grids have none.
   float* df;       // m, max_voxels entries (nullptr when boxes_only)
   uint32_t* df_f;  // EDT line scratch: squared distances (voxel^2), df_line_capacity entries
   int32_t* df_v;   // EDT line scratch: parabola sites (voxel index), df_line_capacity entries
-  int df_valid;    // 1 when df holds the exact field
+  int df_valid;    // 1 when df holds the exact field (set by tdo_grid_finish, before df_ensure)
+  int df_built;    // 1 when df holds the entries described above; 0: df_ensure builds them
   double df_cap;   // m; > 0: read df as min(df, df_cap) for lower bounds (set by map updates,
                    // which lower df only near new obstacles); 0: no cap (tdo_grid_finish)
 

@@ -430,6 +430,9 @@ extern "C" tdo_status tdo_grid_apply_update(tdo_grid* g, const tdo_grid_update* 
   tdo_status st = check_update(g, u);
   if (st == TDO_OK) st = check_contradiction(g, u);
   if (st != TDO_OK) return st;
+  // The field as the finish left it, so that the update lowers it exactly as before: the first
+  // update after a finish without a collision query builds it (O(voxels), once).
+  df_ensure(g);
   const int64_t reach =
       g->clearance > 0.0 ? static_cast<int64_t>(ceil(g->clearance / g->desc.res + 0.5)) : 0;
   Ctx x{g, 0u, df_reach_of(g), reach, res};

@@ -56,6 +56,7 @@ tdo_status build_coarse(Guide* gd, const tdo_grid* fine) {
       static_cast<uint32_t>(d.nx) * static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(d.nz);
   memset(free_cell, 0, n * sizeof(uint32_t));
   const uint8_t* f = fine->flags;
+  df_ensure(fine);
   const float* df = fine->df_valid ? fine->df : nullptr;
   // "Deep" free voxels: one voxel edge more than the clearance from every obstacle voxel (the
   // distance field; without one, every free voxel counts).

@@ -57,8 +57,9 @@ void surface_index_build(tdo_grid* g) {
     for (int64_t k = 0; k < d.nz; ++k)
       for (int64_t j = 0; j < d.ny; ++j) {
         const uint8_t* row = g->flags + index_of(g, 0, j, k);
-        for (int64_t i = 0; i < d.nx; ++i)
-          if ((row[i] & kFlagSurface) != 0) g->brick_mask[brick_of(g, i, j, k)] |= bit_of(i, j, k);
+        for (int64_t i = next_flagged(row, 0, d.nx, kFlagSurface); i < d.nx;
+             i = next_flagged(row, i + 1, d.nx, kFlagSurface))
+          g->brick_mask[brick_of(g, i, j, k)] |= bit_of(i, j, k);
       }
   }
   for (uint64_t b = 0; b < n; ++b) g->brick_box[b] = pack_box(g->brick_mask[b]);

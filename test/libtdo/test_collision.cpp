@@ -266,6 +266,7 @@ TEST_F(CollisionTest, GivenRandomMaps_WhenFinished_ThenTheDistanceFieldIsExactAn
     for (size_t n = 0; n < w.m.size(); ++n)
       if (tdo_grid_is_occupied(g, w.m.voxel(n))) occ.push_back(w.m.voxel(n));
     ASSERT_EQ(g->df_valid, 1);
+    tdo_internal::df_ensure(g);  // the field is built on first use
     for (size_t n = 0; n < w.m.size(); ++n) {
       const tdo_voxel v = w.m.voxel(n);
       if (!occ.empty()) ++compared;
@@ -284,6 +285,22 @@ TEST_F(CollisionTest, GivenRandomMaps_WhenFinished_ThenTheDistanceFieldIsExactAn
     }
   }
   EXPECT_GT(compared, 5000u);
+}
+
+// The distance field is not part of the load: tdo_grid_finish leaves it unbuilt, the first query
+// that needs it builds it (the exact field, checked above), and the next finish unbuilds it.
+TEST_F(CollisionTest, GivenAFinishedGrid_WhenTheFirstCubeQueryRuns_ThenItBuildsTheDistanceField) {
+  Rng rng(15);
+  World w = random_world(rng, 12, 12, 8, 0.5, 2, 1.5, 0.05);
+  ASSERT_EQ(load(grid(), w, 0.3), TDO_OK);
+  const tdo_grid* g = grid();
+  ASSERT_GT(g->n_cubes, 0u);
+  EXPECT_EQ(g->df_built, 0);
+  const tdo_voxel mid{6, 6, 4};
+  EXPECT_GE(tdo_collision_point_distance(g, tdo_grid_voxel_center(g, mid), 10.0), 0.0);
+  EXPECT_EQ(g->df_built, 1);
+  ASSERT_EQ(tdo_grid_finish(grid(), 0.3), TDO_OK);
+  EXPECT_EQ(g->df_built, 0);
 }
 
 // An explicit bucket capacity (tdo_capacity::max_box_refs) too small for the map is a named
