@@ -418,6 +418,55 @@ struct PieceInfo {
   bool in_cube;         // the midpoint lies in a cube: distance 0
 };
 
+}  // namespace
+
+// Table of voxel_gap2_lower: built at compile time from the integer offsets of the first octant
+// with sorted components up to kGapComponents (a larger component alone gives a gap^2 of at least
+// (kGapComponents - 1)^2 = 256 > 225, the gap^2 of offset (16, 0, 0), whose n is 256).
+constexpr uint32_t kGapComponents = 17;
+struct GapTable {
+  uint16_t g[kGapTableMax + 1];
+};
+constexpr GapTable make_gap_table() {
+  constexpr uint32_t kTop = 3 * kGapComponents * kGapComponents;
+  uint16_t at[kTop + 1] = {};  // per exact squared offset: the smallest gap^2 (0xFFFF: none)
+  for (uint32_t v = 0; v <= kTop; ++v) at[v] = 0xFFFFu;
+  for (uint32_t a = 0; a <= kGapComponents; ++a)
+    for (uint32_t b = a; b <= kGapComponents; ++b)
+      for (uint32_t c = b; c <= kGapComponents; ++c) {
+        const uint32_t v = a * a + b * b + c * c;
+        const uint32_t e = (a > 0 ? (a - 1) * (a - 1) : 0) + (b > 0 ? (b - 1) * (b - 1) : 0) +
+                           (c > 0 ? (c - 1) * (c - 1) : 0);
+        if (e < at[v]) at[v] = static_cast<uint16_t>(e);
+      }
+  for (uint32_t v = kTop; v > 0; --v)  // suffix minimum: every offset with |d|^2 >= v
+    if (at[v] < at[v - 1]) at[v - 1] = at[v];
+  GapTable t{};
+  for (uint32_t n = 0; n <= kGapTableMax; ++n) t.g[n] = at[n];
+  return t;
+}
+constexpr GapTable kGapTable = make_gap_table();
+
+uint32_t voxel_gap2_lower(uint32_t n) {
+  return n <= kGapTableMax ? kGapTable.g[n] : 0xFFFFFFFFu;
+}
+
+namespace {
+
+// Lower bound (m) of the distance between the closed box of a voxel and every occupied voxel
+// cube, from df_lb (m), a lower bound of the voxel's distance field entry. The squared centre
+// offset in voxels is an integer of at least n = ceil((df_lb / res)^2 - 0.01) (df is rounded down
+// by far less than 0.01 voxel^2 up to the table's end); beyond the table, |e| >= |d| - sqrt(3)
+// for the per-axis gaps e_i = max(|d_i| - 1, 0).
+inline double voxel_gap_lower(double df_lb, double res) {
+  const double x = df_lb / res;
+  if (!(x > 1.0)) return 0.0;  // also 0 and NaN: no claim beyond 0
+  const double x2 = x * x;
+  if (x2 > static_cast<double>(kGapTableMax)) return (x - 2.0 * kHalfDiag) * res;
+  const uint32_t n = static_cast<uint32_t>(ceil(x2 - 0.01));
+  return sqrt(static_cast<double>(kGapTable.g[n])) * res;
+}
+
 PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
   PieceInfo pi;
   seg_point(a, b, pc.t0, pi.p0);
@@ -448,7 +497,12 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   const double off = sqrt(dx * dx + dy * dy + dz * dz);
   const double df = static_cast<double>(g->df[idx]);
   const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;  // map updates
-  pi.lb = df_lb - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);
+  // Two lower bounds of the distance from the voxel's points to every occupied cube: through the
+  // midpoint (its offset from the centre counted) and through the voxel's whole box (the integer
+  // offsets of the voxels, docs/design.md s.0 "Distance to the cubes"); every piece point is
+  // within `half` of the midpoint, which lies in the voxel's box.
+  const double lb = dmax(df_lb - off - kHalfDiag * res, voxel_gap_lower(df_lb, res));
+  pi.lb = lb - half - (1e-7 * res + 1e-12);
   pi.ub = g->df_valid ? df + off + kHalfDiag * res : HUGE_VAL;
   return pi;
 }
