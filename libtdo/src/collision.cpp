@@ -467,6 +467,27 @@ inline double voxel_gap_lower(double df_lb, double res) {
   return sqrt(static_cast<double>(kGapTable.g[n])) * res;
 }
 
+// The voxel of the half-open grid holding p (finite), as tdo_grid_world_to_voxel finds it (the
+// same span arithmetic), without its calls: false outside. Below -1 or from n + 1 on (in voxels)
+// the point is outside whatever the corrections do (each moves the index by one at most); in
+// between, truncation is floor for x >= 0 and [-1, 0) floors to -1.
+inline bool voxel_of(const tdo_grid* g, const double p[3], int64_t v[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  const double r = d.res;
+  for (int a = 0; a < 3; ++a) {
+    const double x = (p[a] - o[a]) / r;
+    if (!(x >= -1.0) || !(x < static_cast<double>(n[a]) + 1.0)) return false;
+    double i = x < 0.0 ? -1.0 : static_cast<double>(static_cast<int64_t>(x));
+    if (o[a] + i * r > p[a]) i -= 1.0;
+    if (!(o[a] + (i + 1.0) * r > p[a])) i += 1.0;
+    if (i < 0.0 || i >= static_cast<double>(n[a])) return false;
+    v[a] = static_cast<int64_t>(i);
+  }
+  return true;
+}
+
 PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
   PieceInfo pi;
   seg_point(a, b, pc.t0, pi.p0);
@@ -481,19 +502,21 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   const double res = g->desc.res;
   pi.leaf = !(2.0 * half > res);
   pi.in_cube = false;
-  tdo_voxel v;
-  const tdo_vec3 mv{m[0], m[1], m[2]};
-  if (!tdo_grid_world_to_voxel(g, mv, &v)) {
+  int64_t v[3];
+  if (!voxel_of(g, m, v)) {
     // Outside the (half-open) grid: the cubes lie inside the bounds.
     pi.lb = bounds_distance(g, m) - half;
     pi.ub = HUGE_VAL;
     if (inside_bounds(g, m)) pi.lb = -1.0;  // on a max face: no bound used
     return pi;
   }
-  const int64_t idx = v.i + v.j * g->stride_y + v.k * g->stride_z;
+  const int64_t idx = v[0] + v[1] * g->stride_y + v[2] * g->stride_z;
   pi.in_cube = (g->flags[idx] & kFlagCube) != 0;
-  const tdo_vec3 c = tdo_grid_voxel_center(g, v);
-  const double dx = m[0] - c.x, dy = m[1] - c.y, dz = m[2] - c.z;
+  const tdo_grid_desc& d = g->desc;
+  // The voxel centre as tdo_grid_voxel_center computes it.
+  const double dx = m[0] - (d.origin.x + (static_cast<double>(v[0]) + 0.5) * res);
+  const double dy = m[1] - (d.origin.y + (static_cast<double>(v[1]) + 0.5) * res);
+  const double dz = m[2] - (d.origin.z + (static_cast<double>(v[2]) + 0.5) * res);
   const double off = sqrt(dx * dx + dy * dy + dz * dz);
   const double df = static_cast<double>(g->df[idx]);
   const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;  // map updates
@@ -542,11 +565,17 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
   return quick_tol(r, scale);
 }
 
-// Lower *bst (m) to the distance of [p0, p1] to the surface cubes of brick c.
+// Lower *bst (m) to the distance of [p0, p1] (span box sb) to the surface cubes of brick c.
+// A cube whose gap to the span box reaches *bst + tol (tol: brick_tol at a limit >= *bst) cannot
+// lower it (box_min's quick test).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
-                      bool point, double* bst) {
+                      const SpanBox& sb, double tol, bool point, double* bst) {
   for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
     if (far_apart(p0, p1, lo, hi, *bst)) return true;
+    if (!point) {
+      const double bt = *bst + tol;
+      if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+    }
     const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
     if (d2 < *bst * *bst) *bst = sqrt(d2);
     return *bst > 0.0;
@@ -564,18 +593,19 @@ __attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3],
   if (!g->bricks_valid) return false;
   BrickCand cand[kMaxBrickCands];
   const double tol = brick_tol(g, p0, p1, r);
+  const SpanBox sb = span_box(p0, p1);
   double bst = *best;
   const uint32_t n = surface_bricks_sorted(g, p0, p1, r, r + tol, cand);
   if (n <= kMaxBrickCands) {
     for (uint32_t c = 0; c < n && bst > 0.0; ++c) {
       const double lim = bst + tol;
       if (cand[c].gap2 > 0.0 && cand[c].gap2 >= lim * lim) break;  // sorted: so are the rest
-      brick_min(g, cand[c], p0, p1, point, &bst);
+      brick_min(g, cand[c], p0, p1, sb, tol, point, &bst);
     }
   } else {
     for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
       const double lim = bst + tol;
-      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, point, &bst);
+      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, sb, tol, point, &bst);
       return bst > 0.0;
     });
   }
@@ -588,10 +618,12 @@ __attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3],
 int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
   if (!g->bricks_valid) return -1;
   const double lim = c + brick_tol(g, p0, p1, c);
+  const SpanBox sb = span_box(p0, p1);
   const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
     return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
+      if (span_gap2(sb, lo, hi) >= lim * lim) return true;  // box_clear's quick test
       return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
     });
   });
