@@ -463,21 +463,26 @@ inline double voxel_gap_lower(double df_lb, double res) {
   if (!(x > 1.0)) return 0.0;  // also 0 and NaN: no claim beyond 0
   const double x2 = x * x;
   if (x2 > static_cast<double>(kGapTableMax)) return (x - 2.0 * kHalfDiag) * res;
-  const uint32_t n = static_cast<uint32_t>(ceil(x2 - 0.01));
+  const double y = x2 - 0.01;  // > 0.99: ceil by truncation (no libm call)
+  const uint32_t t = static_cast<uint32_t>(y);
+  const uint32_t n = static_cast<double>(t) < y ? t + 1u : t;
   return sqrt(static_cast<double>(kGapTable.g[n])) * res;
 }
 
 // The voxel of the half-open grid holding p (finite), as tdo_grid_world_to_voxel finds it (the
 // same span arithmetic), without its calls: false outside. Below -1 or from n + 1 on (in voxels)
 // the point is outside whatever the corrections do (each moves the index by one at most); in
-// between, truncation is floor for x >= 0 and [-1, 0) floors to -1.
+// between, truncation is floor for x >= 0 and [-1, 0) floors to -1. x may be one rounding step
+// off the quotient (a multiplication by 1 / res); the corrections settle the index either way,
+// and the outside tests hold with that slack (a point below -1 + 1e-15 voxels is outside too).
 inline bool voxel_of(const tdo_grid* g, const double p[3], int64_t v[3]) {
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
   const int32_t n[3] = {d.nx, d.ny, d.nz};
   const double r = d.res;
+  const double inv = 1.0 / r;  // the corrections below fix the one-off its rounding may cause
   for (int a = 0; a < 3; ++a) {
-    const double x = (p[a] - o[a]) / r;
+    const double x = (p[a] - o[a]) * inv;
     if (!(x >= -1.0) || !(x < static_cast<double>(n[a]) + 1.0)) return false;
     double i = x < 0.0 ? -1.0 : static_cast<double>(static_cast<int64_t>(x));
     if (o[a] + i * r > p[a]) i -= 1.0;
@@ -633,14 +638,14 @@ int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // What a piece walk's visitor decides for one piece.
 enum class PieceStep { skip, split, stop };
 
-// Walk the pieces of [a, b] depth first from the whole segment, halving each piece for which
+// Walk the pieces of [a, b] depth first from piece `from` (the whole segment: {0, 1}), halving each piece for which
 // visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit stopped the
 // walk, -1 when kMaxPieces or kStackCap was reached (the caller answers conservatively).
 template <class F>
-int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], F&& visit) {
+int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], Piece from, F&& visit) {
   Piece stack[kStackCap];
   int top = 0;
-  stack[top++] = Piece{0.0, 1.0};
+  stack[top++] = from;
   for (uint32_t pieces = 0; top > 0; ++pieces) {
     if (pieces >= kMaxPieces) return -1;
     const Piece pc = stack[--top];
@@ -657,7 +662,7 @@ int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], F&& vis
 
 bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (g->n_cubes == 0) return true;
-  const int walked = walk_pieces(g, a, b, [g, c](const PieceInfo& pi) {
+  const int walked = walk_pieces(g, a, b, Piece{0.0, 1.0}, [g, c](const PieceInfo& pi) {
     if (pi.lb >= c && pi.lb > 0.0) return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
@@ -674,29 +679,92 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
   return walked == 1;  // never "clear" on overflow
 }
 
+// The exact part of cubes_min for one leaf piece: lowers *best; false when it reached 0.
+bool leaf_min(const tdo_grid* g, const PieceInfo& pi, bool point, double* best) {
+  // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
+  // lower the result (the boxes' part of `best` is exact).
+  const double r = dmin(*best, pi.ub);
+  if (!bricks_min(g, pi.p0, pi.p1, point, r, best)) {
+    for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, best](const double* lo, const double* hi) {
+      if (far_apart(pi.p0, pi.p1, lo, hi, *best)) return true;
+      const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
+      if (d2 < *best * *best) *best = sqrt(d2);
+      return *best > 0.0;
+    });
+  }
+  return *best > 0.0;
+}
+
+// Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top).
+constexpr uint32_t kMinHeapCap = 48;
+struct HeapPiece {
+  Piece pc;
+  PieceInfo pi;
+};
+
+inline void heap_push(HeapPiece* h, uint32_t* n, const HeapPiece& x) {
+  uint32_t i = (*n)++;
+  while (i > 0u && h[(i - 1u) / 2u].pi.lb > x.pi.lb) {  // bounded by the heap's depth
+    h[i] = h[(i - 1u) / 2u];
+    i = (i - 1u) / 2u;
+  }
+  h[i] = x;
+}
+
+inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
+  const HeapPiece top = h[0];
+  const HeapPiece last = h[--*n];
+  uint32_t i = 0;
+  for (;;) {  // bounded by the heap's depth
+    uint32_t c = 2u * i + 1u;
+    if (c >= *n) break;
+    if (c + 1u < *n && h[c + 1u].pi.lb < h[c].pi.lb) ++c;
+    if (!(h[c].pi.lb < last.pi.lb)) break;
+    h[i] = h[c];
+    i = c;
+  }
+  if (*n > 0u) h[i] = last;
+  return top;
+}
+
 // min(best, distance from [a, b] to the cubes); `best` already holds the boxes' distance.
+// The pieces are those of walk_pieces (halvings of the whole segment down to voxel scale), taken
+// best first: smallest lower bound first, so the running minimum falls early and the walk ends
+// when the smallest waiting bound reaches it. The result is the minimum over the leaves of their
+// exact distances, whatever the order (a piece is dropped only when its bound shows that none of
+// its leaves can lower the minimum), so it equals the depth-first walk's, bit for bit. A full
+// heap sends the piece to the depth-first walk.
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
   const bool point = a == b;
-  const int walked = walk_pieces(g, a, b, [g, point, &best](const PieceInfo& pi) {
+  const auto visit = [g, point, &best](const PieceInfo& pi) {
     if (pi.lb >= best) return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
-    // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
-    // lower the result (the boxes' part of `best` is exact).
-    const double r = dmin(best, pi.ub);
-    if (!bricks_min(g, pi.p0, pi.p1, point, r, &best)) {
-      for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, &best](const double* lo, const double* hi) {
-        if (far_apart(pi.p0, pi.p1, lo, hi, best)) return true;
-        const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
-        if (d2 < best * best) best = sqrt(d2);
-        return best > 0.0;
-      });
+    return leaf_min(g, pi, point, &best) ? PieceStep::skip : PieceStep::stop;
+  };
+  HeapPiece heap[kMinHeapCap];
+  uint32_t n = 0;
+  heap_push(heap, &n, HeapPiece{Piece{0.0, 1.0}, piece_info(g, a, b, Piece{0.0, 1.0})});
+  for (uint32_t pieces = 0; n > 0u; ++pieces) {
+    if (pieces >= kMaxPieces) return 0.0;  // a bound reached (never on int32 grids): 0
+    const HeapPiece hp = heap_pop(heap, &n);
+    if (hp.pi.lb >= best) break;  // every waiting piece: none can lower the minimum
+    const PieceStep step = visit(hp.pi);
+    if (step == PieceStep::stop) return 0.0;
+    if (step == PieceStep::skip) continue;
+    if (n + 2u > kMinHeapCap) {
+      if (walk_pieces(g, a, b, hp.pc, visit) != 1) return 0.0;
+      continue;
     }
-    return best > 0.0 ? PieceStep::skip : PieceStep::stop;
-  });
-  // Stopped at zero, or a bound reached (a lower bound, never reached on int32 grids): 0.
-  return walked == 1 ? best : 0.0;
+    const double tm = 0.5 * (hp.pc.t0 + hp.pc.t1);
+    const Piece halves[2] = {Piece{hp.pc.t0, tm}, Piece{tm, hp.pc.t1}};
+    for (const Piece& half : halves) {
+      const PieceInfo pi = piece_info(g, a, b, half);
+      if (pi.lb < best) heap_push(heap, &n, HeapPiece{half, pi});
+    }
+  }
+  return best;
 }
 
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }
