@@ -796,3 +796,35 @@ TEST_F(CollisionTest,
   EXPECT_GT(said_clear, 100);
   EXPECT_GT(said_blocked, 100);
 }
+
+TEST_F(CollisionTest,
+       GivenALongSegmentAlongAWallOfCubes_WhenDistanceAsked_ThenItIsTheWallDistanceAtEveryCap) {
+  // Every piece of a segment parallel to a wall is about equally near it, so the best-first
+  // walk of the cube minimum keeps many pieces waiting (more than its heap holds: the
+  // depth-first fallback runs too); the answer must still be the exact minimum.
+  Rng rng(5);
+  for (int trial = 0; trial < 12; ++trial) {
+    World w;
+    const double res = rng.uniform(0.1, 0.6);
+    w.m = VoxelMap(120, 9, 6, res, v3(rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0), 0.0));
+    for (int32_t i = 0; i < w.m.nx; ++i)
+      for (int32_t k = 0; k < w.m.nz; ++k)
+        if (trial % 3 != 0 || rng.uniform() < 0.9) w.cubes.push_back(tdo_voxel{i, 0, k});
+    w.geometry.clear();
+    for (const tdo_voxel& v : w.cubes) w.geometry.push_back(tdo_test::cube_box(w.m, v));
+    ASSERT_EQ(load(grid(), w, 0.0), TDO_OK);
+    const double y = w.m.origin.y + res * rng.uniform(1.2, 8.0);
+    const double z = w.m.origin.z + res * rng.uniform(0.5, 5.5);
+    const tdo_vec3 a = v3(w.m.origin.x + res * rng.uniform(0.0, 3.0), y, z);
+    const tdo_vec3 b = v3(w.m.origin.x + res * rng.uniform(117.0, 120.0),
+                          y + res * rng.uniform(-0.1, 0.1), z + res * rng.uniform(-0.3, 0.3));
+    const double exact = brute_segment(w, a, b);
+    for (double cap : {0.5 * exact, exact, 2.0 * exact, 1e3}) {
+      const double d = tdo_collision_segment_distance(grid(), a, b, cap);
+      ASSERT_NEAR(d, std::min(exact, cap), 1e-9) << "trial " << trial << " cap " << cap;
+      ASSERT_LE(d, std::min(exact, cap) + 1e-12);
+    }
+    EXPECT_EQ(tdo_collision_segment_clear(grid(), a, b, exact - 1e-6), 1) << "trial " << trial;
+    EXPECT_EQ(tdo_collision_segment_clear(grid(), a, b, exact + 1e-6), 0) << "trial " << trial;
+  }
+}
