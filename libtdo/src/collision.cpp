@@ -531,13 +531,7 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   // within `half` of the midpoint, which lies in the voxel's box.
   const double lb = dmax(df_lb - off - kHalfDiag * res, voxel_gap_lower(df_lb, res));
   pi.lb = lb - half - (1e-7 * res + 1e-12);
-  // The nearest occupied voxel's centre is within df (rounded down: at most 1e-6 relative) of
-  // the voxel centre, so within df + off of the midpoint. Without boxes it is a cube, which
-  // holds the ball of radius res / 2 around its centre: its nearest point is res / 2 nearer (the
-  // nearest point of the union of cubes lies on a surface cube). A box-occupied voxel only
-  // meets its box somewhere inside: up to half a diagonal farther.
-  const double reach = g->n_boxes == 0 ? df * (1.0 + 1e-6) - 0.5 * res : df + kHalfDiag * res;
-  pi.ub = g->df_valid ? reach + off : HUGE_VAL;
+  pi.ub = g->df_valid ? df + off + kHalfDiag * res : HUGE_VAL;
   return pi;
 }
 
