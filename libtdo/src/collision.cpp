@@ -422,7 +422,8 @@ struct PieceInfo {
 
 // Table of voxel_gap2_lower: built at compile time from the integer offsets of the first octant
 // with sorted components up to kGapComponents (a larger component alone gives a gap^2 of at least
-// (kGapComponents - 1)^2 = 256 > 225, the gap^2 of offset (16, 0, 0), whose n is 256).
+// kGapComponents^2 = 289 > 225, the gap^2 of offset (16, 0, 0), which qualifies for every n up
+// to 256; the entries above kGapTableMax may miss offsets and are not used).
 constexpr uint32_t kGapComponents = 17;
 struct GapTable {
   uint16_t g[kGapTableMax + 1];
@@ -447,9 +448,7 @@ constexpr GapTable make_gap_table() {
 }
 constexpr GapTable kGapTable = make_gap_table();
 
-uint32_t voxel_gap2_lower(uint32_t n) {
-  return n <= kGapTableMax ? kGapTable.g[n] : 0xFFFFFFFFu;
-}
+uint32_t voxel_gap2_lower(uint32_t n) { return n <= kGapTableMax ? kGapTable.g[n] : 0xFFFFFFFFu; }
 
 namespace {
 
@@ -638,9 +637,10 @@ int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // What a piece walk's visitor decides for one piece.
 enum class PieceStep { skip, split, stop };
 
-// Walk the pieces of [a, b] depth first from piece `from` (the whole segment: {0, 1}), halving each piece for which
-// visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit stopped the
-// walk, -1 when kMaxPieces or kStackCap was reached (the caller answers conservatively).
+// Walk the pieces of [a, b] depth first from piece `from` (the whole segment: {0, 1}), halving each
+// piece for which visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit
+// stopped the walk, -1 when kMaxPieces or kStackCap was reached (the caller answers
+// conservatively).
 template <class F>
 int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], Piece from, F&& visit) {
   Piece stack[kStackCap];

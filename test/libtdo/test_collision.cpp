@@ -764,7 +764,8 @@ TEST_F(CollisionTest,
       random_segment(rng, w.m, &a, &b);
       if (s % 2 == 1) {
         // Graze a cube: both ends on a plane parallel to one of its faces, at offset c + eps.
-        const tdo_box cube = tdo_test::cube_box(w.m, w.cubes[rng.below(static_cast<uint32_t>(w.cubes.size()))]);
+        const tdo_box cube =
+            tdo_test::cube_box(w.m, w.cubes[rng.below(static_cast<uint32_t>(w.cubes.size()))]);
         const double eps = (rng.below(3) == 0 ? 0.0 : 1.0) * rng.uniform(-1e-6, 1e-6);
         const double z = cube.max.z + c + eps;
         a.z = z;
@@ -778,12 +779,10 @@ TEST_F(CollisionTest,
       const double exact = brute_segment(w, a, b);
       const int got = tdo_collision_segment_clear(grid(), a, b, c);
       if (exact < c - 1e-9 || !(exact > 1e-12)) {
-        ASSERT_EQ(got, 0) << "map " << map << " segment " << s << " c " << c << " exact "
-                          << exact;
+        ASSERT_EQ(got, 0) << "map " << map << " segment " << s << " c " << c << " exact " << exact;
       }
       if (exact > c + 1e-9) {
-        ASSERT_EQ(got, 1) << "map " << map << " segment " << s << " c " << c << " exact "
-                          << exact;
+        ASSERT_EQ(got, 1) << "map " << map << " segment " << s << " c " << c << " exact " << exact;
       }
       (got ? said_clear : said_blocked)++;
       for (double cap : {0.5 * res, 10.0 * res, 1e3}) {
