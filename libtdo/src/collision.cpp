@@ -660,42 +660,9 @@ int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], Piece f
   return 1;
 }
 
-// walk_pieces with the halves of a split piece taken smaller bound first: the same pieces when
-// every one is visited, so the same "clear"; a violation is met sooner (where the field puts the
-// obstacles nearest), and every other outcome is "not clear" in either order.
-template <class F>
-int walk_pieces_nearest_first(const tdo_grid* g, const double a[3], const double b[3], F&& visit) {
-  struct Item {
-    Piece pc;
-    PieceInfo pi;
-  };
-  Item stack[kStackCap];
-  int top = 0;
-  stack[top++] = Item{Piece{0.0, 1.0}, piece_info(g, a, b, Piece{0.0, 1.0})};
-  for (uint32_t pieces = 0; top > 0; ++pieces) {
-    if (pieces >= kMaxPieces) return -1;
-    const Item it = stack[--top];
-    const PieceStep step = visit(it.pi);
-    if (step == PieceStep::stop) return 0;
-    if (step == PieceStep::skip) continue;
-    if (top + 2 > kStackCap) return -1;
-    const double tm = 0.5 * (it.pc.t0 + it.pc.t1);
-    const Piece lo{it.pc.t0, tm}, hi{tm, it.pc.t1};
-    stack[top] = Item{hi, piece_info(g, a, b, hi)};
-    stack[top + 1] = Item{lo, piece_info(g, a, b, lo)};  // on top (popped first) on a tie
-    if (stack[top].pi.lb < stack[top + 1].pi.lb) {       // the smaller bound on top
-      const Item t = stack[top];
-      stack[top] = stack[top + 1];
-      stack[top + 1] = t;
-    }
-    top += 2;
-  }
-  return 1;
-}
-
 bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (g->n_cubes == 0) return true;
-  const int walked = walk_pieces_nearest_first(g, a, b, [g, c](const PieceInfo& pi) {
+  const int walked = walk_pieces(g, a, b, Piece{0.0, 1.0}, [g, c](const PieceInfo& pi) {
     if (pi.lb >= c && pi.lb > 0.0) return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
