@@ -695,16 +695,36 @@ bool leaf_min(const tdo_grid* g, const PieceInfo& pi, bool point, double* best) 
   return *best > 0.0;
 }
 
-// Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top).
+// Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top): the
+// parameters and what piece_info found, 40 bytes (the end points are recomputed, bit for bit:
+// seg_point), so the heap stays at 1.9 KB of stack (embedded targets: docs/embedded.md).
 constexpr uint32_t kMinHeapCap = 48;
 struct HeapPiece {
   Piece pc;
-  PieceInfo pi;
+  double lb, ub;  // m, as PieceInfo
+  uint8_t leaf, in_cube;
 };
+
+inline HeapPiece heap_piece(const Piece& pc, const PieceInfo& pi) {
+  return HeapPiece{pc, pi.lb, pi.ub, pi.leaf ? uint8_t{1} : uint8_t{0},
+                   pi.in_cube ? uint8_t{1} : uint8_t{0}};
+}
+
+// The PieceInfo piece_info gave for hp.pc on [a, b].
+inline PieceInfo unpack(const HeapPiece& hp, const double a[3], const double b[3]) {
+  PieceInfo pi;
+  seg_point(a, b, hp.pc.t0, pi.p0);
+  seg_point(a, b, hp.pc.t1, pi.p1);
+  pi.lb = hp.lb;
+  pi.ub = hp.ub;
+  pi.leaf = hp.leaf != 0u;
+  pi.in_cube = hp.in_cube != 0u;
+  return pi;
+}
 
 inline void heap_push(HeapPiece* h, uint32_t* n, const HeapPiece& x) {
   uint32_t i = (*n)++;
-  while (i > 0u && h[(i - 1u) / 2u].pi.lb > x.pi.lb) {  // bounded by the heap's depth
+  while (i > 0u && h[(i - 1u) / 2u].lb > x.lb) {  // bounded by the heap's depth
     h[i] = h[(i - 1u) / 2u];
     i = (i - 1u) / 2u;
   }
@@ -718,8 +738,8 @@ inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
   for (;;) {  // bounded by the heap's depth
     uint32_t c = 2u * i + 1u;
     if (c >= *n) break;
-    if (c + 1u < *n && h[c + 1u].pi.lb < h[c].pi.lb) ++c;
-    if (!(h[c].pi.lb < last.pi.lb)) break;
+    if (c + 1u < *n && h[c + 1u].lb < h[c].lb) ++c;
+    if (!(h[c].lb < last.lb)) break;
     h[i] = h[c];
     i = c;
   }
@@ -745,12 +765,12 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
   };
   HeapPiece heap[kMinHeapCap];
   uint32_t n = 0;
-  heap_push(heap, &n, HeapPiece{Piece{0.0, 1.0}, piece_info(g, a, b, Piece{0.0, 1.0})});
+  heap_push(heap, &n, heap_piece(Piece{0.0, 1.0}, piece_info(g, a, b, Piece{0.0, 1.0})));
   for (uint32_t pieces = 0; n > 0u; ++pieces) {
     if (pieces >= kMaxPieces) return 0.0;  // a bound reached (never on int32 grids): 0
     const HeapPiece hp = heap_pop(heap, &n);
-    if (hp.pi.lb >= best) break;  // every waiting piece: none can lower the minimum
-    const PieceStep step = visit(hp.pi);
+    if (hp.lb >= best) break;  // every waiting piece: none can lower the minimum
+    const PieceStep step = visit(unpack(hp, a, b));
     if (step == PieceStep::stop) return 0.0;
     if (step == PieceStep::skip) continue;
     if (n + 2u > kMinHeapCap) {
@@ -761,7 +781,7 @@ double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double
     const Piece halves[2] = {Piece{hp.pc.t0, tm}, Piece{tm, hp.pc.t1}};
     for (const Piece& half : halves) {
       const PieceInfo pi = piece_info(g, a, b, half);
-      if (pi.lb < best) heap_push(heap, &n, HeapPiece{half, pi});
+      if (pi.lb < best) heap_push(heap, &n, heap_piece(half, pi));
     }
   }
   return best;
