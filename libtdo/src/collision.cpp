@@ -418,6 +418,80 @@ struct PieceInfo {
   bool in_cube;         // the midpoint lies in a cube: distance 0
 };
 
+}  // namespace
+
+// Table of voxel_gap2_lower: built at compile time from the integer offsets of the first octant
+// with sorted components up to kGapComponents (a larger component alone gives a gap^2 of at least
+// kGapComponents^2 = 289 > 225, the gap^2 of offset (16, 0, 0), which qualifies for every n up
+// to 256; the entries above kGapTableMax may miss offsets and are not used).
+constexpr uint32_t kGapComponents = 17;
+struct GapTable {
+  uint16_t g[kGapTableMax + 1];
+};
+constexpr GapTable make_gap_table() {
+  constexpr uint32_t kTop = 3 * kGapComponents * kGapComponents;
+  uint16_t at[kTop + 1] = {};  // per exact squared offset: the smallest gap^2 (0xFFFF: none)
+  for (uint32_t v = 0; v <= kTop; ++v) at[v] = 0xFFFFu;
+  for (uint32_t a = 0; a <= kGapComponents; ++a)
+    for (uint32_t b = a; b <= kGapComponents; ++b)
+      for (uint32_t c = b; c <= kGapComponents; ++c) {
+        const uint32_t v = a * a + b * b + c * c;
+        const uint32_t e = (a > 0 ? (a - 1) * (a - 1) : 0) + (b > 0 ? (b - 1) * (b - 1) : 0) +
+                           (c > 0 ? (c - 1) * (c - 1) : 0);
+        if (e < at[v]) at[v] = static_cast<uint16_t>(e);
+      }
+  for (uint32_t v = kTop; v > 0; --v)  // suffix minimum: every offset with |d|^2 >= v
+    if (at[v] < at[v - 1]) at[v - 1] = at[v];
+  GapTable t{};
+  for (uint32_t n = 0; n <= kGapTableMax; ++n) t.g[n] = at[n];
+  return t;
+}
+constexpr GapTable kGapTable = make_gap_table();
+
+uint32_t voxel_gap2_lower(uint32_t n) { return n <= kGapTableMax ? kGapTable.g[n] : 0xFFFFFFFFu; }
+
+namespace {
+
+// Lower bound (m) of the distance between the closed box of a voxel and every occupied voxel
+// cube, from df_lb (m), a lower bound of the voxel's distance field entry. The squared centre
+// offset in voxels is an integer of at least n = ceil((df_lb / res)^2 - 0.01) (df is rounded down
+// by far less than 0.01 voxel^2 up to the table's end); beyond the table, |e| >= |d| - sqrt(3)
+// for the per-axis gaps e_i = max(|d_i| - 1, 0).
+inline double voxel_gap_lower(double df_lb, double res) {
+  const double x = df_lb / res;
+  if (!(x > 1.0)) return 0.0;  // also 0 and NaN: no claim beyond 0
+  const double x2 = x * x;
+  if (x2 > static_cast<double>(kGapTableMax)) return (x - 2.0 * kHalfDiag) * res;
+  const double y = x2 - 0.01;  // > 0.99: ceil by truncation (no libm call)
+  const uint32_t t = static_cast<uint32_t>(y);
+  const uint32_t n = static_cast<double>(t) < y ? t + 1u : t;
+  return sqrt(static_cast<double>(kGapTable.g[n])) * res;
+}
+
+// The voxel of the half-open grid holding p (finite), as tdo_grid_world_to_voxel finds it (the
+// same span arithmetic), without its calls: false outside. Below -1 or from n + 1 on (in voxels)
+// the point is outside whatever the corrections do (each moves the index by one at most); in
+// between, truncation is floor for x >= 0 and [-1, 0) floors to -1. x may be one rounding step
+// off the quotient (a multiplication by 1 / res); the corrections settle the index either way,
+// and the outside tests hold with that slack (a point below -1 + 1e-15 voxels is outside too).
+inline bool voxel_of(const tdo_grid* g, const double p[3], int64_t v[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  const double r = d.res;
+  const double inv = 1.0 / r;  // the corrections below fix the one-off its rounding may cause
+  for (int a = 0; a < 3; ++a) {
+    const double x = (p[a] - o[a]) * inv;
+    if (!(x >= -1.0) || !(x < static_cast<double>(n[a]) + 1.0)) return false;
+    double i = x < 0.0 ? -1.0 : static_cast<double>(static_cast<int64_t>(x));
+    if (o[a] + i * r > p[a]) i -= 1.0;
+    if (!(o[a] + (i + 1.0) * r > p[a])) i += 1.0;
+    if (i < 0.0 || i >= static_cast<double>(n[a])) return false;
+    v[a] = static_cast<int64_t>(i);
+  }
+  return true;
+}
+
 PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
   PieceInfo pi;
   seg_point(a, b, pc.t0, pi.p0);
@@ -432,24 +506,31 @@ PieceInfo piece_info(const tdo_grid* g, const double a[3], const double b[3], co
   const double res = g->desc.res;
   pi.leaf = !(2.0 * half > res);
   pi.in_cube = false;
-  tdo_voxel v;
-  const tdo_vec3 mv{m[0], m[1], m[2]};
-  if (!tdo_grid_world_to_voxel(g, mv, &v)) {
+  int64_t v[3];
+  if (!voxel_of(g, m, v)) {
     // Outside the (half-open) grid: the cubes lie inside the bounds.
     pi.lb = bounds_distance(g, m) - half;
     pi.ub = HUGE_VAL;
     if (inside_bounds(g, m)) pi.lb = -1.0;  // on a max face: no bound used
     return pi;
   }
-  const int64_t idx = v.i + v.j * g->stride_y + v.k * g->stride_z;
+  const int64_t idx = v[0] + v[1] * g->stride_y + v[2] * g->stride_z;
   pi.in_cube = (g->flags[idx] & kFlagCube) != 0;
-  const tdo_vec3 c = tdo_grid_voxel_center(g, v);
-  const double dx = m[0] - c.x, dy = m[1] - c.y, dz = m[2] - c.z;
+  const tdo_grid_desc& d = g->desc;
+  // The voxel centre as tdo_grid_voxel_center computes it.
+  const double dx = m[0] - (d.origin.x + (static_cast<double>(v[0]) + 0.5) * res);
+  const double dy = m[1] - (d.origin.y + (static_cast<double>(v[1]) + 0.5) * res);
+  const double dz = m[2] - (d.origin.z + (static_cast<double>(v[2]) + 0.5) * res);
   const double off = sqrt(dx * dx + dy * dy + dz * dz);
   df_ensure(g);  // built on the first query after a finish
   const double df = static_cast<double>(g->df[idx]);
   const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;  // map updates
-  pi.lb = df_lb - off - kHalfDiag * res - half - (1e-7 * res + 1e-12);
+  // Two lower bounds of the distance from the voxel's points to every occupied cube: through the
+  // midpoint (its offset from the centre counted) and through the voxel's whole box (the integer
+  // offsets of the voxels, docs/design.md s.0 "Distance to the cubes"); every piece point is
+  // within `half` of the midpoint, which lies in the voxel's box.
+  const double lb = dmax(df_lb - off - kHalfDiag * res, voxel_gap_lower(df_lb, res));
+  pi.lb = lb - half - (1e-7 * res + 1e-12);
   pi.ub = g->df_valid ? df + off + kHalfDiag * res : HUGE_VAL;
   return pi;
 }
@@ -489,11 +570,17 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
   return quick_tol(r, scale);
 }
 
-// Lower *bst (m) to the distance of [p0, p1] to the surface cubes of brick c.
+// Lower *bst (m) to the distance of [p0, p1] (span box sb) to the surface cubes of brick c.
+// A cube whose gap to the span box reaches *bst + tol (tol: brick_tol at a limit >= *bst) cannot
+// lower it (box_min's quick test).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
-                      bool point, double* bst) {
+                      const SpanBox& sb, double tol, bool point, double* bst) {
   for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
     if (far_apart(p0, p1, lo, hi, *bst)) return true;
+    if (!point) {
+      const double bt = *bst + tol;
+      if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+    }
     const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
     if (d2 < *bst * *bst) *bst = sqrt(d2);
     return *bst > 0.0;
@@ -511,18 +598,19 @@ __attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3],
   if (!g->bricks_valid) return false;
   BrickCand cand[kMaxBrickCands];
   const double tol = brick_tol(g, p0, p1, r);
+  const SpanBox sb = span_box(p0, p1);
   double bst = *best;
   const uint32_t n = surface_bricks_sorted(g, p0, p1, r, r + tol, cand);
   if (n <= kMaxBrickCands) {
     for (uint32_t c = 0; c < n && bst > 0.0; ++c) {
       const double lim = bst + tol;
       if (cand[c].gap2 > 0.0 && cand[c].gap2 >= lim * lim) break;  // sorted: so are the rest
-      brick_min(g, cand[c], p0, p1, point, &bst);
+      brick_min(g, cand[c], p0, p1, sb, tol, point, &bst);
     }
   } else {
     for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
       const double lim = bst + tol;
-      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, point, &bst);
+      if (!(c.gap2 > 0.0 && c.gap2 >= lim * lim)) brick_min(g, c, p0, p1, sb, tol, point, &bst);
       return bst > 0.0;
     });
   }
@@ -535,10 +623,12 @@ __attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3],
 int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
   if (!g->bricks_valid) return -1;
   const double lim = c + brick_tol(g, p0, p1, c);
+  const SpanBox sb = span_box(p0, p1);
   const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
     return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
+      if (span_gap2(sb, lo, hi) >= lim * lim) return true;  // box_clear's quick test
       return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
     });
   });
@@ -548,14 +638,15 @@ int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // What a piece walk's visitor decides for one piece.
 enum class PieceStep { skip, split, stop };
 
-// Walk the pieces of [a, b] depth first from the whole segment, halving each piece for which
-// visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit stopped the
-// walk, -1 when kMaxPieces or kStackCap was reached (the caller answers conservatively).
+// Walk the pieces of [a, b] depth first from piece `from` (the whole segment: {0, 1}), halving each
+// piece for which visit(PieceInfo) returns split. @return 1 when every piece was done, 0 when visit
+// stopped the walk, -1 when kMaxPieces or kStackCap was reached (the caller answers
+// conservatively).
 template <class F>
-int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], F&& visit) {
+int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], Piece from, F&& visit) {
   Piece stack[kStackCap];
   int top = 0;
-  stack[top++] = Piece{0.0, 1.0};
+  stack[top++] = from;
   for (uint32_t pieces = 0; top > 0; ++pieces) {
     if (pieces >= kMaxPieces) return -1;
     const Piece pc = stack[--top];
@@ -572,7 +663,7 @@ int walk_pieces(const tdo_grid* g, const double a[3], const double b[3], F&& vis
 
 bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double c) {
   if (g->n_cubes == 0) return true;
-  const int walked = walk_pieces(g, a, b, [g, c](const PieceInfo& pi) {
+  const int walked = walk_pieces(g, a, b, Piece{0.0, 1.0}, [g, c](const PieceInfo& pi) {
     if (pi.lb >= c && pi.lb > 0.0) return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
@@ -589,29 +680,112 @@ bool cubes_clear(const tdo_grid* g, const double a[3], const double b[3], double
   return walked == 1;  // never "clear" on overflow
 }
 
+// The exact part of cubes_min for one leaf piece: lowers *best; false when it reached 0.
+bool leaf_min(const tdo_grid* g, const PieceInfo& pi, bool point, double* best) {
+  // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
+  // lower the result (the boxes' part of `best` is exact).
+  const double r = dmin(*best, pi.ub);
+  if (!bricks_min(g, pi.p0, pi.p1, point, r, best)) {
+    for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, best](const double* lo, const double* hi) {
+      if (far_apart(pi.p0, pi.p1, lo, hi, *best)) return true;
+      const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
+      if (d2 < *best * *best) *best = sqrt(d2);
+      return *best > 0.0;
+    });
+  }
+  return *best > 0.0;
+}
+
+// Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top): the
+// parameters and what piece_info found, 40 bytes (the end points are recomputed, bit for bit:
+// seg_point), so the heap stays at 1.9 KB of stack (embedded targets: docs/embedded.md).
+constexpr uint32_t kMinHeapCap = 48;
+struct HeapPiece {
+  Piece pc;
+  double lb, ub;  // m, as PieceInfo
+  uint8_t leaf, in_cube;
+};
+
+inline HeapPiece heap_piece(const Piece& pc, const PieceInfo& pi) {
+  return HeapPiece{pc, pi.lb, pi.ub, pi.leaf ? uint8_t{1} : uint8_t{0},
+                   pi.in_cube ? uint8_t{1} : uint8_t{0}};
+}
+
+// The PieceInfo piece_info gave for hp.pc on [a, b].
+inline PieceInfo unpack(const HeapPiece& hp, const double a[3], const double b[3]) {
+  PieceInfo pi;
+  seg_point(a, b, hp.pc.t0, pi.p0);
+  seg_point(a, b, hp.pc.t1, pi.p1);
+  pi.lb = hp.lb;
+  pi.ub = hp.ub;
+  pi.leaf = hp.leaf != 0u;
+  pi.in_cube = hp.in_cube != 0u;
+  return pi;
+}
+
+inline void heap_push(HeapPiece* h, uint32_t* n, const HeapPiece& x) {
+  uint32_t i = (*n)++;
+  while (i > 0u && h[(i - 1u) / 2u].lb > x.lb) {  // bounded by the heap's depth
+    h[i] = h[(i - 1u) / 2u];
+    i = (i - 1u) / 2u;
+  }
+  h[i] = x;
+}
+
+inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
+  const HeapPiece top = h[0];
+  const HeapPiece last = h[--*n];
+  uint32_t i = 0;
+  for (;;) {  // bounded by the heap's depth
+    uint32_t c = 2u * i + 1u;
+    if (c >= *n) break;
+    if (c + 1u < *n && h[c + 1u].lb < h[c].lb) ++c;
+    if (!(h[c].lb < last.lb)) break;
+    h[i] = h[c];
+    i = c;
+  }
+  if (*n > 0u) h[i] = last;
+  return top;
+}
+
 // min(best, distance from [a, b] to the cubes); `best` already holds the boxes' distance.
+// The pieces are those of walk_pieces (halvings of the whole segment down to voxel scale), taken
+// best first: smallest lower bound first, so the running minimum falls early and the walk ends
+// when the smallest waiting bound reaches it. The result is the minimum over the leaves of their
+// exact distances, whatever the order (a piece is dropped only when its bound shows that none of
+// its leaves can lower the minimum), so it equals the depth-first walk's, bit for bit. A full
+// heap sends the piece to the depth-first walk.
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
   const bool point = a == b;
-  const int walked = walk_pieces(g, a, b, [g, point, &best](const PieceInfo& pi) {
+  const auto visit = [g, point, &best](const PieceInfo& pi) {
     if (pi.lb >= best) return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
-    // The nearest geometry of this piece is within ub of its midpoint; a farther cube cannot
-    // lower the result (the boxes' part of `best` is exact).
-    const double r = dmin(best, pi.ub);
-    if (!bricks_min(g, pi.p0, pi.p1, point, r, &best)) {
-      for_each_cube_near(g, pi.p0, pi.p1, r, [&pi, &best](const double* lo, const double* hi) {
-        if (far_apart(pi.p0, pi.p1, lo, hi, best)) return true;
-        const double d2 = segment_box_d2(pi.p0, pi.p1, lo, hi);
-        if (d2 < best * best) best = sqrt(d2);
-        return best > 0.0;
-      });
+    return leaf_min(g, pi, point, &best) ? PieceStep::skip : PieceStep::stop;
+  };
+  HeapPiece heap[kMinHeapCap];
+  uint32_t n = 0;
+  heap_push(heap, &n, heap_piece(Piece{0.0, 1.0}, piece_info(g, a, b, Piece{0.0, 1.0})));
+  for (uint32_t pieces = 0; n > 0u; ++pieces) {
+    if (pieces >= kMaxPieces) return 0.0;  // a bound reached (never on int32 grids): 0
+    const HeapPiece hp = heap_pop(heap, &n);
+    if (hp.lb >= best) break;  // every waiting piece: none can lower the minimum
+    const PieceStep step = visit(unpack(hp, a, b));
+    if (step == PieceStep::stop) return 0.0;
+    if (step == PieceStep::skip) continue;
+    if (n + 2u > kMinHeapCap) {
+      if (walk_pieces(g, a, b, hp.pc, visit) != 1) return 0.0;
+      continue;
     }
-    return best > 0.0 ? PieceStep::skip : PieceStep::stop;
-  });
-  // Stopped at zero, or a bound reached (a lower bound, never reached on int32 grids): 0.
-  return walked == 1 ? best : 0.0;
+    const double tm = 0.5 * (hp.pc.t0 + hp.pc.t1);
+    const Piece halves[2] = {Piece{hp.pc.t0, tm}, Piece{tm, hp.pc.t1}};
+    for (const Piece& half : halves) {
+      const PieceInfo pi = piece_info(g, a, b, half);
+      if (pi.lb < best) heap_push(heap, &n, heap_piece(half, pi));
+    }
+  }
+  return best;
 }
 
 bool ready(const tdo_grid* g) { return g != nullptr && g->ready && g->nvox > 0; }

@@ -48,6 +48,17 @@ struct PointHint {
  */
 double point_distance_hinted(const tdo_grid* grid, tdo_vec3 p, double cap, PointHint* h);
 
+/** Largest squared offset (voxel^2) voxel_gap2_lower tabulates. */
+constexpr uint32_t kGapTableMax = 256;
+
+/**
+ * The smallest squared gap (voxel^2) between the closed cubes of two voxels whose integer centre
+ * offset d has |d|^2 >= n: min of sum_i max(|d_i| - 1, 0)^2 over those offsets. 0xFFFFFFFF for
+ * n > kGapTableMax (not tabulated). A voxel whose distance field entry shows no occupied voxel
+ * within sqrt(n) voxels is that far (squared) from every occupied cube with its whole box.
+ */
+uint32_t voxel_gap2_lower(uint32_t n);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

@@ -738,3 +738,109 @@ TEST_F(CollisionTest, GivenSegmentsTangentNearABoxEdge_WhenQueried_ThenExactAtTh
   EXPECT_GT(clear, 150);
   EXPECT_GT(blocked, 150);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The voxel-box bound of the cube walk (collision_internal.h, voxel_gap2_lower).
+
+TEST(CollisionGapTable, GivenEverySquaredOffset_WhenTabulated_ThenItIsTheBruteForceSmallestGap) {
+  // Brute force over signed offsets: a component of 25 or more alone gives a gap^2 of 576,
+  // above the gap^2 225 of offset (16, 0, 0), which qualifies for every tabulated n.
+  for (uint32_t n = 0; n <= tdo_internal::kGapTableMax; ++n) {
+    uint32_t best = 0xFFFFFFFFu;
+    for (int a = -25; a <= 25; ++a)
+      for (int b = -25; b <= 25; ++b)
+        for (int c = -25; c <= 25; ++c) {
+          if (static_cast<uint32_t>(a * a + b * b + c * c) < n) continue;
+          const auto gap = [](int x) { return std::max(std::abs(x) - 1, 0); };
+          const uint32_t e =
+              static_cast<uint32_t>(gap(a) * gap(a) + gap(b) * gap(b) + gap(c) * gap(c));
+          best = std::min(best, e);
+        }
+    ASSERT_EQ(tdo_internal::voxel_gap2_lower(n), best) << "n " << n;
+  }
+  EXPECT_EQ(tdo_internal::voxel_gap2_lower(3), 0u);  // a 26-neighbour touches
+  EXPECT_EQ(tdo_internal::voxel_gap2_lower(4), 1u);  // (2, 0, 0): one voxel between
+  EXPECT_EQ(tdo_internal::voxel_gap2_lower(tdo_internal::kGapTableMax + 1), 0xFFFFFFFFu);
+}
+
+TEST_F(CollisionTest,
+       GivenSparseCubes_WhenSegmentsPassNearThem_ThenClearAndDistanceMatchTheBruteForce) {
+  // Few cubes, so most voxels lie far from every cube and the voxel-box bound decides there;
+  // segments end at random points, at cube faces, edges and corners, or graze a face at an
+  // offset around the clearance (also 0: touching is never clear).
+  Rng rng(77);
+  int said_clear = 0, said_blocked = 0;
+  for (int map = 0; map < 20; ++map) {
+    const double res = rng.uniform(0.2, 1.0);
+    const World w = random_world(rng, 18, 16, 12, res, 0, 1.0, 0.004);
+    if (w.cubes.empty()) continue;
+    ASSERT_EQ(load(grid(), w, 0.0), TDO_OK);
+    for (int s = 0; s < 60; ++s) {
+      const double c = s % 3 == 0 ? 0.0 : rng.uniform(0.0, 3.0 * res);
+      tdo_vec3 a, b;
+      random_segment(rng, w.m, &a, &b);
+      if (s % 2 == 1) {
+        // Graze a cube: both ends on a plane parallel to one of its faces, at offset c + eps.
+        const tdo_box cube =
+            tdo_test::cube_box(w.m, w.cubes[rng.below(static_cast<uint32_t>(w.cubes.size()))]);
+        const double eps = (rng.below(3) == 0 ? 0.0 : 1.0) * rng.uniform(-1e-6, 1e-6);
+        const double z = cube.max.z + c + eps;
+        a.z = z;
+        b.z = z;
+        a.x = cube.min.x + rng.uniform(-3.0, 3.0) * res;
+        b.x = cube.min.x + rng.uniform(-3.0, 3.0) * res;
+        a.y = cube.min.y + (rng.below(2) == 0 ? 0.0 : rng.uniform(-3.0, 3.0) * res);
+        b.y = rng.below(2) == 0 ? a.y : cube.max.y + rng.uniform(-3.0, 3.0) * res;
+        if (!w.inside(a) || !w.inside(b)) continue;
+      }
+      const double exact = brute_segment(w, a, b);
+      const int got = tdo_collision_segment_clear(grid(), a, b, c);
+      if (exact < c - 1e-9 || !(exact > 1e-12)) {
+        ASSERT_EQ(got, 0) << "map " << map << " segment " << s << " c " << c << " exact " << exact;
+      }
+      if (exact > c + 1e-9) {
+        ASSERT_EQ(got, 1) << "map " << map << " segment " << s << " c " << c << " exact " << exact;
+      }
+      (got ? said_clear : said_blocked)++;
+      for (double cap : {0.5 * res, 10.0 * res, 1e3}) {
+        const double d = tdo_collision_segment_distance(grid(), a, b, cap);
+        ASSERT_NEAR(d, std::min(exact, cap), 1e-9) << "map " << map << " segment " << s;
+        ASSERT_LE(d, std::min(exact, cap) + 1e-12);
+      }
+    }
+  }
+  EXPECT_GT(said_clear, 100);
+  EXPECT_GT(said_blocked, 100);
+}
+
+TEST_F(CollisionTest,
+       GivenALongSegmentAlongAWallOfCubes_WhenDistanceAsked_ThenItIsTheWallDistanceAtEveryCap) {
+  // Every piece of a segment parallel to a wall is about equally near it, so the best-first
+  // walk of the cube minimum keeps many pieces waiting (more than its heap holds: the
+  // depth-first fallback runs too); the answer must still be the exact minimum.
+  Rng rng(5);
+  for (int trial = 0; trial < 12; ++trial) {
+    World w;
+    const double res = rng.uniform(0.1, 0.6);
+    w.m = VoxelMap(120, 9, 6, res, v3(rng.uniform(-3.0, 3.0), rng.uniform(-3.0, 3.0), 0.0));
+    for (int32_t i = 0; i < w.m.nx; ++i)
+      for (int32_t k = 0; k < w.m.nz; ++k)
+        if (trial % 3 != 0 || rng.uniform() < 0.9) w.cubes.push_back(tdo_voxel{i, 0, k});
+    w.geometry.clear();
+    for (const tdo_voxel& v : w.cubes) w.geometry.push_back(tdo_test::cube_box(w.m, v));
+    ASSERT_EQ(load(grid(), w, 0.0), TDO_OK);
+    const double y = w.m.origin.y + res * rng.uniform(1.2, 8.0);
+    const double z = w.m.origin.z + res * rng.uniform(0.5, 5.5);
+    const tdo_vec3 a = v3(w.m.origin.x + res * rng.uniform(0.0, 3.0), y, z);
+    const tdo_vec3 b = v3(w.m.origin.x + res * rng.uniform(117.0, 120.0),
+                          y + res * rng.uniform(-0.1, 0.1), z + res * rng.uniform(-0.3, 0.3));
+    const double exact = brute_segment(w, a, b);
+    for (double cap : {0.5 * exact, exact, 2.0 * exact, 1e3}) {
+      const double d = tdo_collision_segment_distance(grid(), a, b, cap);
+      ASSERT_NEAR(d, std::min(exact, cap), 1e-9) << "trial " << trial << " cap " << cap;
+      ASSERT_LE(d, std::min(exact, cap) + 1e-12);
+    }
+    EXPECT_EQ(tdo_collision_segment_clear(grid(), a, b, exact - 1e-6), 1) << "trial " << trial;
+    EXPECT_EQ(tdo_collision_segment_clear(grid(), a, b, exact + 1e-6), 0) << "trial " << trial;
+  }
+}
