@@ -50,6 +50,9 @@ void build(tdo_grid* g, const tdo_grid_desc& d, const Obstacles& o, double clear
   for (const auto& c : o.cubes)
     ASSERT_EQ(tdo_grid_add_voxel(g, std::get<0>(c), std::get<1>(c), std::get<2>(c)), TDO_OK);
   ASSERT_EQ(tdo_grid_finish(g, clearance), TDO_OK);
+  // The legal steps now (computed on first use otherwise), so that an update keeps them current
+  // and expect_same_grid compares them; the distance field stays for the update to build.
+  tdo_internal::moves_ensure(g);
 }
 
 tdo_box random_box(Rng* rng, const tdo_grid_desc& d, double max_edge) {
