@@ -101,6 +101,9 @@ void PlannerNode::on_map(const void* data, std::size_t size) {
     refuse("map", c);
     return;
   }
+  // The grid's one-off work (legal steps, distance field) now, on map arrival, not in the first
+  // request's plan. It cannot fail on the grid map_to_grid just finished.
+  (void)tdo_grid_prepare(tdo_planner_grid(planner_));
   updates_.on_map(m.map_id);
   stale_why_.clear();
   have_map_ = true;

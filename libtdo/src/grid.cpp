@@ -612,6 +612,40 @@ void mark_surface(tdo_grid* g) {
     }
 }
 
+constexpr uint64_t kEveryByte = 0x0101010101010101ull;  // one in every byte of a word
+
+// Blocked = occupied on every voxel, other bits but occupied and cube cleared: 8 voxels per
+// 64-bit word, the rest one at a time.
+void reset_blocked(tdo_grid* g) {
+  constexpr uint64_t kKeep = kEveryByte * (kFlagOccupied | kFlagCube);
+  constexpr uint64_t kOcc = kEveryByte * kFlagOccupied;
+  static_assert(kFlagBlocked == kFlagOccupied << 2, "blocked is occupied shifted by two");
+  const uint32_t n = g->nvox, words = n / 8u;
+  for (uint32_t w = 0; w < words; ++w) {
+    uint64_t x;
+    memcpy(&x, g->flags + 8u * w, sizeof x);
+    x = (x & kKeep) | ((x & kOcc) << 2);
+    memcpy(g->flags + 8u * w, &x, sizeof x);
+  }
+  for (uint32_t v = 8u * words; v < n; ++v)
+    g->flags[v] = static_cast<uint8_t>((g->flags[v] & (kFlagOccupied | kFlagCube)) |
+                                       ((g->flags[v] & kFlagOccupied) != 0 ? kFlagBlocked : 0));
+}
+
+// Blocked voxels: the blocked bits of 8 voxels per word, counted with one popcount.
+uint32_t count_blocked(const tdo_grid* g) {
+  constexpr uint64_t kBlocked = kEveryByte * kFlagBlocked;
+  const uint32_t n = g->nvox, words = n / 8u;
+  uint32_t blocked = 0;
+  for (uint32_t w = 0; w < words; ++w) {
+    uint64_t x;
+    memcpy(&x, g->flags + 8u * w, sizeof x);
+    blocked += static_cast<uint32_t>(__builtin_popcountll(x & kBlocked));
+  }
+  for (uint32_t v = 8u * words; v < n; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
+  return blocked;
+}
+
 }  // namespace
 
 uint32_t box_ref_capacity(const GridCapacity& cap) {
@@ -686,6 +720,14 @@ void df_ensure(const tdo_grid* cg) {
   g->df_built = 1;
 }
 
+void moves_ensure(const tdo_grid* cg) {
+  if (cg == nullptr || cg->moves_built || !cg->ready || cg->nvox == 0) return;
+  // As df_ensure: the legal steps are a cache of the finished grid, filled once per finish.
+  tdo_grid* g = const_cast<tdo_grid*>(cg);
+  compute_moves(g);
+  g->moves_built = 1;
+}
+
 }  // namespace tdo_internal
 
 using namespace tdo_internal;
@@ -714,6 +756,7 @@ extern "C" tdo_status tdo_grid_reset(tdo_grid* g, const tdo_grid_desc* desc) {
   g->clearance = -1.0;
   g->ready = 0;
   g->df_built = 0;
+  g->moves_built = 0;
   return TDO_OK;
 }
 
@@ -750,9 +793,7 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
   if (g == nullptr || g->nvox == 0 || !isfinite(clearance) || clearance < 0.0)
     return TDO_ERR_INVALID_ARGUMENT;
   g->ready = 0;
-  for (uint32_t v = 0; v < g->nvox; ++v)
-    g->flags[v] = static_cast<uint8_t>((g->flags[v] & (kFlagOccupied | kFlagCube)) |
-                                       ((g->flags[v] & kFlagOccupied) != 0 ? kFlagBlocked : 0));
+  reset_blocked(g);
   if (clearance > 0.0) {
     for (uint32_t b = 0; b < g->n_boxes; ++b) inflate_box(g, g->boxes[b], clearance);
     if (g->n_cubes > 0) {
@@ -760,22 +801,29 @@ extern "C" tdo_status tdo_grid_finish(tdo_grid* g, double clearance) {
       if (st != TDO_OK) return st;
     }
   }
-  uint32_t blocked = 0;
-  for (uint32_t v = 0; v < g->nvox; ++v) blocked += (g->flags[v] & kFlagBlocked) != 0 ? 1u : 0u;
-  g->n_blocked = blocked;
+  g->n_blocked = count_blocked(g);
   // Collision-query structures (collision.h): they change no blocked flag and no move. The
-  // distance field is built on first use (df_ensure; docs/design.md s.0).
+  // distance field and the legal steps are built on first use (df_ensure, moves_ensure;
+  // tdo_grid_prepare; docs/design.md s.0).
   if (g->n_cubes > 0) mark_surface(g);
   surface_index_build(g);
   g->df_built = 0;
   g->df_valid = g->cap.boxes_only == 0u ? df_fits(g) : 0;
   g->df_cap = 0.0;  // the field is exact again (grid_update.cpp caps it)
-  compute_moves(g);
+  g->moves_built = 0;
   const tdo_status bst = build_buckets(g, clearance);
   if (bst != TDO_OK) return bst;
   g->clearance = clearance;
   g->ready = 1;
   ++g->version;
+  return TDO_OK;
+}
+
+extern "C" tdo_status tdo_grid_prepare(tdo_grid* g) {
+  if (g == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!g->ready) return TDO_ERR_MAP_NOT_READY;
+  moves_ensure(g);
+  df_ensure(g);
   return TDO_OK;
 }
 

@@ -57,6 +57,10 @@ tdo_status build_stencil(tdo_grid* g, double c, uint32_t* count);
 // Build the distance field (tdo_grid::df) of the last tdo_grid_finish when it is not built yet:
 // every reader calls this first. O(voxels) once per finish, nothing after (docs/design.md s.0).
 void df_ensure(const tdo_grid* g);
+// Compute the legal steps (tdo_grid::moves) of the last tdo_grid_finish when they are not computed
+// yet: the search calls this first (tdo_search_run). O(voxels) once per finish; nothing before the
+// grid is finished.
+void moves_ensure(const tdo_grid* g);
 }  // namespace tdo_internal
 
 struct tdo_grid {
@@ -66,7 +70,10 @@ struct tdo_grid {
   int64_t stride_y;    // nx
   int64_t stride_z;    // nx*ny
   uint8_t* flags;      // kFlag* per voxel, index i + j*nx + k*nx*ny
-  uint32_t* moves;     // bit d set when step d from this voxel is legal (docs/design.md s.0)
+  uint32_t* moves;     // bit d set when step d from this voxel is legal (docs/design.md s.0);
+                       // valid only while moves_built (moves_ensure)
+  int moves_built;     // 1 when moves holds the steps of the last finish; 0: moves_ensure builds
+                       // them (map updates keep built steps exact, grid_update.cpp)
   tdo_box* boxes;      // obstacle boxes, exact geometry
   uint32_t n_boxes;
   int32_t* stencil;    // clearance stencil: 3 offsets per cell

@@ -1214,6 +1214,7 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   memset(out, 0, sizeof(*out));
   const tdo_grid* g = in->grid;
   if (!g->ready) return TDO_ERR_MAP_NOT_READY;
+  moves_ensure(g);  // the legal steps, once per finish (tdo_grid_prepare pays it ahead)
   if (g->nvox > ctx->cfg.max_voxels || g->desc.nx > kMaxAxis || g->desc.ny > kMaxAxis ||
       g->desc.nz > kMaxAxis)
     return TDO_ERR_MAP_CAPACITY;

@@ -107,6 +107,15 @@ class LineReader {
   }
 
   int line() const { return line_ == 0 ? 1 : line_; }
+  /** Offset of the first byte not read yet (past the end after the last line). */
+  std::size_t offset() const { return pos_; }
+  /** Lines read so far. */
+  int lines_read() const { return line_; }
+  /** Go on from byte `pos` (a line's start) as if `lines` lines had been read before it. */
+  void seek(std::size_t pos, int lines) {
+    pos_ = pos;
+    line_ = lines;
+  }
   const std::vector<std::string_view>& tokens() const { return tokens_; }
 
   [[noreturn]] void fail(const std::string& msg) const {
@@ -258,6 +267,71 @@ void parse_tdomap(const std::string& path, const std::string& text, Map* map) {
 
 // ---------------------------------------------------------------- .3dmap
 
+/** What std::isspace takes in the "C" locale, less the line break. */
+inline bool blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/**
+ * Fast path of one voxel coordinate at `p`: 1 to 9 decimal digits (no sign) whose value is below
+ * `n`, followed by a blank, the line break or the end. The position after the digits, the value
+ * in *v; nullptr for anything else (the tokenizer then reads the line). Nine digits never
+ * overflow int32, and such a token reads the same through strtoll.
+ */
+const char* fast_coord(const char* p, const char* end, int32_t n, int32_t* v) {
+  const char* const start = p;
+  int32_t x = 0;
+  while (p < end && p - start < 9 && static_cast<unsigned>(*p - '0') < 10u) {
+    x = 10 * x + (*p - '0');
+    ++p;
+  }
+  if (p == start || x >= n) return nullptr;
+  if (p < end && *p != '\n' && !blank(*p)) return nullptr;  // a tenth digit too
+  *v = x;
+  return p;
+}
+
+/**
+ * Fast path of one voxel line starting at `p`: three coordinates (fast_coord) of the declared
+ * size among blanks. The position of its line break (or the end), the voxel in *out; nullptr for
+ * any other line (blank, signed, malformed, out of range), which the tokenizer then reads, so
+ * every line gets the tokenizer's result and error.
+ */
+const char* fast_voxel(const char* p, const char* end, const int32_t n[3], tdo_voxel* out) {
+  int32_t c[3];
+  for (int a = 0; a < 3; ++a) {
+    while (p < end && blank(*p)) ++p;
+    p = fast_coord(p, end, n[a], &c[a]);
+    if (p == nullptr) return nullptr;
+  }
+  while (p < end && blank(*p)) ++p;
+  if (p < end && *p != '\n') return nullptr;
+  *out = tdo_voxel{c[0], c[1], c[2]};
+  return p;
+}
+
+/** A voxel line through the tokenizer: the checks and messages of the format, in their order. */
+void voxel_line(const LineReader& r, const int32_t n[3], Map* map) {
+  if (r.tokens().size() != 3) {
+    r.fail("expected a voxel 'x y z', got " + std::to_string(r.tokens().size()) + " fields");
+  }
+  const long long imin = std::numeric_limits<int32_t>::min();
+  const long long imax = std::numeric_limits<int32_t>::max();
+  const long long x = r.integer(0, imin, imax, "x");
+  const long long y = r.integer(1, imin, imax, "y");
+  const long long z = r.integer(2, imin, imax, "z");
+  if (x < 0 || x >= n[0] || y < 0 || y >= n[1] || z < 0 || z >= n[2]) {
+    r.fail("voxel " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) +
+           " outside the declared size " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+           " x " + std::to_string(n[2]));
+  }
+  map->voxels.push_back(
+      tdo_voxel{static_cast<int32_t>(x), static_cast<int32_t>(y), static_cast<int32_t>(z)});
+}
+
+// The header through the tokenizer, then the voxel lines straight from the buffer (fast_voxel)
+// until one is not plain: that one, and the blank lines after it, go through the tokenizer
+// (voxel_line), and the fast path resumes at the next line.
 void parse_3dmap(const std::string& path, const std::string& text, Map* map) {
   LineReader r(path, text, false);
   if (!r.next() || r.tokens()[0] != "voxel") r.fail("missing header 'voxel X Y Z'");
@@ -271,20 +345,23 @@ void parse_3dmap(const std::string& path, const std::string& text, Map* map) {
   map->desc.nz = nz;
   map->desc.res = 1.0;
   map->desc.origin = tdo_vec3{-0.5, -0.5, -0.5};
-  while (r.next()) {
-    if (r.tokens().size() != 3) {
-      r.fail("expected a voxel 'x y z', got " + std::to_string(r.tokens().size()) + " fields");
+  const int32_t n[3] = {nx, ny, nz};
+  const char* const begin = text.data();
+  const char* const end = begin + text.size();
+  // Every round takes at least one line (the fast path's or the tokenizer's), so the loop ends.
+  for (;;) {
+    std::size_t pos = r.offset();
+    int line = r.lines_read();
+    tdo_voxel v{};
+    for (const char* e = nullptr;
+         pos < text.size() && (e = fast_voxel(begin + pos, end, n, &v)) != nullptr;
+         pos = static_cast<std::size_t>(e - begin) + 1) {
+      map->voxels.push_back(v);
+      ++line;
     }
-    const long long x = r.integer(0, std::numeric_limits<int32_t>::min(), imax, "x");
-    const long long y = r.integer(1, std::numeric_limits<int32_t>::min(), imax, "y");
-    const long long z = r.integer(2, std::numeric_limits<int32_t>::min(), imax, "z");
-    if (x < 0 || x >= nx || y < 0 || y >= ny || z < 0 || z >= nz) {
-      r.fail("voxel " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) +
-             " outside the declared size " + std::to_string(nx) + " x " + std::to_string(ny) +
-             " x " + std::to_string(nz));
-    }
-    map->voxels.push_back(
-        tdo_voxel{static_cast<int32_t>(x), static_cast<int32_t>(y), static_cast<int32_t>(z)});
+    r.seek(pos, line);
+    if (!r.next()) break;
+    voxel_line(r, n, map);
   }
 }
 

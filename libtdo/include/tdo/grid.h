@@ -58,6 +58,17 @@ tdo_status tdo_grid_add_voxel(tdo_grid* grid, int32_t i, int32_t j, int32_t k);
  */
 tdo_status tdo_grid_finish(tdo_grid* grid, double clearance);
 
+/**
+ * @brief Do the one-off work of a finished grid now rather than on first use: the legal steps
+ * (otherwise computed by the first search) and the distance field (otherwise built by the first
+ * collision query that needs it). Both are O(voxels) once per tdo_grid_finish; an online app calls
+ * this when a map arrives so that no later query pays for it. Optional: results are the same
+ * with or without it. Map updates (grid_update.h) keep prepared data current.
+ * @return TDO_ERR_INVALID_ARGUMENT for a null grid, TDO_ERR_MAP_NOT_READY before a successful
+ *         tdo_grid_finish.
+ */
+tdo_status tdo_grid_prepare(tdo_grid* grid);
+
 /** @return the grid's size and placement. */
 tdo_grid_desc tdo_grid_get_desc(const tdo_grid* grid);
 
