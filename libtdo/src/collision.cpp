@@ -1086,3 +1086,212 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   }
   return 1;
 }
+
+// ---------------------------------------------------------------------------------------------
+// Steered segment checks (the correction's queries, docs/design.md s.2): the same answers as
+// segment_clear, with the cube part walked from the start of the segment towards its end.
+
+namespace tdo_internal {
+namespace {
+
+constexpr double kSteerRel = 4e-7;       // of res: margin of the steering bounds (4x piece_info's)
+constexpr double kSteerMinStep = 0.25;   // of res: a shorter steering step stops the steering
+constexpr uint32_t kSteerMaxSteps = 64;  // steering steps from one piece at most
+constexpr int64_t kBlockMaxVoxels = 64;  // voxels a block test reads at most (more: no claim)
+
+// piece_info's leaf test, by the same expressions (so the leaves are its leaves).
+inline bool piece_leaf(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
+  double p0[3], p1[3];
+  seg_point(a, b, pc.t0, p0);
+  seg_point(a, b, pc.t1, p1);
+  double half2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double h = 0.5 * (p1[i] - p0[i]);
+    half2 += h * h;
+  }
+  return !(2.0 * sqrt(half2) > g->desc.res);
+}
+
+// Parameter t >= t0 such that every point of [a, b] (length len > 0) between t0 and t is
+// farther than `need` (the clearance plus the steering margin) from every cube, from the distance
+// field at p(t0): through p(t0) itself (its bound falls by the distance walked, 1-Lipschitz) and
+// through the voxel holding it (the bound of the voxel's box holds up to the segment's exit from
+// it, then falls likewise). t0 when neither bound reaches `need`. The margin (far above the
+// rounding of the exit parameter and of the points) keeps the claim strict, also at clearance 0.
+double steer_from(const tdo_grid* g, const double a[3], const double b[3], double len, double t0,
+                  double need) {
+  double p[3];
+  seg_point(a, b, t0, p);
+  int64_t v[3];
+  if (!voxel_of(g, p, v)) return t0;
+  const tdo_grid_desc& d = g->desc;
+  const double res = d.res;
+  const double df = static_cast<double>(g->df[v[0] + v[1] * g->stride_y + v[2] * g->stride_z]);
+  const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  double off2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double e = p[i] - (o[i] + (static_cast<double>(v[i]) + 0.5) * res);
+    off2 += e * e;
+  }
+  double t = t0;
+  const double s_point = df_lb - sqrt(off2) - kHalfDiag * res - need;
+  if (s_point > 0.0) t = t0 + s_point / len;
+  const double s_box = voxel_gap_lower(df_lb, res) - need;
+  if (s_box > 0.0) {
+    double t_exit = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+      const double di = b[i] - a[i];
+      if (di > 0.0) {
+        t_exit = dmin(t_exit, (o[i] + static_cast<double>(v[i] + 1) * res - a[i]) / di);
+      } else if (di < 0.0) {
+        t_exit = dmin(t_exit, (o[i] + static_cast<double>(v[i]) * res - a[i]) / di);
+      }
+    }
+    t = dmax(t, dmax(t_exit, t0) + s_box / len);
+  }
+  return t;
+}
+
+// True when no voxel whose box comes within r of the span box of [p0, p1] (per axis, a lower
+// bound of the Euclidean gap) is occupied: then every cube, and every box that meets the grid
+// there, is farther than r from the piece. With `boxes` the voxels must all lie in the grid
+// (a box outside it marks no voxel). At most kBlockMaxVoxels voxels are read; more: false.
+bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], double r, bool boxes) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  int64_t lo[3], hi[3];
+  int64_t count = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double va = floor((dmin(p0[i], p1[i]) - r - o[i]) / d.res);
+    const double vb = floor((dmax(p0[i], p1[i]) + r - o[i]) / d.res);
+    if (boxes && (!(va >= 0.0) || !(vb <= static_cast<double>(n[i] - 1)))) return false;
+    if (!(vb >= 0.0) || !(va <= static_cast<double>(n[i] - 1))) return !boxes && va <= vb;
+    lo[i] = va < 0.0 ? 0 : static_cast<int64_t>(va);
+    hi[i] = vb > static_cast<double>(n[i] - 1) ? n[i] - 1 : static_cast<int64_t>(vb);
+    count *= hi[i] - lo[i] + 1;
+    if (count > kBlockMaxVoxels) return false;
+  }
+  for (int64_t k = lo[2]; k <= hi[2]; ++k)
+    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
+      const uint8_t* row = g->flags + j * g->stride_y + k * g->stride_z;
+      for (int64_t i = lo[0]; i <= hi[0]; ++i)
+        if ((row[i] & (kFlagOccupied | kFlagCube)) != 0) return false;
+    }
+  return true;
+}
+
+// cubes_clear's test of one leaf piece; `need` as for steer_from. The block test first: no cube
+// near the piece (then cubes_clear's leaf test passes too: it finds no cube within c).
+bool leaf_clear(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc, double c,
+                double need) {
+  double p0[3], p1[3];
+  seg_point(a, b, pc.t0, p0);
+  seg_point(a, b, pc.t1, p1);
+  if (block_free(g, p0, p1, need, false)) return true;
+  const PieceInfo pi = piece_info(g, a, b, pc);
+  if (pi.lb >= c && pi.lb > 0.0) return true;
+  if (pi.in_cube) return false;
+  const int fast = bricks_clear(g, pi.p0, pi.p1, c);
+  if (fast >= 0) return fast == 1;
+  return for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
+    if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
+    return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
+  });
+}
+
+// Extend *covered (every point of [a, b] up to it is farther than `need` from the cubes) by
+// steering from it, or from t0 when that lies beyond, until a step gains less than
+// kSteerMinStep voxels or reaches t1. *stalled: where the steering stopped last for a short step;
+// it starts again only from beyond that point (after the leaves there were tested).
+void steer(const tdo_grid* g, const double a[3], const double b[3], double len, double need,
+           double t0, double t1, double* covered, double* stalled) {
+  const double min_step = kSteerMinStep * g->desc.res / len;
+  double from = dmax(t0, *covered);
+  if (!(from > *stalled)) return;
+  for (uint32_t s = 0; s < kSteerMaxSteps && from < t1; ++s) {
+    const double t = steer_from(g, a, b, len, from, need);
+    if (t > *covered) *covered = t;
+    if (!(t - from >= min_step)) {
+      *stalled = *covered;
+      return;
+    }
+    from = t;
+  }
+}
+
+// cubes_clear with the same answer: the same halving walk over the same pieces, but a piece is
+// skipped without its own bound when steering (steer) already covers it, and a leaf that is not
+// covered gets leaf_clear (cubes_clear's own leaf test after the block test). Only provably clear
+// parts are skipped, and every leaf tested is one of cubes_clear's, tested the same way, so both
+// find the same violation or none. A bound reached: cubes_clear decides.
+bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3], double c) {
+  if (g->n_cubes == 0) return true;
+  double len2 = 0.0;
+  for (int i = 0; i < 3; ++i) len2 += (b[i] - a[i]) * (b[i] - a[i]);
+  const double len = sqrt(len2);
+  if (!(len > 0.0) || !isfinite(len)) return cubes_clear(g, a, b, c);
+  df_ensure(g);
+  const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
+  double covered = -1.0, stalled = -1.0;
+  Piece stack[kStackCap];
+  int top = 0;
+  stack[top++] = Piece{0.0, 1.0};
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    if (pieces >= kMaxPieces) return cubes_clear(g, a, b, c);
+    const Piece pc = stack[--top];
+    if (pc.t1 <= covered) continue;
+    steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
+    if (pc.t1 <= covered) continue;
+    if (piece_leaf(g, a, b, pc)) {
+      if (!leaf_clear(g, a, b, pc, c, need)) return false;
+      continue;
+    }
+    if (top + 2 > kStackCap) return cubes_clear(g, a, b, c);
+    const double tm = 0.5 * (pc.t0 + pc.t1);
+    stack[top++] = Piece{tm, pc.t1};
+    stack[top++] = Piece{pc.t0, tm};
+  }
+  return true;
+}
+
+}  // namespace
+
+int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                          uint32_t* hint) {
+  double pa[3], pb[3];
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  uint32_t none = 0u;
+  uint32_t* h = hint != nullptr ? hint : &none;
+  if (*h != 0u && box_certainly_violates(grid, *h - 1u, pa, pb, clearance)) return 0;
+  uint32_t hit = 0xFFFFFFFFu;
+  const bool ok =
+      boxes_clear(grid, pa, pb, clearance, &hit) && cubes_clear_steered(grid, pa, pb, clearance);
+  if (hit != 0xFFFFFFFFu) *h = hit + 1u;
+  return ok ? 1 : 0;
+}
+
+int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance) {
+  double pa[3], pb[3];
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  const double r =
+      clearance + kSteerRel * grid->desc.res + quick_tol(clearance, bounds_scale(grid));
+  return block_free(grid, pa, pb, r, grid->n_boxes > 0u) ? 1 : 0;
+}
+
+double segment_distance_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cap) {
+  if (!ready(grid) || !finite3(a) || !finite3(b) || !(cap >= 0.0)) return -1.0;
+  // Clear at the cap plus a margin far above the rounding of any exact distance: every distance
+  // the full query computes is above the cap, so it returns the cap itself.
+  const double above = cap + kSteerRel * grid->desc.res + kHintMargin;
+  // (Maps without cubes: the exact query is as quick as the check.)
+  if (grid->n_cubes != 0u && isfinite(above) &&
+      segment_clear_steered(grid, a, b, above, nullptr) == 1)
+    return cap;
+  return tdo_collision_segment_distance(grid, a, b, cap);
+}
+
+}  // namespace tdo_internal

@@ -59,6 +59,35 @@ constexpr uint32_t kGapTableMax = 256;
  */
 uint32_t voxel_gap2_lower(uint32_t n);
 
+/**
+ * tdo_collision_segment_clear (with segment_clear_hinted's hint when hint is not null), the same
+ * answer always, cheaper on voxel maps: the cube part walks cubes_clear's halvings of [a, b] but
+ * skips every piece the steering already proved clear. Steering, from the first point not yet
+ * proven: the distance field bounds that point's distance (and that of its voxel's whole box) to
+ * the cubes from below, so the segment is clear up to where that bound, less the length walked,
+ * drops to the clearance plus a margin far above rounding; it steps on from there while the steps
+ * stay long. A leaf piece it does not cover gets the block test (block_clear's, no voxel cube
+ * near the piece) and then cubes_clear's own exact leaf test, on the same piece.
+ */
+int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                          uint32_t* hint);
+
+/**
+ * 1 when no occupied voxel lies near [a, b]: every voxel whose box comes within the clearance
+ * (plus a margin far above rounding) of the segment's bounding box, at most 64 of them, is free,
+ * and, on maps with boxes, inside the grid. Then tdo_collision_segment_clear(a, b, clearance) is
+ * 1. 0: no claim (a larger block, an occupied voxel, an end point outside the bounds).
+ */
+int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
+
+/**
+ * tdo_collision_segment_distance(a, b, cap), the same result bit for bit: when
+ * segment_clear_steered finds [a, b] clear at the cap plus a margin far above rounding, every
+ * distance the exact query would compute lies above the cap and the cap is the answer; otherwise
+ * the exact query runs.
+ */
+double segment_distance_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cap);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

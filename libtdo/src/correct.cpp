@@ -82,7 +82,7 @@ struct Run {
 int check_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double clearance) {
   if (r.checks >= r.budget) return -1;
   ++r.checks;
-  return tdo_internal::segment_clear_hinted(r.grid, a, b, clearance, &r.hint) ? 1 : 0;
+  return tdo_internal::segment_clear_steered(r.grid, a, b, clearance, &r.hint) ? 1 : 0;
 }
 
 // [a, b] at the run's clearance.
@@ -405,7 +405,7 @@ bool corner_costs(const tdo_vec3* p, uint32_t m, uint32_t k, const tdo_vec3& q, 
 double capped_distance(Run& r, const tdo_vec3& a, const tdo_vec3& b, double cap) {
   if (r.checks >= r.budget) return -1.0;
   ++r.checks;
-  return tdo_collision_segment_distance(r.grid, a, b, cap);
+  return tdo_internal::segment_distance_steered(r.grid, a, b, cap);
 }
 
 // The pass; returns false when the budget ran out.
