@@ -1098,9 +1098,17 @@ constexpr double kSteerRel = 4e-7;       // of res: margin of the steering bound
 constexpr double kSteerMinStep = 0.25;   // of res: a shorter steering step stops the steering
 constexpr uint32_t kSteerMaxSteps = 64;  // steering steps from one piece at most
 constexpr int64_t kBlockMaxVoxels = 64;  // voxels a block test reads at most (more: no claim)
+constexpr double kDoubleEps = 2.220446049250313e-16;  // DBL_EPSILON
 
-// piece_info's leaf test, by the same expressions (so the leaves are its leaves).
-inline bool piece_leaf(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc) {
+// piece_info's leaf test: decided by the piece's length (t1 - t0) len when that is farther from
+// res than `tol` (which bounds the rounding of the length piece_info computes from the rounded end
+// points), else by piece_info's own expressions (so the leaves are its leaves).
+inline bool piece_leaf(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc,
+                       double len, double tol) {
+  const double res = g->desc.res;
+  const double est = (pc.t1 - pc.t0) * len;
+  if (est > res + tol) return false;
+  if (est < res - tol) return true;
   double p0[3], p1[3];
   seg_point(a, b, pc.t0, p0);
   seg_point(a, b, pc.t1, p1);
@@ -1109,7 +1117,7 @@ inline bool piece_leaf(const tdo_grid* g, const double a[3], const double b[3], 
     const double h = 0.5 * (p1[i] - p0[i]);
     half2 += h * h;
   }
-  return !(2.0 * sqrt(half2) > g->desc.res);
+  return !(2.0 * sqrt(half2) > res);
 }
 
 // Parameter t >= t0 such that every point of [a, b] (length len > 0) between t0 and t is
@@ -1161,15 +1169,20 @@ bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], doubl
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
   const int32_t n[3] = {d.nx, d.ny, d.nz};
+  // In voxels (the rounding of the product is far below the margin in r). Voxel i spans
+  // [i, i + 1): those from floor(xa) to floor(xb) come within r; the one below floor(xa) ends
+  // at xa or before, r away at least.
+  const double inv = 1.0 / d.res;
   int64_t lo[3], hi[3];
   int64_t count = 1;
   for (int i = 0; i < 3; ++i) {
-    const double va = floor((dmin(p0[i], p1[i]) - r - o[i]) / d.res);
-    const double vb = floor((dmax(p0[i], p1[i]) + r - o[i]) / d.res);
-    if (boxes && (!(va >= 0.0) || !(vb <= static_cast<double>(n[i] - 1)))) return false;
-    if (!(vb >= 0.0) || !(va <= static_cast<double>(n[i] - 1))) return !boxes && va <= vb;
-    lo[i] = va < 0.0 ? 0 : static_cast<int64_t>(va);
-    hi[i] = vb > static_cast<double>(n[i] - 1) ? n[i] - 1 : static_cast<int64_t>(vb);
+    const double xa = (dmin(p0[i], p1[i]) - r - o[i]) * inv;
+    const double xb = (dmax(p0[i], p1[i]) + r - o[i]) * inv;
+    const double top = static_cast<double>(n[i]);
+    if (!(xa <= xb) || (boxes && (xa < 0.0 || xb >= top))) return false;
+    if (xb < 0.0 || xa >= top) return true;           // no voxel of the grid: no cube
+    lo[i] = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+    hi[i] = xb >= top ? n[i] - 1 : static_cast<int64_t>(xb);
     count *= hi[i] - lo[i] + 1;
     if (count > kBlockMaxVoxels) return false;
   }
@@ -1234,6 +1247,9 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   if (!(len > 0.0) || !isfinite(len)) return cubes_clear(g, a, b, c);
   df_ensure(g);
   const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
+  double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
+  for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
+  const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
   double covered = -1.0, stalled = -1.0;
   Piece stack[kStackCap];
   int top = 0;
@@ -1244,7 +1260,7 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
     if (pc.t1 <= covered) continue;
     steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
     if (pc.t1 <= covered) continue;
-    if (piece_leaf(g, a, b, pc)) {
+    if (piece_leaf(g, a, b, pc, len, leaf_tol)) {
       if (!leaf_clear(g, a, b, pc, c, need)) return false;
       continue;
     }
@@ -1280,18 +1296,6 @@ int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance) 
   const double r =
       clearance + kSteerRel * grid->desc.res + quick_tol(clearance, bounds_scale(grid));
   return block_free(grid, pa, pb, r, grid->n_boxes > 0u) ? 1 : 0;
-}
-
-double segment_distance_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cap) {
-  if (!ready(grid) || !finite3(a) || !finite3(b) || !(cap >= 0.0)) return -1.0;
-  // Clear at the cap plus a margin far above the rounding of any exact distance: every distance
-  // the full query computes is above the cap, so it returns the cap itself.
-  const double above = cap + kSteerRel * grid->desc.res + kHintMargin;
-  // (Maps without cubes: the exact query is as quick as the check.)
-  if (grid->n_cubes != 0u && isfinite(above) &&
-      segment_clear_steered(grid, a, b, above, nullptr) == 1)
-    return cap;
-  return tdo_collision_segment_distance(grid, a, b, cap);
 }
 
 }  // namespace tdo_internal

@@ -80,14 +80,6 @@ int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double c
  */
 int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
 
-/**
- * tdo_collision_segment_distance(a, b, cap), the same result bit for bit: when
- * segment_clear_steered finds [a, b] clear at the cap plus a margin far above rounding, every
- * distance the exact query would compute lies above the cap and the cap is the answer; otherwise
- * the exact query runs.
- */
-double segment_distance_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double cap);
-
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

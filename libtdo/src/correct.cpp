@@ -405,7 +405,7 @@ bool corner_costs(const tdo_vec3* p, uint32_t m, uint32_t k, const tdo_vec3& q, 
 double capped_distance(Run& r, const tdo_vec3& a, const tdo_vec3& b, double cap) {
   if (r.checks >= r.budget) return -1.0;
   ++r.checks;
-  return tdo_internal::segment_distance_steered(r.grid, a, b, cap);
+  return tdo_collision_segment_distance(r.grid, a, b, cap);
 }
 
 // The pass; returns false when the budget ran out.
