@@ -1195,10 +1195,39 @@ bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], doubl
   return true;
 }
 
+// Voxel index of the cube with lower corner lo (as the cube loops compute it).
+inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t v[3];
+  for (int i = 0; i < 3; ++i) v[i] = static_cast<int64_t>(floor((lo[i] - o[i]) / d.res + 0.5));
+  return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
+}
+
+// bricks_clear (the same visits and decisions), also naming the cube that fails it (*hit).
+int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], double c,
+                     uint32_t* hit) {
+  if (!g->bricks_valid) return -1;
+  const double lim = c + brick_tol(g, p0, p1, c);
+  const SpanBox sb = span_box(p0, p1);
+  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
+    if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
+    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
+      if (far_apart(p0, p1, lo, hi, c)) return true;
+      if (span_gap2(sb, lo, hi) >= lim * lim) return true;
+      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
+      *hit = cube_index(g, lo);
+      return false;
+    });
+  });
+  return ok ? 1 : 0;
+}
+
 // cubes_clear's test of one leaf piece; `need` as for steer_from. The block test first: no cube
-// near the piece (then cubes_clear's leaf test passes too: it finds no cube within c).
+// near the piece (then cubes_clear's leaf test passes too: it finds no cube within c). A surface
+// cube that fails the piece goes to *hit.
 bool leaf_clear(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc, double c,
-                double need) {
+                double need, uint32_t* hit) {
   double p0[3], p1[3];
   seg_point(a, b, pc.t0, p0);
   seg_point(a, b, pc.t1, p1);
@@ -1206,12 +1235,44 @@ bool leaf_clear(const tdo_grid* g, const double a[3], const double b[3], const P
   const PieceInfo pi = piece_info(g, a, b, pc);
   if (pi.lb >= c && pi.lb > 0.0) return true;
   if (pi.in_cube) return false;
-  const int fast = bricks_clear(g, pi.p0, pi.p1, c);
+  const int fast = bricks_clear_hit(g, pi.p0, pi.p1, c, hit);
   if (fast >= 0) return fast == 1;
-  return for_each_cube_near(g, pi.p0, pi.p1, c, [&pi, c](const double* lo, const double* hi) {
+  return for_each_cube_near(g, pi.p0, pi.p1, c, [&](const double* lo, const double* hi) {
     if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
-    return !violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c);
+    if (!violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c)) return true;
+    *hit = cube_index(g, lo);
+    return false;
   });
+}
+
+// True when surface cube `idx` certainly comes closer than c to [a, b]: by more than kHintMargin,
+// or, at a clearance up to kHintMargin, the segment passes through the cube shrunk by
+// kHintMargin on every side. Then cubes_clear finds a violation: the leaf holding the segment's
+// nearest point to the cube is not skipped (its bound is below that distance), and its exact test
+// visits this cube (a surface cube within c of the piece) and finds it closer than c.
+bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3], const double b[3],
+                             double c) {
+  if (idx >= g->nvox || (g->flags[idx] & kFlagSurface) == 0) return false;
+  const tdo_grid_desc& d = g->desc;
+  const int64_t v[3] = {idx % g->stride_y, (idx / g->stride_y) % d.ny, idx / g->stride_z};
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  double lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = o[i] + static_cast<double>(v[i]) * d.res;
+    hi[i] = o[i] + static_cast<double>(v[i] + 1) * d.res;
+  }
+  if (c > kHintMargin) {
+    const double m = c - kHintMargin;
+    if (far_apart(a, b, lo, hi, m)) return false;
+    return segment_box_d2(a, b, lo, hi, m * m) < m * m;
+  }
+  if (!(d.res > 4.0 * kHintMargin)) return false;
+  for (int i = 0; i < 3; ++i) {
+    lo[i] += kHintMargin;
+    hi[i] -= kHintMargin;
+  }
+  if (far_apart(a, b, lo, hi, 0.0)) return false;
+  return !(segment_box_d2(a, b, lo, hi) > 0.0);
 }
 
 // Extend *covered (every point of [a, b] up to it is farther than `need` from the cubes) by
@@ -1239,8 +1300,10 @@ void steer(const tdo_grid* g, const double a[3], const double b[3], double len, 
 // covered gets leaf_clear (cubes_clear's own leaf test after the block test). Only provably clear
 // parts are skipped, and every leaf tested is one of cubes_clear's, tested the same way, so both
 // find the same violation or none. A bound reached: cubes_clear decides.
-bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3], double c) {
+bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3], double c,
+                         uint32_t* hint) {
   if (g->n_cubes == 0) return true;
+  if (*hint != 0u && cube_certainly_violates(g, *hint - 1u, a, b, c)) return false;
   double len2 = 0.0;
   for (int i = 0; i < 3; ++i) len2 += (b[i] - a[i]) * (b[i] - a[i]);
   const double len = sqrt(len2);
@@ -1261,8 +1324,10 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
     steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
     if (pc.t1 <= covered) continue;
     if (piece_leaf(g, a, b, pc, len, leaf_tol)) {
-      if (!leaf_clear(g, a, b, pc, c, need)) return false;
-      continue;
+      uint32_t hit = 0xFFFFFFFFu;
+      if (leaf_clear(g, a, b, pc, c, need, &hit)) continue;
+      if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
+      return false;
     }
     if (top + 2 > kStackCap) return cubes_clear(g, a, b, c);
     const double tm = 0.5 * (pc.t0 + pc.t1);
@@ -1275,16 +1340,17 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
 }  // namespace
 
 int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
-                          uint32_t* hint) {
+                          uint32_t* hint, uint32_t* cube_hint) {
   double pa[3], pb[3];
   if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
   if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
-  uint32_t none = 0u;
+  uint32_t none = 0u, no_cube = 0u;
   uint32_t* h = hint != nullptr ? hint : &none;
+  uint32_t* hc = cube_hint != nullptr ? cube_hint : &no_cube;
   if (*h != 0u && box_certainly_violates(grid, *h - 1u, pa, pb, clearance)) return 0;
   uint32_t hit = 0xFFFFFFFFu;
-  const bool ok =
-      boxes_clear(grid, pa, pb, clearance, &hit) && cubes_clear_steered(grid, pa, pb, clearance);
+  const bool ok = boxes_clear(grid, pa, pb, clearance, &hit) &&
+                  cubes_clear_steered(grid, pa, pb, clearance, hc);
   if (hit != 0xFFFFFFFFu) *h = hit + 1u;
   return ok ? 1 : 0;
 }

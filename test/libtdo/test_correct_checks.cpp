@@ -155,18 +155,21 @@ class SegmentMaker {
     return inside(*a) && inside(*b);
   }
 
+  // A random point within `reach` (per axis) of p.
+  tdo_vec3 near(const tdo_vec3& p, double reach) { return offset(p, reach); }
+  bool inside(const tdo_vec3& p) const {
+    const tdo_grid_desc& d = m_.desc;
+    return p.x >= d.origin.x && p.y >= d.origin.y && p.z >= d.origin.z &&
+           p.x <= d.origin.x + d.nx * d.res && p.y <= d.origin.y + d.ny * d.res &&
+           p.z <= d.origin.z + d.nz * d.res;
+  }
+
  private:
   static tdo_vec3 add(const tdo_vec3& p, const tdo_vec3& q) {
     return tdo_vec3{p.x + q.x, p.y + q.y, p.z + q.z};
   }
   static tdo_vec3 scaled(const tdo_vec3& p, double s) {
     return tdo_vec3{p.x * s, p.y * s, p.z * s};
-  }
-  bool inside(const tdo_vec3& p) const {
-    const tdo_grid_desc& d = m_.desc;
-    return p.x >= d.origin.x && p.y >= d.origin.y && p.z >= d.origin.z &&
-           p.x <= d.origin.x + d.nx * d.res && p.y <= d.origin.y + d.ny * d.res &&
-           p.z <= d.origin.z + d.nz * d.res;
   }
   tdo_vec3 random_point() {
     const tdo_grid_desc& d = m_.desc;
@@ -255,36 +258,59 @@ class SegmentMaker {
 };
 
 struct Tally {
-  int segments = 0, clear = 0, blocked = 0, block_claims = 0;
+  int segments = 0, clear = 0, blocked = 0, block_claims = 0, cube_hints = 0;
 };
 
-// Every check against the exact query on `count` segments of every kind at clearance c.
-Tally compare(tdo_grid* grid, const MapFile& m, double c, int count, uint64_t seed) {
-  SegmentMaker make(m, seed);
+// One check of [a, b] at c: the steered forms (without hints, and with the hints of a run of
+// queries) against the exact query and its hinted form.
+struct Checker {
+  tdo_grid* grid;
+  double c;
+  uint32_t hint_exact = 0u, hint_steered = 0u, cube_hint = 0u;
   Tally t;
-  uint32_t hint_exact = 0u, hint_steered = 0u;
-  for (int n = 0; n < count; ++n) {
-    tdo_vec3 a, b;
-    const int kind = n % SegmentMaker::kKinds;
-    if (!make.make(kind, c, &a, &b)) continue;
+
+  void check(const tdo_vec3& a, const tdo_vec3& b, int kind) {
     ++t.segments;
     const int exact = tdo_collision_segment_clear(grid, a, b, c);
     (exact == 1 ? t.clear : t.blocked) += 1;
-    EXPECT_EQ(tdo_internal::segment_clear_steered(grid, a, b, c, nullptr), exact)
+    EXPECT_EQ(tdo_internal::segment_clear_steered(grid, a, b, c, nullptr, nullptr), exact)
         << "kind " << kind << " c " << c << " a (" << a.x << ", " << a.y << ", " << a.z << ") b ("
         << b.x << ", " << b.y << ", " << b.z << ")";
-    // The hinted forms, in one run of queries each: the same answers and the same hints.
+    // The hinted forms, in one run of queries each: the same answers and the same box hints.
     const int hinted = tdo_internal::segment_clear_hinted(grid, a, b, c, &hint_exact);
-    EXPECT_EQ(tdo_internal::segment_clear_steered(grid, a, b, c, &hint_steered), hinted);
+    EXPECT_EQ(tdo_internal::segment_clear_steered(grid, a, b, c, &hint_steered, &cube_hint), hinted)
+        << "kind " << kind << " c " << c;
     EXPECT_EQ(hint_steered, hint_exact);
     EXPECT_EQ(hinted, exact);
+    if (exact == 0 && cube_hint != 0u) ++t.cube_hints;
     const int block = tdo_internal::block_clear(grid, a, b, c);
     if (block == 1) {
       ++t.block_claims;
       EXPECT_EQ(exact, 1) << "block_clear claims a blocked segment clear, kind " << kind;
     }
   }
-  return t;
+};
+
+// Every check against the exact query on `count` segments of every kind at clearance c; every
+// third segment also as a fan of chords from its start to points along a segment near its end
+// (the correction's partial shortcuts, which the cube hint serves).
+Tally compare(tdo_grid* grid, const MapFile& m, double c, int count, uint64_t seed) {
+  SegmentMaker make(m, seed);
+  Checker ck{grid, c, 0u, 0u, 0u, Tally{}};
+  constexpr double kFanT[6] = {0.9375, 0.875, 0.75, 0.5, 0.25, 0.125};
+  for (int n = 0; n < count; ++n) {
+    tdo_vec3 a, b;
+    const int kind = n % SegmentMaker::kKinds;
+    if (!make.make(kind, c, &a, &b)) continue;
+    ck.check(a, b, kind);
+    if (n % 3 != 0) continue;
+    const tdo_vec3 e = make.near(b, 2.0 * m.desc.res);
+    for (double f : kFanT) {
+      const tdo_vec3 p{b.x + f * (e.x - b.x), b.y + f * (e.y - b.y), b.z + f * (e.z - b.z)};
+      if (make.inside(p)) ck.check(a, p, 100 + kind);
+    }
+  }
+  return ck.t;
 }
 
 struct MapCase {
@@ -312,6 +338,10 @@ TEST_P(CorrectChecks, SameAnswersAsTheExactQueries) {
       EXPECT_GE(t.clear, 50) << mc.name << " c " << c;
       EXPECT_GE(t.blocked, 50) << mc.name << " c " << c;
       EXPECT_GT(t.block_claims, 0) << mc.name << " c " << c;
+      // On voxel maps the cube hint is set by the failures (box maps have none).
+      if (!m.cubes.empty()) {
+        EXPECT_GT(t.cube_hints, 0) << mc.name << " c " << c;
+      }
     }
   }
 }
@@ -356,6 +386,7 @@ TEST(CorrectChecks, FineResolutionOffsetGrid) {
     if (c < 0.2) {
       EXPECT_GT(t.block_claims, 0);
     }
+    EXPECT_GT(t.cube_hints, 0);
   }
 }
 
