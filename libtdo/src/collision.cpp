@@ -1086,3 +1086,282 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   }
   return 1;
 }
+
+// ---------------------------------------------------------------------------------------------
+// Steered segment checks (the correction's queries, docs/design.md s.2): the same answers as
+// segment_clear, with the cube part walked from the start of the segment towards its end.
+
+namespace tdo_internal {
+namespace {
+
+constexpr double kSteerRel = 4e-7;       // of res: margin of the steering bounds (4x piece_info's)
+constexpr double kSteerMinStep = 0.25;   // of res: a shorter steering step stops the steering
+constexpr uint32_t kSteerMaxSteps = 64;  // steering steps from one piece at most
+constexpr int64_t kBlockMaxVoxels = 64;  // voxels a block test reads at most (more: no claim)
+constexpr double kDoubleEps = 2.220446049250313e-16;  // DBL_EPSILON
+
+// piece_info's leaf test: decided by the piece's length (t1 - t0) len when that is farther from
+// res than `tol` (which bounds the rounding of the length piece_info computes from the rounded end
+// points), else by piece_info's own expressions (so the leaves are its leaves).
+inline bool piece_leaf(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc,
+                       double len, double tol) {
+  const double res = g->desc.res;
+  const double est = (pc.t1 - pc.t0) * len;
+  if (est > res + tol) return false;
+  if (est < res - tol) return true;
+  double p0[3], p1[3];
+  seg_point(a, b, pc.t0, p0);
+  seg_point(a, b, pc.t1, p1);
+  double half2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double h = 0.5 * (p1[i] - p0[i]);
+    half2 += h * h;
+  }
+  return !(2.0 * sqrt(half2) > res);
+}
+
+// Parameter t >= t0 such that every point of [a, b] (length len > 0) between t0 and t is
+// farther than `need` (the clearance plus the steering margin) from every cube, from the distance
+// field at p(t0): through p(t0) itself (its bound falls by the distance walked, 1-Lipschitz) and
+// through the voxel holding it (the bound of the voxel's box holds up to the segment's exit from
+// it, then falls likewise). t0 when neither bound reaches `need`. The margin (far above the
+// rounding of the exit parameter and of the points) keeps the claim strict, also at clearance 0.
+double steer_from(const tdo_grid* g, const double a[3], const double b[3], double len, double t0,
+                  double need) {
+  double p[3];
+  seg_point(a, b, t0, p);
+  int64_t v[3];
+  if (!voxel_of(g, p, v)) return t0;
+  const tdo_grid_desc& d = g->desc;
+  const double res = d.res;
+  const double df = static_cast<double>(g->df[v[0] + v[1] * g->stride_y + v[2] * g->stride_z]);
+  const double df_lb = g->df_cap > 0.0 && df > g->df_cap ? g->df_cap : df;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  double off2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double e = p[i] - (o[i] + (static_cast<double>(v[i]) + 0.5) * res);
+    off2 += e * e;
+  }
+  double t = t0;
+  const double s_point = df_lb - sqrt(off2) - kHalfDiag * res - need;
+  if (s_point > 0.0) t = t0 + s_point / len;
+  const double s_box = voxel_gap_lower(df_lb, res) - need;
+  if (s_box > 0.0) {
+    double t_exit = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+      const double di = b[i] - a[i];
+      if (di > 0.0) {
+        t_exit = dmin(t_exit, (o[i] + static_cast<double>(v[i] + 1) * res - a[i]) / di);
+      } else if (di < 0.0) {
+        t_exit = dmin(t_exit, (o[i] + static_cast<double>(v[i]) * res - a[i]) / di);
+      }
+    }
+    t = dmax(t, dmax(t_exit, t0) + s_box / len);
+  }
+  return t;
+}
+
+// True when no voxel whose box comes within r of the span box of [p0, p1] (per axis, a lower
+// bound of the Euclidean gap) is occupied: then every cube, and every box that meets the grid
+// there, is farther than r from the piece. With `boxes` the voxels must all lie in the grid
+// (a box outside it marks no voxel). At most kBlockMaxVoxels voxels are read; more: false.
+bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], double r, bool boxes) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t n[3] = {d.nx, d.ny, d.nz};
+  // In voxels (the rounding of the product is far below the margin in r). Voxel i spans
+  // [i, i + 1): those from floor(xa) to floor(xb) come within r; the one below floor(xa) ends
+  // at xa or before, r away at least.
+  const double inv = 1.0 / d.res;
+  int64_t lo[3], hi[3];
+  int64_t count = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double xa = (dmin(p0[i], p1[i]) - r - o[i]) * inv;
+    const double xb = (dmax(p0[i], p1[i]) + r - o[i]) * inv;
+    const double top = static_cast<double>(n[i]);
+    if (!(xa <= xb) || (boxes && (xa < 0.0 || xb >= top))) return false;
+    if (xb < 0.0 || xa >= top) return true;           // no voxel of the grid: no cube
+    lo[i] = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+    hi[i] = xb >= top ? n[i] - 1 : static_cast<int64_t>(xb);
+    count *= hi[i] - lo[i] + 1;
+    if (count > kBlockMaxVoxels) return false;
+  }
+  for (int64_t k = lo[2]; k <= hi[2]; ++k)
+    for (int64_t j = lo[1]; j <= hi[1]; ++j) {
+      const uint8_t* row = g->flags + j * g->stride_y + k * g->stride_z;
+      for (int64_t i = lo[0]; i <= hi[0]; ++i)
+        if ((row[i] & (kFlagOccupied | kFlagCube)) != 0) return false;
+    }
+  return true;
+}
+
+// Voxel index of the cube with lower corner lo (as the cube loops compute it).
+inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t v[3];
+  for (int i = 0; i < 3; ++i) v[i] = static_cast<int64_t>(floor((lo[i] - o[i]) / d.res + 0.5));
+  return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
+}
+
+// bricks_clear (the same visits and decisions), also naming the cube that fails it (*hit).
+int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], double c,
+                     uint32_t* hit) {
+  if (!g->bricks_valid) return -1;
+  const double lim = c + brick_tol(g, p0, p1, c);
+  const SpanBox sb = span_box(p0, p1);
+  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
+    if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
+    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
+      if (far_apart(p0, p1, lo, hi, c)) return true;
+      if (span_gap2(sb, lo, hi) >= lim * lim) return true;
+      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
+      *hit = cube_index(g, lo);
+      return false;
+    });
+  });
+  return ok ? 1 : 0;
+}
+
+// cubes_clear's test of one leaf piece; `need` as for steer_from. The block test first: no cube
+// near the piece (then cubes_clear's leaf test passes too: it finds no cube within c). A surface
+// cube that fails the piece goes to *hit.
+bool leaf_clear(const tdo_grid* g, const double a[3], const double b[3], const Piece& pc, double c,
+                double need, uint32_t* hit) {
+  double p0[3], p1[3];
+  seg_point(a, b, pc.t0, p0);
+  seg_point(a, b, pc.t1, p1);
+  if (block_free(g, p0, p1, need, false)) return true;
+  const PieceInfo pi = piece_info(g, a, b, pc);
+  if (pi.lb >= c && pi.lb > 0.0) return true;
+  if (pi.in_cube) return false;
+  const int fast = bricks_clear_hit(g, pi.p0, pi.p1, c, hit);
+  if (fast >= 0) return fast == 1;
+  return for_each_cube_near(g, pi.p0, pi.p1, c, [&](const double* lo, const double* hi) {
+    if (far_apart(pi.p0, pi.p1, lo, hi, c)) return true;
+    if (!violates(segment_box_d2(pi.p0, pi.p1, lo, hi, c * c), c)) return true;
+    *hit = cube_index(g, lo);
+    return false;
+  });
+}
+
+// True when surface cube `idx` certainly comes closer than c to [a, b]: by more than kHintMargin,
+// or, at a clearance up to kHintMargin, the segment passes through the cube shrunk by
+// kHintMargin on every side. Then cubes_clear finds a violation: the leaf holding the segment's
+// nearest point to the cube is not skipped (its bound is below that distance), and its exact test
+// visits this cube (a surface cube within c of the piece) and finds it closer than c.
+bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3], const double b[3],
+                             double c) {
+  if (idx >= g->nvox || (g->flags[idx] & kFlagSurface) == 0) return false;
+  const tdo_grid_desc& d = g->desc;
+  const int64_t v[3] = {idx % g->stride_y, (idx / g->stride_y) % d.ny, idx / g->stride_z};
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  double lo[3], hi[3];
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = o[i] + static_cast<double>(v[i]) * d.res;
+    hi[i] = o[i] + static_cast<double>(v[i] + 1) * d.res;
+  }
+  if (c > kHintMargin) {
+    const double m = c - kHintMargin;
+    if (far_apart(a, b, lo, hi, m)) return false;
+    return segment_box_d2(a, b, lo, hi, m * m) < m * m;
+  }
+  if (!(d.res > 4.0 * kHintMargin)) return false;
+  for (int i = 0; i < 3; ++i) {
+    lo[i] += kHintMargin;
+    hi[i] -= kHintMargin;
+  }
+  if (far_apart(a, b, lo, hi, 0.0)) return false;
+  return !(segment_box_d2(a, b, lo, hi) > 0.0);
+}
+
+// Extend *covered (every point of [a, b] up to it is farther than `need` from the cubes) by
+// steering from it, or from t0 when that lies beyond, until a step gains less than
+// kSteerMinStep voxels or reaches t1. *stalled: where the steering stopped last for a short step;
+// it starts again only from beyond that point (after the leaves there were tested).
+void steer(const tdo_grid* g, const double a[3], const double b[3], double len, double need,
+           double t0, double t1, double* covered, double* stalled) {
+  const double min_step = kSteerMinStep * g->desc.res / len;
+  double from = dmax(t0, *covered);
+  if (!(from > *stalled)) return;
+  for (uint32_t s = 0; s < kSteerMaxSteps && from < t1; ++s) {
+    const double t = steer_from(g, a, b, len, from, need);
+    if (t > *covered) *covered = t;
+    if (!(t - from >= min_step)) {
+      *stalled = *covered;
+      return;
+    }
+    from = t;
+  }
+}
+
+// cubes_clear with the same answer: the same halving walk over the same pieces, but a piece is
+// skipped without its own bound when steering (steer) already covers it, and a leaf that is not
+// covered gets leaf_clear (cubes_clear's own leaf test after the block test). Only provably clear
+// parts are skipped, and every leaf tested is one of cubes_clear's, tested the same way, so both
+// find the same violation or none. A bound reached: cubes_clear decides.
+bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3], double c,
+                         uint32_t* hint) {
+  if (g->n_cubes == 0) return true;
+  if (*hint != 0u && cube_certainly_violates(g, *hint - 1u, a, b, c)) return false;
+  double len2 = 0.0;
+  for (int i = 0; i < 3; ++i) len2 += (b[i] - a[i]) * (b[i] - a[i]);
+  const double len = sqrt(len2);
+  if (!(len > 0.0) || !isfinite(len)) return cubes_clear(g, a, b, c);
+  df_ensure(g);
+  const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
+  double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
+  for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
+  const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
+  double covered = -1.0, stalled = -1.0;
+  Piece stack[kStackCap];
+  int top = 0;
+  stack[top++] = Piece{0.0, 1.0};
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    if (pieces >= kMaxPieces) return cubes_clear(g, a, b, c);
+    const Piece pc = stack[--top];
+    if (pc.t1 <= covered) continue;
+    steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
+    if (pc.t1 <= covered) continue;
+    if (piece_leaf(g, a, b, pc, len, leaf_tol)) {
+      uint32_t hit = 0xFFFFFFFFu;
+      if (leaf_clear(g, a, b, pc, c, need, &hit)) continue;
+      if (hit != 0xFFFFFFFFu) *hint = hit + 1u;
+      return false;
+    }
+    if (top + 2 > kStackCap) return cubes_clear(g, a, b, c);
+    const double tm = 0.5 * (pc.t0 + pc.t1);
+    stack[top++] = Piece{tm, pc.t1};
+    stack[top++] = Piece{pc.t0, tm};
+  }
+  return true;
+}
+
+}  // namespace
+
+int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                          uint32_t* hint, uint32_t* cube_hint) {
+  double pa[3], pb[3];
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  uint32_t none = 0u, no_cube = 0u;
+  uint32_t* h = hint != nullptr ? hint : &none;
+  uint32_t* hc = cube_hint != nullptr ? cube_hint : &no_cube;
+  if (*h != 0u && box_certainly_violates(grid, *h - 1u, pa, pb, clearance)) return 0;
+  uint32_t hit = 0xFFFFFFFFu;
+  const bool ok = boxes_clear(grid, pa, pb, clearance, &hit) &&
+                  cubes_clear_steered(grid, pa, pb, clearance, hc);
+  if (hit != 0xFFFFFFFFu) *h = hit + 1u;
+  return ok ? 1 : 0;
+}
+
+int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance) {
+  double pa[3], pb[3];
+  if (!load_segment_query(grid, a, b, clearance, pa, pb)) return 0;
+  if (!inside_bounds(grid, pa) || !inside_bounds(grid, pb)) return 0;
+  const double r =
+      clearance + kSteerRel * grid->desc.res + quick_tol(clearance, bounds_scale(grid));
+  return block_free(grid, pa, pb, r, grid->n_boxes > 0u) ? 1 : 0;
+}
+
+}  // namespace tdo_internal

@@ -59,6 +59,31 @@ constexpr uint32_t kGapTableMax = 256;
  */
 uint32_t voxel_gap2_lower(uint32_t n);
 
+/**
+ * tdo_collision_segment_clear (with segment_clear_hinted's hint when hint is not null, updated
+ * the same way), the same answer always, cheaper on voxel maps. The cube part walks cubes_clear's
+ * halvings of [a, b] but skips every piece the steering already proved clear. Steering, from the
+ * first point not yet proven: the distance field bounds that point's distance (and that of its
+ * voxel's whole box) to the cubes from below, so the segment is clear up to where that bound,
+ * less the length walked, drops to the clearance plus a margin far above rounding; it steps on
+ * from there while the steps stay long. A leaf piece it does not cover gets the block test
+ * (block_clear's: no voxel cube near the piece) and then cubes_clear's own exact leaf test, on
+ * the same piece. *cube_hint (may be null; 0 to start): 1 + the voxel of the surface cube that
+ * failed the last query; a query first tests it, and stops as "not clear" when it certainly comes
+ * closer than the clearance (by a margin far above rounding; at clearance 0, the segment passes
+ * through its interior), where cubes_clear fails too.
+ */
+int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
+                          uint32_t* hint, uint32_t* cube_hint);
+
+/**
+ * 1 when no occupied voxel lies near [a, b]: every voxel whose box comes within the clearance
+ * (plus a margin far above rounding) of the segment's bounding box, at most 64 of them, is free,
+ * and, on maps with boxes, inside the grid. Then tdo_collision_segment_clear(a, b, clearance) is
+ * 1. 0: no claim (a larger block, an occupied voxel, an end point outside the bounds).
+ */
+int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

@@ -76,13 +76,14 @@ struct Run {
   uint32_t checks;   // checks done
   uint32_t budget;   // checks allowed
   uint32_t hint;     // box that failed the last check (segment_clear_hinted)
+  uint32_t cube;     // voxel cube that failed the last check (segment_clear_steered)
 };
 
 // [a, b] at `clearance` (m, >= the run's): 1 clear, 0 not clear, -1 budget exhausted.
 int check_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double clearance) {
   if (r.checks >= r.budget) return -1;
   ++r.checks;
-  return tdo_internal::segment_clear_hinted(r.grid, a, b, clearance, &r.hint) ? 1 : 0;
+  return tdo_internal::segment_clear_steered(r.grid, a, b, clearance, &r.hint, &r.cube) ? 1 : 0;
 }
 
 // [a, b] at the run's clearance.
@@ -554,6 +555,7 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
         in->clearance,
         0u,
         ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu,
+        0u,
         0u};
   tdo_status st = TDO_OK;
   // 1. The input itself must keep clearance.
