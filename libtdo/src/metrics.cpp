@@ -271,8 +271,7 @@ double arc_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double c
 }
 
 // The running minimum goes into every query (piece_bound): same result, shorter queries.
-double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
-  double best = HUGE_VAL;
+double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap, double best) {
   for (uint32_t i = 0; i < path.n; ++i) {
     const tdo_path_segment& seg = path.seg[i];
     if (seg.kind == TDO_SEGMENT_LINE || !(seg.length > 0.0))
@@ -285,8 +284,8 @@ double path_clearance(const tdo_grid* grid, const tdo_path& path, double cap) {
   return best;
 }
 
-double polyline_clearance(const tdo_grid* grid, const tdo_vec3* w, uint32_t n, double cap) {
-  double best = HUGE_VAL;
+double polyline_clearance(const tdo_grid* grid, const tdo_vec3* w, uint32_t n, double cap,
+                          double best) {
   for (uint32_t i = 1; i < n; ++i) best = piece_bound(grid, w[i - 1], w[i], 0.0, cap, best);
   return best;
 }
@@ -352,9 +351,18 @@ extern "C" tdo_status tdo_metrics_compute(const tdo_metrics_input* in, tdo_metri
 
   if (in->grid != nullptr) {
     const double cap = in->clearance_cap;
-    double d = in->path != nullptr
-                   ? path_clearance(in->grid, *in->path, cap)
-                   : polyline_clearance(in->grid, in->waypoints, in->n_waypoints, cap);
+    // A hint starts the running minimum just above the expected result, so the queries are
+    // capped tightly from the first one; the result is the same as long as the path comes below
+    // the hint (every piece at or above it changes nothing), else it is measured again without.
+    const double hint = in->clearance_hint;
+    const bool hinted = hint > 0.0 && hint < cap;
+    const auto measure = [in, cap](double start) {
+      return in->path != nullptr
+                 ? path_clearance(in->grid, *in->path, cap, start)
+                 : polyline_clearance(in->grid, in->waypoints, in->n_waypoints, cap, start);
+    };
+    double d = measure(hinted ? hint : HUGE_VAL);
+    if (hinted && !(d < hint)) d = measure(HUGE_VAL);
     if (d < 0.0) d = 0.0;  // a lower bound below zero means touching
     out->min_clearance_m = d < cap ? d : cap;
   }

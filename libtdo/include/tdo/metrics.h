@@ -24,10 +24,13 @@ typedef struct tdo_metrics_input {
                                   sum theta_i^2 / mean length of the two adjacent segments) */
   const tdo_sample* samples; /**< time-parameterised trajectory; NULL = no energy / flight time */
   uint32_t n_samples;
-  double dt;            /**< s, nominal sample period of `samples` (> 0 when samples are given);
-                             the trapezoid rule uses the samples' own times t */
-  const tdo_grid* grid; /**< for min_clearance_m; NULL = not computed (HUGE_VAL) */
-  double clearance_cap; /**< m, > 0 with a grid; distances above it are reported as the cap */
+  double dt;             /**< s, nominal sample period of `samples` (> 0 when samples are given);
+                              the trapezoid rule uses the samples' own times t */
+  const tdo_grid* grid;  /**< for min_clearance_m; NULL = not computed (HUGE_VAL) */
+  double clearance_cap;  /**< m, > 0 with a grid; distances above it are reported as the cap */
+  double clearance_hint; /**< m, optional (0 = none): a value just above the expected
+                              min_clearance_m (the trajectory's minimum sample distance + 1e-9);
+                              the distance queries start capped there; the result is the same */
 } tdo_metrics_input;
 
 /** The metric columns of docs/design.md s.6 (plan_time_ms is measured by the caller). */

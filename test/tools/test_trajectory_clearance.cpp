@@ -1,0 +1,263 @@
+// The trajectory stage's clearance verification (trajectory.cpp, clearance_pass; docs/design.md
+// s.5) against brute force on real maps: every sample's exact distance by
+// tdo_collision_point_distance, their minimum (capped at clearance + 1 m, as the report says) and
+// the samples below the clearance, in order. Paths planned on Map1-6, verified at the plan's
+// clearance, at a clearance that the closest sample just grazes (equal: no violation; above by
+// 2e-9: the closest samples violate), at a clearance that most samples miss, and moved into the
+// obstacles; with stored and with streamed samples.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tdo/tdo.h"
+#include "tdo_io/map_io.h"
+
+namespace {
+
+const std::string kMaps = std::string(TDO_SOURCE_DIR) + "/maps";
+constexpr double kCapExtra = 1.0;  // m, the report's distances are capped at clearance + this
+constexpr double kSlack = 1e-9;    // m, the report's clearance slack (a sample at exactly the
+                                   // clearance keeps it)
+constexpr uint32_t kMaxViolations = 64;
+
+class Planner {
+ public:
+  Planner(const tdo_io::Map& map, double clearance) {
+    cfg_.cap = tdo_io::capacity_for(map, clearance, 27u, 400000u);
+    bytes_ = tdo_planner_footprint(&cfg_);
+    mem_.reset(new unsigned char[bytes_]);
+    status_ = tdo_planner_init(&planner_, mem_.get(), bytes_, &cfg_);
+    if (status_ == TDO_OK) status_ = tdo_io::load_into(map, tdo_planner_grid(planner_), clearance);
+  }
+  tdo_status status() const { return status_; }
+  tdo_planner* get() { return planner_; }
+
+ private:
+  tdo_planner_config cfg_{};
+  size_t bytes_ = 0;
+  std::unique_ptr<unsigned char[]> mem_;
+  tdo_planner* planner_ = nullptr;
+  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
+};
+
+class Traj {
+ public:
+  Traj(uint32_t max_samples, uint32_t max_segments, uint32_t stream) {
+    cfg_.max_samples = max_samples;
+    cfg_.max_segments = max_segments;
+    cfg_.max_profile = max_segments * TDO_TRAJ_PIECES_PER_SEGMENT + 1u;
+    cfg_.max_violations = kMaxViolations;
+    cfg_.max_refinements = 8;
+    cfg_.stream_samples = stream;
+    const size_t bytes = tdo_traj_footprint(&cfg_);
+    mem_.assign(bytes + 64u, 0u);
+    tdo_arena_init(&arena_, mem_.data(), mem_.size());
+    status_ = tdo_traj_init(&ctx_, &arena_, &cfg_);
+  }
+  tdo_status status() const { return status_; }
+  tdo_traj* ctx() { return ctx_; }
+
+ private:
+  tdo_traj_config cfg_{};
+  std::vector<unsigned char> mem_;
+  tdo_arena arena_{};
+  tdo_traj* ctx_ = nullptr;
+  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
+};
+
+/** What the report's clearance part must be: every sample queried. */
+struct Brute {
+  double min = HUGE_VAL;
+  std::vector<double> t, value;  // the violations in sample order
+};
+
+Brute brute_force(const tdo_grid* grid, const std::vector<tdo_sample>& samples, double clearance) {
+  Brute b;
+  for (const tdo_sample& s : samples) {
+    const double d = tdo_collision_point_distance(grid, s.p, clearance + kCapExtra);
+    b.min = std::fmin(b.min, d);
+    if (d < clearance - kSlack) {
+      b.t.push_back(s.t);
+      b.value.push_back(d);
+    }
+  }
+  return b;
+}
+
+struct Run {
+  tdo_status status = TDO_ERR_INVALID_ARGUMENT;
+  tdo_traj_output out{};
+  std::vector<tdo_sample> samples;
+  std::vector<tdo_violation> violations;
+};
+
+void collect(void* user, uint32_t /*index*/, const tdo_sample* s) {
+  static_cast<std::vector<tdo_sample>*>(user)->push_back(*s);
+}
+
+Run run_traj(Traj* traj, const tdo_grid* grid, const tdo_path& path, double clearance) {
+  tdo_plan_params params;
+  tdo_plan_params_default(&params);
+  tdo_traj_input in{};
+  tdo_plan_traj_input(&params, &in);
+  in.path = path;
+  in.grid = grid;
+  in.clearance = clearance;
+  Run r;
+  r.status = tdo_traj_run(traj->ctx(), &in, &r.out);
+  if (r.status != TDO_OK && r.status != TDO_ERR_INFEASIBLE) return r;
+  EXPECT_EQ(tdo_traj_each_sample(traj->ctx(), collect, &r.samples), TDO_OK);
+  EXPECT_EQ(r.samples.size(), r.out.n_samples);
+  r.violations.assign(r.out.report.violations, r.out.report.violations + r.out.report.n_violations);
+  return r;
+}
+
+/** The clearance part of `r`'s report equals brute force over its samples, bit for bit. */
+void expect_brute(const tdo_grid* grid, const Run& r, double clearance, const std::string& label) {
+  SCOPED_TRACE(label);
+  ASSERT_TRUE(r.status == TDO_OK || r.status == TDO_ERR_INFEASIBLE) << tdo_status_str(r.status);
+  ASSERT_GT(r.samples.size(), 1u);
+  const Brute b = brute_force(grid, r.samples, clearance);
+  EXPECT_EQ(r.out.report.min_clearance, b.min);
+  std::vector<double> t, value;
+  uint32_t others = 0;
+  for (const tdo_violation& v : r.violations) {
+    if (v.what != TDO_QUANTITY_CLEARANCE) {
+      ++others;
+      continue;
+    }
+    t.push_back(v.t);
+    value.push_back(v.value);
+    EXPECT_EQ(v.limit, clearance);
+  }
+  if (r.out.report.n_violations_total == r.out.report.n_violations) {
+    EXPECT_EQ(t, b.t);
+    EXPECT_EQ(value, b.value);
+    EXPECT_EQ(r.out.report.ok, b.t.empty() && others == 0u ? 1 : 0);
+  } else {  // the list is full: its clearance entries are brute force's first ones
+    ASSERT_LE(t.size(), b.t.size());
+    EXPECT_EQ(t, std::vector<double>(b.t.begin(), b.t.begin() + static_cast<long>(t.size())));
+    EXPECT_EQ(r.out.report.ok, 0);
+  }
+}
+
+tdo_path moved(const tdo_path& path, std::vector<tdo_path_segment>* store, tdo_vec3 by) {
+  store->assign(path.seg, path.seg + path.n);
+  for (tdo_path_segment& s : *store) {
+    const int points = s.kind == TDO_SEGMENT_BEZIER ? 4 : 3;
+    for (int k = 0; k < points; ++k) {
+      s.p[k].x += by.x;
+      s.p[k].y += by.y;
+      s.p[k].z += by.z;
+    }
+  }
+  tdo_path p = path;
+  p.seg = store->data();
+  return p;
+}
+
+tdo_io::Map load(const std::string& file) {
+  tdo_io::Map map;
+  std::string err;
+  EXPECT_TRUE(tdo_io::load_map(kMaps + "/" + file, &map, &err)) << err;
+  return map;
+}
+
+/** Plans start -> goal at `clearance` and checks the report of the plan and of its path verified
+ *  again at other clearances and moved (stored and streamed samples) against brute force. */
+void check_plan(Planner* pl, double clearance, tdo_vec3 start, tdo_vec3 goal) {
+  tdo_plan_request req{};
+  req.start = start;
+  req.goal = goal;
+  tdo_plan_params_default(&req.params);
+  tdo_plan_result res{};
+  ASSERT_EQ(tdo_planner_plan(pl->get(), &req, &res), TDO_OK);
+  const tdo_grid* grid = tdo_planner_grid(pl->get());
+  // The planner's own run: its report is brute force's too.
+  std::vector<tdo_sample> planned(res.samples, res.samples + res.n_samples);
+  const Brute bp = brute_force(grid, planned, clearance);
+  EXPECT_EQ(res.feasibility.min_clearance, bp.min);
+  EXPECT_TRUE(bp.t.empty());
+
+  // The path is copied: the planner's arena is not touched again, but keep it independent.
+  std::vector<tdo_path_segment> segs(res.path.seg, res.path.seg + res.path.n);
+  tdo_path path = res.path;
+  path.seg = segs.data();
+  const uint32_t max_samples = 4u * res.n_samples + 1000u;
+  const uint32_t max_segments = res.path.n + 8u;
+  Traj stored(max_samples, max_segments, 0u), streamed(max_samples, max_segments, 1u);
+  ASSERT_EQ(stored.status(), TDO_OK);
+  ASSERT_EQ(streamed.status(), TDO_OK);
+
+  const double m = res.feasibility.min_clearance;
+  std::vector<tdo_path_segment> into;
+  struct Case {
+    std::string label;
+    tdo_path path;
+    double clearance;
+    int violations;  // -1: none expected, 1: some expected, 0: either
+  };
+  const std::vector<Case> cases{
+      {"plan clearance", path, clearance, -1},
+      {"grazing: clearance = min", path, m, -1},
+      {"grazing: clearance = min + 1e-9 (within the slack)", path, m + 1e-9, -1},
+      {"grazing: clearance = min + 2e-9", path, m + 2e-9, 1},
+      {"clearance = min + 0.3", path, m + 0.3, 1},
+      {"clearance 0", path, 0.0, -1},
+      {"moved 0.6 m down", moved(path, &into, tdo_vec3{0.0, 0.0, -0.6}), clearance, 0},
+  };
+  for (const Case& c : cases) {
+    const Run a = run_traj(&stored, grid, c.path, c.clearance);
+    expect_brute(grid, a, c.clearance, c.label + ", stored");
+    const Run b = run_traj(&streamed, grid, c.path, c.clearance);
+    expect_brute(grid, b, c.clearance, c.label + ", streamed");
+    EXPECT_EQ(a.out.report.min_clearance, b.out.report.min_clearance) << c.label;
+    EXPECT_EQ(a.out.report.n_violations_total, b.out.report.n_violations_total) << c.label;
+    if (c.violations < 0) {
+      EXPECT_EQ(a.status, TDO_OK) << c.label;
+      EXPECT_EQ(a.out.report.ok, 1) << c.label;
+    }
+    if (c.violations > 0) {
+      EXPECT_EQ(a.status, TDO_ERR_INFEASIBLE) << c.label;
+      EXPECT_GT(a.out.report.n_violations_total, 0u) << c.label;
+    }
+  }
+}
+
+void check_map(const std::string& name) {
+  SCOPED_TRACE(name);
+  const tdo_io::Map map = load(name + ".tdomap");
+  ASSERT_TRUE(map.has_start && map.has_goal);
+  Planner pl(map, 0.5);  // tdo-plan's default clearance on .tdomap maps (obstacle boxes)
+  ASSERT_EQ(pl.status(), TDO_OK);
+  check_plan(&pl, 0.5, map.start, map.goal);
+}
+
+TEST(TrajectoryClearance, GivenMap1WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map1"); }
+TEST(TrajectoryClearance, GivenMap2WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map2"); }
+TEST(TrajectoryClearance, GivenMap3WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map3"); }
+TEST(TrajectoryClearance, GivenMap4WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map4"); }
+TEST(TrajectoryClearance, GivenMap5WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map5"); }
+TEST(TrajectoryClearance, GivenMap6WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map6"); }
+
+// MovingAI Simple (voxel cubes, clearance 0: the paths graze the cubes), its first queries.
+TEST(TrajectoryClearance, GivenMovingAISimpleWhenVerifiedThenClearanceEqualsBruteForce) {
+  const tdo_io::Map map = load("movingai/Simple.3dmap");
+  std::vector<tdo_io::ScenQuery> queries;
+  std::string err;
+  ASSERT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
+  ASSERT_GE(queries.size(), 40u);
+  Planner pl(map, 0.0);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  for (size_t k = 0; k < 40u; ++k) {
+    SCOPED_TRACE("Simple query " + std::to_string(queries[k].line));
+    check_plan(&pl, 0.0, queries[k].start, queries[k].goal);
+  }
+}
+
+}  // namespace
