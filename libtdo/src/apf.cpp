@@ -81,17 +81,46 @@ constexpr int kSafetyBisections = 6;
 constexpr int kEvadeSteps = 20;   // evasion look-ahead steps
 constexpr double kEvadeDt = 0.1;  // s per evasion step (2 s horizon)
 
-// Central-difference gradient of the capped exact distance to the static map at p.
-tdo_vec3 distance_gradient(const tdo_grid* grid, const tdo_vec3& p, double cap) {
+// Distance (m) from p to the grid's bounds [origin, origin + n res], walls for the E-APF: 0 on and
+// outside them.
+double bounds_distance(const tdo_grid* grid, const tdo_vec3& p) {
+  const tdo_grid_desc d = tdo_grid_get_desc(grid);
+  const double lo[3] = {p.x - d.origin.x, p.y - d.origin.y, p.z - d.origin.z};
+  const double n[3] = {static_cast<double>(d.nx), static_cast<double>(d.ny),
+                       static_cast<double>(d.nz)};
+  double best = HUGE_VAL;
+  for (int a = 0; a < 3; ++a) {
+    const double hi = n[a] * d.res - lo[a];
+    const double w = lo[a] < hi ? lo[a] : hi;
+    if (w < best) best = w;
+  }
+  return best > 0.0 ? best : 0.0;
+}
+
+// Capped distance (m) from p to the static map of follower c as its safety sees it (the wall
+// terms, the safety filter's roll-outs, the evasion scores): the obstacle geometry and, for the
+// E-APF, the map bounds as walls (docs/design.md s.4), so that a mover cannot push the vehicle out
+// of the map (up through the ceiling, say). With `bounds` false, or for the classical APF
+// baseline, the obstacles only: the static repulsion U_rep (apf.h) keeps the exact obstacle
+// distance.
+double static_distance(const tdo_apf* c, const tdo_vec3& p, double cap, bool bounds = true) {
+  const double d = tdo_collision_point_distance(c->grid, p, cap);
+  if (!bounds || c->prm.kind != TDO_FOLLOWER_EAPF) return d;
+  const double w = bounds_distance(c->grid, p);
+  return w < d ? w : d;
+}
+
+// Central-difference gradient of static_distance at p.
+tdo_vec3 distance_gradient(const tdo_apf* c, const tdo_vec3& p, double cap, bool bounds = true) {
   const double h = kFdStep;
-  return v3((tdo_collision_point_distance(grid, v3(p.x + h, p.y, p.z), cap) -
-             tdo_collision_point_distance(grid, v3(p.x - h, p.y, p.z), cap)) /
+  return v3((static_distance(c, v3(p.x + h, p.y, p.z), cap, bounds) -
+             static_distance(c, v3(p.x - h, p.y, p.z), cap, bounds)) /
                 (2.0 * h),
-            (tdo_collision_point_distance(grid, v3(p.x, p.y + h, p.z), cap) -
-             tdo_collision_point_distance(grid, v3(p.x, p.y - h, p.z), cap)) /
+            (static_distance(c, v3(p.x, p.y + h, p.z), cap, bounds) -
+             static_distance(c, v3(p.x, p.y - h, p.z), cap, bounds)) /
                 (2.0 * h),
-            (tdo_collision_point_distance(grid, v3(p.x, p.y, p.z + h), cap) -
-             tdo_collision_point_distance(grid, v3(p.x, p.y, p.z - h), cap)) /
+            (static_distance(c, v3(p.x, p.y, p.z + h), cap, bounds) -
+             static_distance(c, v3(p.x, p.y, p.z - h), cap, bounds)) /
                 (2.0 * h));
 }
 
@@ -237,42 +266,44 @@ void compute_terms(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_move
   if (c->grid != nullptr) {
     const double cap =
         q.vehicle_radius + (q.d_0_static > kWallZone ? q.d_0_static : kWallZone) + 0.5;
-    const double dist = tdo_collision_point_distance(c->grid, p, cap);
+    const double dist = static_distance(c, p, cap, false);  // U_rep: the obstacles
     t->static_dist = dist;
     const double d = dist - q.vehicle_radius;
     const bool repel = d < q.d_0_static && dist > 0.0;
-    const bool zone = d < kWallZone && dist > 0.0;
-    if (repel || zone) {
-      const tdo_vec3 grad = distance_gradient(c->grid, p, cap);
-      if (repel) {
-        double u, g;
-        rep_profile(q.k_r_static, d, q.d_0_static, q.d_min, &u, &g);
-        t->u_rep_static = u;
-        t->f_rep_static = mul(grad, g);
-      }
+    if (repel) {
+      double u, g;
+      rep_profile(q.k_r_static, d, q.d_0_static, q.d_min, &u, &g);
+      t->u_rep_static = u;
+      t->f_rep_static = mul(distance_gradient(c, p, cap, false), g);
+    }
+    // The wall terms: the obstacles and the map bounds.
+    const double wall = static_distance(c, p, cap);
+    const double dw = wall - q.vehicle_radius;
+    if (dw < kWallZone && wall > 0.0) {
+      const tdo_vec3 grad = distance_gradient(c, p, cap);
       const double ng = norm(grad);
-      if (zone && ng > 1e-9) {
+      if (ng > 1e-9) {
         near->wall_n = mul(grad, 1.0 / ng);
-        near->wall_w = d > 0.0 ? d / kWallZone : 0.0;
-        near->wall_d = d;
+        near->wall_w = dw > 0.0 ? dw / kWallZone : 0.0;
+        near->wall_d = dw;
       }
     }
     // Look ahead along the velocity: a corner or another face may come closer than the face
     // nearest now. The closest predicted point (if closer than now) sets the wall normal, and the
     // distance left along it is its distance plus the approach covered until then.
-    double best = dist;
+    double best = wall;
     double best_tau = 0.0;
     for (int k = 1; k <= kWallProbes; ++k) {
       const double tau = kWallProbeDt * k;
-      const double dk = tdo_collision_point_distance(c->grid, add(p, mul(st->v, tau)), cap);
+      const double dk = static_distance(c, add(p, mul(st->v, tau)), cap);
       if (dk < best) {
         best = dk;
         best_tau = tau;
       }
     }
-    if (best_tau > 0.0 && best - q.vehicle_radius < kWallZone && best < dist - 1e-3) {
+    if (best_tau > 0.0 && best - q.vehicle_radius < kWallZone && best < wall - 1e-3) {
       const tdo_vec3 x = add(p, mul(st->v, best_tau));
-      const tdo_vec3 g2 = distance_gradient(c->grid, x, cap);
+      const tdo_vec3 g2 = distance_gradient(c, x, cap);
       const double n2 = norm(g2);
       if (n2 > 1e-9) {
         const tdo_vec3 n = mul(g2, 1.0 / n2);
@@ -361,7 +392,7 @@ double rollout_margin(const tdo_apf* c, const tdo_setpoint& sp) {
       x.a = nx.a;
     }
     if (!queried || d_last - since < thresh) {
-      d_last = tdo_collision_point_distance(c->grid, x.p, cap);
+      d_last = static_distance(c, x.p, cap);
       since = 0.0;
       queried = true;
       if (d_last < best) best = d_last;
@@ -413,7 +444,7 @@ bool safety_filter(const tdo_apf* c, const tdo_vehicle_state* st, tdo_vec3 a_des
   tdo_motion_limit(st, b_des, q.v_max, q.a_max, q.j_max, q.dt, &b);
   const double mb = rollout_margin(c, b);
   const double cap = q.vehicle_radius + q.safety_margin + kRolloutCap;
-  const tdo_vec3 g = distance_gradient(c->grid, st->p, cap);
+  const tdo_vec3 g = distance_gradient(c, st->p, cap);
   const double ng = norm(g);
   const bool have_n = ng > 1e-9;
   tdo_setpoint sl = b;
@@ -495,7 +526,7 @@ double evasion_score(const tdo_apf* c, const tdo_vehicle_state* st, const tdo_mo
       if (gap < score) score = gap;
     }
     if (c->grid != nullptr) {
-      const double d = tdo_collision_point_distance(c->grid, x.p, thresh + kRolloutCap) - thresh;
+      const double d = static_distance(c, x.p, thresh + kRolloutCap) - thresh;
       if (d < score) score = d;
     }
   }

@@ -42,11 +42,8 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   // 27-entry index (216 bytes per voxel, at most 14 MB), which saves the chain walks: Map4's
   // search 26.1 M instructions with chains, 23.3 M with the index (docs/design.md s.1).
   cap->dense_headings = headings >= 27u && n <= (1u << 16) ? 1u : 0u;
-  // The obstacle-aware retry (24 bytes per voxel) with the turn-penalised search, whose octile
-  // try can flood (docs/performance.md); plain searches never retry.
-  cap->exact_heuristic = headings >= 27u ? 1u : 0u;
-  // The coarse guide (guide.cpp) only runs on grids of TDO_GUIDE_MIN_VOXELS or more.
-  cap->guide_shift = headings >= 27u && n >= TDO_GUIDE_MIN_VOXELS ? 2u : 0u;
+  // The retry's tables and the coarse guide: tdo_capacity_guide, for heading states.
+  tdo_capacity_guide(cap, nx, ny, nz, headings >= 27u ? 1 : 0);
   cap->max_checks = 100000u;  // correction: a few checks per point and scale, far above need
   cap->max_shrinks = 16u;     // radius x0.6 per shrink: 16 steps reach 0.03 % of the radius
   // A flight of 64 samples (0.64 s at dt = 0.01 s) per path voxel covers a slow, stop-heavy path.
@@ -55,6 +52,22 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   cap->max_profile = TDO_TRAJ_PIECES_PER_SEGMENT * (3u * cap->max_path + 4u) + 1u;
   cap->max_violations = 64u;  // enough to show a pattern; the total is always counted
   cap->max_refinements = 8u;  // each round lowers local limits by 20 %: 8 rounds reach 17 %
+}
+
+extern "C" void tdo_capacity_guide(tdo_capacity* cap, int32_t nx, int32_t ny, int32_t nz,
+                                   int turn_penalised) {
+  if (cap == nullptr) return;
+  const bool sized = nx > 0 && ny > 0 && nz > 0;
+  const uint64_t n =
+      sized ? static_cast<uint64_t>(nx) * static_cast<uint64_t>(ny) * static_cast<uint64_t>(nz)
+            : 0u;
+  const bool on = sized && turn_penalised != 0;
+  // The obstacle-aware retry (24 bytes per voxel) for the turn-penalised search, whose octile try
+  // can flood (docs/performance.md), and the grid-distance tables of voxel states' grid_first;
+  // plain searches never retry.
+  cap->exact_heuristic = on ? 1u : 0u;
+  // The coarse guide (guide.cpp) only runs on grids of TDO_GUIDE_MIN_VOXELS or more.
+  cap->guide_shift = on && n >= TDO_GUIDE_MIN_VOXELS ? 2u : 0u;
 }
 
 extern "C" size_t tdo_planner_footprint(const tdo_planner_config* cfg) {

@@ -6,6 +6,7 @@
 
 #include "grid_internal.h"
 #include "planner_internal.h"
+#include "search_ends.h"
 #include "search_headed.h"
 #include "tdo/collision.h"
 #include "tdo/params.h"
@@ -61,15 +62,14 @@ void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_o
 // The direct route (docs/design.md s.1): when the straight segment from start to goal keeps the
 // clearance, it is the shortest path and has no turn, so no search can better it for the
 // turn-penalised planner; the search is skipped and the correction gets the segment itself.
-// The search's own refusals (an end voxel out of bounds or blocked by the centre rule, start
-// equal to goal) are left to it, so the direct route never plans what the search refuses.
+// The search's own refusals (search_ends_ok: an end out of bounds or its voxel blocked by the
+// centre rule, start equal to goal) are left to it: the same check, so the direct route never
+// plans what the search refuses and the refusal's status is the search's.
 bool direct_path(tdo_planner* pl, const tdo_plan_request& req, double clearance,
                  tdo_search_output* s) {
   const tdo_grid* g = pl->grid;
-  tdo_voxel a, b;
-  if (!tdo_grid_world_to_voxel(g, req.start, &a) || !tdo_grid_world_to_voxel(g, req.goal, &b) ||
-      tdo_grid_is_blocked(g, a) || tdo_grid_is_blocked(g, b) || zero3(sub(req.goal, req.start)))
-    return false;
+  tdo_voxel ends[2];
+  if (search_ends_ok(g, req.start, req.goal, ends) != TDO_OK) return false;
   if (tdo_collision_segment_clear(g, req.start, req.goal, verify_clearance(clearance)) == 0)
     return false;
   memset(s, 0, sizeof(*s));

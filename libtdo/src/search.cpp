@@ -22,6 +22,7 @@
 
 #include "directions.h"
 #include "grid_internal.h"
+#include "search_ends.h"
 #include "search_headed.h"
 #include "search_open.h"
 #include "search_retry.h"
@@ -1229,13 +1230,8 @@ extern "C" tdo_status tdo_search_run(tdo_search* ctx, const tdo_search_input* in
   Query q;
   memset(&q, 0, sizeof(q));
   q.grid = g;
-  if (!tdo_grid_world_to_voxel(g, in->start, &q.v[0])) return TDO_ERR_START_OUT_OF_BOUNDS;
-  if (!tdo_grid_world_to_voxel(g, in->goal, &q.v[1])) return TDO_ERR_GOAL_OUT_OF_BOUNDS;
-  if (!(in->start.x < in->goal.x || in->start.x > in->goal.x || in->start.y < in->goal.y ||
-        in->start.y > in->goal.y || in->start.z < in->goal.z || in->start.z > in->goal.z))
-    return TDO_ERR_START_EQUALS_GOAL;
-  if (tdo_grid_is_blocked(g, q.v[0])) return TDO_ERR_START_BLOCKED;
-  if (tdo_grid_is_blocked(g, q.v[1])) return TDO_ERR_GOAL_BLOCKED;
+  const tdo_status ends = search_ends_ok(g, in->start, in->goal, q.v);  // as the direct route
+  if (ends != TDO_OK) return ends;
   if (in->corridor != nullptr && !corridor_holds(in->corridor, g, q.v))
     return TDO_ERR_INVALID_ARGUMENT;
   q.corridor = in->corridor;

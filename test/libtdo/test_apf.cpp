@@ -579,6 +579,38 @@ TEST(Apf, SafetyFilterHoldsTheColumnClearanceWhenAMoverPushes) {
   EXPECT_LE(j, 10.0 * 1.01);
 }
 
+// GIVEN a vehicle that has arrived and holds its goal 1.5 m under the ceiling of a 6 m high map,
+// and a mover rising from the floor straight at it, so that its repulsion pushes the vehicle up
+// WHEN E-APF runs on THEN the map bounds are walls: the vehicle stays inside them with the safety
+// filter's clearance (vehicle_radius + safety_margin) on every axis and keeps clear of the mover;
+// without a static map (no walls) the same push takes it closer to the ceiling than that, so the
+// scenario is a real threat.
+TEST(Apf, GivenAMoverPushingTheVehicleUp_WhenHovering_ThenItStaysInsideTheBounds) {
+  TestPlanner tp(small_cap());
+  make_grid(&tp, {});
+  const auto traj = line_trajectory({5.0, 10.0, 4.5}, {7.0, 10.0, 4.5}, 3.0, 0.01);
+  const tdo_mover m{1u, {7.0, 10.0, 0.5}, {0.0, 0.0, 1.0}, 0.8};
+  GridFlight on, bare;
+  fly_grid(traj, tp.grid(), &m, 1u, 1u, 600, &on);
+  fly_grid(traj, nullptr, &m, 1u, 1u, 600, &bare);
+  tdo_apf_params d;
+  tdo_apf_params_default(&d, TDO_FOLLOWER_EAPF);
+  const double keep = d.vehicle_radius + d.safety_margin;
+  const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {20.0, 20.0, 6.0};
+  double top = -HUGE_VAL, bare_top = -HUGE_VAL, worst = HUGE_VAL;
+  for (const tdo_vehicle_state& s : on.states) {
+    const double p[3] = {s.p.x, s.p.y, s.p.z};
+    for (int a = 0; a < 3; ++a) worst = std::fmin(worst, std::fmin(p[a] - lo[a], hi[a] - p[a]));
+    top = std::fmax(top, s.p.z);
+  }
+  for (const tdo_vehicle_state& s : bare.states) bare_top = std::fmax(bare_top, s.p.z);
+  EXPECT_GE(worst, keep - 1e-9) << "highest z " << top;
+  EXPECT_FALSE(on.collision);
+  EXPECT_GT(on.min_gap, 0.0);
+  EXPECT_GT(top, 4.5 + 0.1) << "the mover did not push the vehicle up";
+  EXPECT_GT(bare_top, hi[2] - keep) << "without a map the push does not threaten the ceiling";
+}
+
 // GIVEN a vehicle that has arrived and holds its goal 1 m from a wall, and a mover coming straight
 // at it from the open side, towards the wall (it would pin the vehicle against it) WHEN E-APF
 // runs on THEN the vehicle gets out of the way sideways: no contact with the mover, and the wall

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "tdo/tdo.h"
@@ -203,6 +204,70 @@ TEST(Capacity, GivenAGrid_WhenCapacityForGrid_ThenVoxelsAndNodesMatchTheDocument
   EXPECT_EQ(cap.max_nodes, 5000u) << "node_cap caps max_nodes";
   tdo_capacity_for_grid(&cap, 10, 20, 5, 0.0, 1u, 5000u);
   EXPECT_EQ(cap.max_nodes, 1000u) << "node_cap only caps, never raises";
+}
+
+// config.h: a turn-penalised search gets the retry's tables, and the coarse guide from
+// TDO_GUIDE_MIN_VOXELS voxels on; a plain one neither; nothing else of the capacity changes.
+TEST(Capacity, GivenAGridSize_WhenCapacityGuide_ThenTablesAndTheGuideAsDocumented) {
+  tdo_capacity cap;
+  std::memset(&cap, 0x5A, sizeof(cap));
+  const tdo_capacity before = cap;
+  tdo_capacity_guide(&cap, 20, 20, 20, 1);
+  EXPECT_EQ(cap.exact_heuristic, 1u);
+  EXPECT_EQ(cap.guide_shift, 0u) << "Map1-sized grids are not guided";
+  tdo_capacity rest = cap;
+  rest.exact_heuristic = before.exact_heuristic;
+  rest.guide_shift = before.guide_shift;
+  EXPECT_EQ(std::memcmp(&rest, &before, sizeof(cap)), 0) << "other fields changed";
+
+  // The threshold, 2^19 voxels: one voxel short (2^19 - 1 is prime: a 1 x 1 x n grid) and at it.
+  tdo_capacity_guide(&cap, 1, 1, static_cast<int32_t>(TDO_GUIDE_MIN_VOXELS - 1u), 1);
+  EXPECT_EQ(cap.guide_shift, 0u);
+  tdo_capacity_guide(&cap, 1, 1, static_cast<int32_t>(TDO_GUIDE_MIN_VOXELS), 1);
+  EXPECT_EQ(cap.guide_shift, 2u);
+  tdo_capacity_guide(&cap, 128, 64, 64, 1);
+  EXPECT_EQ(cap.guide_shift, 2u);
+  EXPECT_EQ(cap.exact_heuristic, 1u);
+  tdo_capacity_guide(&cap, 2000, 2000, 1000, 1);  // 4e9 voxels: no 32-bit overflow
+  EXPECT_EQ(cap.guide_shift, 2u);
+
+  // Plain searches: neither, whatever was set before and however large the grid.
+  tdo_capacity_guide(&cap, 128, 64, 64, 0);
+  EXPECT_EQ(cap.exact_heuristic, 0u);
+  EXPECT_EQ(cap.guide_shift, 0u);
+  // No grid: neither; no capacity: nothing happens.
+  for (int32_t bad : {0, -1}) {
+    cap.exact_heuristic = cap.guide_shift = 7u;
+    tdo_capacity_guide(&cap, bad, 64, 64, 1);
+    EXPECT_EQ(cap.exact_heuristic, 0u);
+    EXPECT_EQ(cap.guide_shift, 0u);
+  }
+  tdo_capacity_guide(nullptr, 8, 8, 8, 1);
+}
+
+// tdo_capacity_for_grid takes the same rule for heading states (27 headings) and none for plain
+// searches, on both sides of the guide's threshold; a voxel-state planner (1 heading) that asks
+// tdo_capacity_guide gets the guide's cells in its footprint (tdo-plan's and tdo-bench-scale's
+// voxel states on large grids).
+TEST(Capacity, GivenCapacityForGrid_WhenComparedWithCapacityGuide_ThenTheSameRule) {
+  const int32_t sizes[][3] = {{20, 20, 20}, {50, 50, 20}, {128, 64, 63}, {128, 64, 64}};
+  for (const auto& n : sizes) {
+    for (uint32_t headings : {1u, 27u}) {
+      tdo_capacity a{}, b{};
+      tdo_capacity_for_grid(&a, n[0], n[1], n[2], 0.5, headings, 0u);
+      b = a;
+      tdo_capacity_guide(&b, n[0], n[1], n[2], headings == 27u ? 1 : 0);
+      EXPECT_EQ(std::memcmp(&a, &b, sizeof(a)), 0) << n[0] << "x" << n[1] << "x" << n[2];
+    }
+  }
+  tdo_planner_config plain{}, guided{};
+  tdo_capacity_for_grid(&plain.cap, 128, 64, 64, 0.5, 1u, 0u);
+  plain.cap.max_boxes = 1u;
+  plain.cap.exact_heuristic = 1u;  // as the guide sets it: only guide_shift differs
+  guided = plain;
+  tdo_capacity_guide(&guided.cap, 128, 64, 64, 1);
+  ASSERT_EQ(guided.cap.guide_shift, 2u);
+  EXPECT_GT(tdo_planner_footprint(&guided), tdo_planner_footprint(&plain));
 }
 
 TEST(Capacity, GivenAClearanceRatio_WhenCapacityForGrid_ThenTheStencilCoversIt) {

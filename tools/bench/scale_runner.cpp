@@ -107,13 +107,10 @@ std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double 
   tdo_planner_config cfg{};
   const bool voxel = states == TDO_STATES_VOXEL;
   cfg.cap = tdo_io::capacity_for(map, clearance, voxel ? 1u : 27u, node_cap);
-  cfg.cap.exact_heuristic = 1u;  // the retry's tables (capacity_for sets them for 27 headings)
-  // The coarse guide as tdo-plan sets it: grids of TDO_GUIDE_MIN_VOXELS or more, voxel states
-  // included.
-  cfg.cap.guide_shift =
-      guide && static_cast<double>(map.desc.nx) * map.desc.ny * map.desc.nz >= TDO_GUIDE_MIN_VOXELS
-          ? 2u
-          : 0u;
+  // The retry's tables and the coarse guide as tdo-plan sets them (tdo is turn-penalised, voxel
+  // states included); without `guide` no guide.
+  tdo_capacity_guide(&cfg.cap, map.desc.nx, map.desc.ny, map.desc.nz, 1);
+  if (!guide) cfg.cap.guide_shift = 0u;
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";

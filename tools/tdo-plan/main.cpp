@@ -283,11 +283,11 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   const uint32_t headings = penalised && o.params.states != TDO_STATES_VOXEL ? 27u : 1u;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, clearance, headings, static_cast<uint32_t>(o.max_nodes));
+  // The retry's tables and the coarse guide (docs/design.md s.1) as the library sizes them for a
+  // turn-penalised search, voxel states included; --guide off drops the guide.
+  tdo_capacity_guide(&cfg.cap, map.desc.nx, map.desc.ny, map.desc.nz, penalised ? 1 : 0);
+  if (o.guide != "on") cfg.cap.guide_shift = 0u;
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
-  // The coarse guide (docs/design.md s.1) on grids of TDO_GUIDE_MIN_VOXELS or more, voxel states
-  // included.
-  cfg.cap.guide_shift =
-      penalised && o.guide == "on" && voxel_count(map.desc) >= TDO_GUIDE_MIN_VOXELS ? 2u : 0u;
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   const double nvox = voxel_count(map.desc);
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs

@@ -108,6 +108,17 @@ typedef struct tdo_planner_config {
 void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny, int32_t nz,
                            double clear_ratio, uint32_t headings, uint32_t node_cap);
 
+/**
+ * @brief The search aids of `cap` for a grid of nx*ny*nz voxels, the one rule tdo-plan,
+ *        tdo-bench-scale and tdo_capacity_for_grid share: with `turn_penalised` (a search with
+ *        heading costs, heading or voxel states) the obstacle-aware retry's tables
+ *        (exact_heuristic 1) and, on grids of TDO_GUIDE_MIN_VOXELS or more, the coarse guide
+ *        (guide_shift 2), whose corridor keeps the states a search creates near the plan's;
+ *        without, neither (0). Other fields are left as they are; a non-positive size sets
+ *        neither.
+ */
+void tdo_capacity_guide(tdo_capacity* cap, int32_t nx, int32_t ny, int32_t nz, int turn_penalised);
+
 /** @return bytes of arena a planner with this configuration needs (0 if cfg is invalid). */
 size_t tdo_planner_footprint(const tdo_planner_config* cfg);
 
