@@ -57,9 +57,13 @@ constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre
 // per query, a smaller one leaves the probe's bound too low to skip the next samples (geb079
 // G2 at 0.08 m: 0 -> 52 M instructions per plan, 0.05 -> 43 M, 0.15 -> 56 M, uncapped 90 M)
 constexpr double kClearanceEvalMargin = 0.05;
-// m, the same margin in clearance_min: its queries' bounds prune both ways, so a larger cap pays
-// there (MovingAI Simple, 200 queries: 0.05 -> 35,741 queries, 0.2 -> 21,650)
+// m, the same margin in clearance_min, at most kClearanceMinVoxels voxel edges: its queries'
+// bounds prune both ways, so a larger cap pays on coarse grids (MovingAI Simple at 1 m, 200
+// queries: 0.05 -> 35,741 queries, 0.2 -> 21,650), while on fine ones a larger cap reaches many
+// more cubes per query (geb079 G3 at 0.08 m: 0.2 -> 1.80 M instructions per plan, 0.04 -> 0.97 M;
+// forest pairs 1, 105, 205 at 0.1 m: trajectory stage 5.45 M -> 4.51 M with 0.05)
 constexpr double kClearanceMinMargin = 0.2;
+constexpr double kClearanceMinVoxels = 0.5;
 constexpr double kRadiusNoise = 64.0 * 2.220446049250313e-16;  // FD rounding, relative to |P|
 // Budgets (fractions of a_max / j_max).
 constexpr double kLineShare = 0.99;    // tangential jerk on straight plateaus
@@ -1299,10 +1303,12 @@ bool clearance_min(ClearanceScan* cs, const tdo_sample* s, uint32_t n, double st
   constexpr uint32_t kStack = 72;  // > 2 (log2(2^32) + 2): never full
   ClearanceSpan stack[kStack];
   LipschitzProbe probe;
-  cs->eval(&probe, s[0].p, kClearanceMinMargin);
+  const double margin =
+      dmin(kClearanceMinMargin, kClearanceMinVoxels * tdo_grid_get_desc(cs->grid).res);
+  cs->eval(&probe, s[0].p, margin);
   const double l0 = probe.ref;
   if (n < 2u) return true;
-  cs->eval(&probe, s[n - 1u].p, kClearanceMinMargin);
+  cs->eval(&probe, s[n - 1u].p, margin);
   uint32_t top = 0;
   stack[top++] = ClearanceSpan{0u, n - 1u, l0, probe.ref};
   const uint64_t pops = 2u * static_cast<uint64_t>(n);  // every pop drops or splits: < 2n
@@ -1317,7 +1323,7 @@ bool clearance_min(ClearanceScan* cs, const tdo_sample* s, uint32_t n, double st
     double lm =
         dmax(sp.la - norm(sub(pm, s[sp.a].p)), sp.lb - norm(sub(pm, s[sp.b].p))) - kLipschitzSlack;
     if (!(lm >= cs->min)) {
-      cs->eval(&probe, pm, kClearanceMinMargin);
+      cs->eval(&probe, pm, margin);
       lm = probe.ref;
     }
     const ClearanceSpan lo{sp.a, m, sp.la, lm}, hi{m, sp.b, lm, sp.lb};

@@ -260,4 +260,24 @@ TEST(TrajectoryClearance, GivenMovingAISimpleWhenVerifiedThenClearanceEqualsBrut
   }
 }
 
+// Fine OcTrees, where clearance_min's query margin is half a voxel edge (0.04 m at geb079's 0.08 m,
+// 0.05 m at the forests' 0.1 m) instead of 0.2 m: the report is still brute force's.
+TEST(TrajectoryClearance, GivenGeb079CorridorQueriesWhenVerifiedThenClearanceEqualsBruteForce) {
+  const tdo_io::Map map = load("octomap/geb079.bt");
+  Planner pl(map, 0.3);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  // maps/octomap/README.md: G2 and G3, straight along the corridor's walls.
+  check_plan(&pl, 0.3, tdo_vec3{-5.0, 0.0, 1.2}, tdo_vec3{10.0, 0.0, 1.2});
+  check_plan(&pl, 0.3, tdo_vec3{13.0, 0.0, 1.2}, tdo_vec3{27.0, 0.0, 1.2});
+}
+
+TEST(TrajectoryClearance, GivenForestPairsWhenVerifiedThenClearanceEqualsBruteForce) {
+  const tdo_io::Map map = load("forest_gen/forest2.bt");
+  Planner pl(map, 0.5);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  // maps/forest_gen/start_and_end.csv, pairs 205 and 200.
+  check_plan(&pl, 0.5, tdo_vec3{2.083444, -3.562597, 1.0}, tdo_vec3{-1.367670, 3.574024, 1.0});
+  check_plan(&pl, 0.5, tdo_vec3{-0.910768, 2.729434, 1.0}, tdo_vec3{4.385792, 2.004155, 1.0});
+}
+
 }  // namespace
