@@ -131,7 +131,7 @@ struct Model {
 /** A planner holding world `w` at `clearance`, asked for one pair of ends three ways. */
 class Ends {
  public:
-  Ends(const World& w, double clearance) : w_(w), m_{w, clearance}, pl_(cap_for(w, clearance)) {
+  Ends(const World& w, double clearance) : m_{w, clearance}, pl_(cap_for(w, clearance)) {
     ok_ = pl_.status() == TDO_OK;
     tdo_status st = ok_ ? tdo_grid_reset(pl_.grid(), &w.desc) : TDO_ERR_INVALID_ARGUMENT;
     for (const tdo_box& b : w.boxes)
@@ -207,7 +207,6 @@ class Ends {
     os << p.x << ", " << p.y << ", " << p.z;
     return os.str();
   }
-  const World& w_;
   Model m_;
   TestPlanner pl_;
   bool ok_ = false;
