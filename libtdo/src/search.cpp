@@ -527,6 +527,38 @@ inline void classify(const tdo_search* ctx, const Query& q, int back, const Node
   }
 }
 
+// The dominance table of voxel-state searches with turn costs (tdo_search.vt_prune): a neighbour
+// w = p + c of the parent p is left out of u's expansion when p's own offer of it, step length plus
+// turn, undercuts the way through u by a margin, so the relaxation could not lower w's cost: the
+// pruning of the plain searches (pruned_steps) restricted to the steps where the turns keep the
+// triangle inequality. Built once per lambda, pivot cost and voxel edge.
+void vt_prune_ensure(tdo_search* ctx, const Query& q) {
+  const double key[4] = {ctx->turn_lambda, q.constrained ? q.pivot_cost : -1.0, q.inv_res,
+                         ctx->cand_theta};
+  if (memcmp(key, ctx->vt_prune_key, sizeof(key)) == 0) return;
+  constexpr double kMargin = 1e-6;  // voxel edges: far above the rounding of the costs
+  for (int back = 0; back < 2; ++back)
+    for (int hp = 0; hp < kNumHeadings; ++hp)
+      for (int si = 0; si < kNumDirs; ++si) {
+        const int d_pu = back ? dir_opposite(si) : si;
+        const double via_u0 = ctx->step_q[si] + voxel_turn(ctx, q, hp, d_pu);
+        uint32_t m = 0;
+        for (int e = 0; e < kNumDirs; ++e) {
+          const int x = dir_dx(si) + dir_dx(e), y = dir_dy(si) + dir_dy(e),
+                    z = dir_dz(si) + dir_dz(e);
+          if (x < -1 || x > 1 || y < -1 || y > 1 || z < -1 || z > 1 || (x | y | z) == 0) continue;
+          const int c = dir_of_cell(cell_of(x, y, z));
+          const int d_uw = back ? dir_opposite(e) : e;
+          const int d_pw = back ? dir_opposite(c) : c;
+          const double via_p = ctx->step_q[c] + voxel_turn(ctx, q, hp, d_pw);
+          const double via_u = via_u0 + ctx->step_q[e] + voxel_turn(ctx, q, d_pu, d_uw);
+          if (via_p + kMargin <= via_u) m |= 1u << e;
+        }
+        ctx->vt_prune[back][hp][si] = m;
+      }
+  memcpy(ctx->vt_prune_key, key, sizeof(key));
+}
+
 // Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
 // reached yet), at cost ng with parent ui over search-sense step e (forward-sense d): relax
 // without the heading lookup, the closed test (the slot word holds it) and the heading index.
@@ -572,10 +604,13 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const tdo_grid* g = q.grid;
   const Node u = s.nodes[ui];
   uint32_t mask = legal_steps(q, u);  // search-sense steps
-  if (u.parent != kNil && !q.voxel_turns) {
+  if (u.parent != kNil) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-    mask &= ~pruned_steps(s_in, p_moves);
+    uint32_t pruned = pruned_steps(s_in, p_moves);
+    if (q.voxel_turns)  // p offered those for less only where the turns allow (vt_prune_ensure)
+      pruned &= ctx->vt_prune[back][s.nodes[u.parent].heading][s_in] | kPrune.back[s_in];
+    mask &= ~pruned;
   }
   uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
   for (uint32_t m = mask; m != 0; m &= m - 1u) {
@@ -1055,6 +1090,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   if (ctx->cfg.max_expansions == 0) ctx->cfg.max_expansions = 0xFFFFFFFFu;
   ctx->max_open = cfg->max_open != 0u ? cfg->max_open : 0xFFFFFFFFu;  // 0: max_nodes bounds it
   ctx->turn_lambda = -1.0;
+  ctx->vt_prune_key[0] = -2.0;  // no table yet (vt_prune_ensure)
   ctx->cand_theta = -1.0;
   for (int a = 0; a < kNumDirs; ++a) {
     double c[kNumDirs];
@@ -1153,6 +1189,7 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
     q.h_weight = q.h_weight > retry_weight(0) ? q.h_weight : retry_weight(0);
     q.dev_terms = 0;
   }
+  vt_prune_ensure(ctx, q);
   const tdo_status st = run_search<false>(ctx, q);
   report_counts(q, out);
   if (st != TDO_OK) return st;

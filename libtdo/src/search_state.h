@@ -167,6 +167,11 @@ struct tdo_search {
   // first_sharp[h]: how many leading entries of by_angle[h] lie in cand[h] (no sharp step there)
   uint8_t first_sharp[tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
+  // Voxel-state searches with turn costs: vt_prune[back][hp][s] holds the search-sense steps e of a
+  // state reached over step s from a parent of heading hp whose neighbour the parent offered for
+  // less than the way through the state (turns included; tdo_internal::vt_prune_ensure).
+  uint32_t vt_prune[2][tdo_internal::kNumHeadings][tdo_internal::kNumDirs];
+  double vt_prune_key[4];  // lambda, pivot cost, 1/voxel edge and theta_max of vt_prune
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
   float* hdist[2];    // rounded down from the Dijkstra's keys (lower bounds stay lower bounds)
