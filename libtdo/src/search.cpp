@@ -401,7 +401,7 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
       c += ctx->turn[hf][hb];
       if (sharp_join(ctx, q, hf, hb)) c += q.pivot_cost;  // the join itself is a sharp turn
     } else if (q.voxel_turns) {
-      c += voxel_turn(ctx, q, a == 0 ? n.heading : m.heading, a == 0 ? m.heading : n.heading);
+      c += ctx->vturn[a == 0 ? n.heading : m.heading][a == 0 ? m.heading : n.heading];
     }
     if (c < q.best) {
       q.best = c;
@@ -527,7 +527,8 @@ inline void classify(const tdo_search* ctx, const Query& q, int back, const Node
   }
 }
 
-// The dominance table of voxel-state searches with turn costs (tdo_search.vt_prune): a neighbour
+// The tables of voxel-state searches with turn costs: voxel_turn() of every pair of headings
+// (tdo_search.vturn) and the dominance table (tdo_search.vt_prune): a neighbour
 // w = p + c of the parent p is left out of u's expansion when p's own offer of it, step length plus
 // turn, undercuts the way through u by a margin, so the relaxation could not lower w's cost: the
 // pruning of the plain searches (pruned_steps) restricted to the steps where the turns keep the
@@ -536,6 +537,8 @@ void vt_prune_ensure(tdo_search* ctx, const Query& q) {
   const double key[4] = {ctx->turn_lambda, q.constrained ? q.pivot_cost : -1.0, q.inv_res,
                          ctx->cand_theta};
   if (memcmp(key, ctx->vt_prune_key, sizeof(key)) == 0) return;
+  for (int a = 0; a < kNumHeadings; ++a)
+    for (int b = 0; b < kNumHeadings; ++b) ctx->vturn[a][b] = voxel_turn(ctx, q, a, b);
   constexpr double kMargin = 1e-6;  // voxel edges: far above the rounding of the costs
   for (int back = 0; back < 2; ++back)
     for (int hp = 0; hp < kNumHeadings; ++hp)
@@ -627,8 +630,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     const int d = back ? dir_opposite(e) : e;
-    const double ng =
-        u.g + ctx->step_q[e] + (q.voxel_turns ? voxel_turn(ctx, q, u.heading, d) : 0.0);
+    const double ng = u.g + ctx->step_q[e] + (q.voxel_turns ? ctx->vturn[u.heading][d] : 0.0);
     const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, d, ng, state[e]);
     if (st != TDO_OK) return st;
   }

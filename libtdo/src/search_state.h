@@ -171,7 +171,8 @@ struct tdo_search {
   // state reached over step s from a parent of heading hp whose neighbour the parent offered for
   // less than the way through the state (turns included; tdo_internal::vt_prune_ensure).
   uint32_t vt_prune[2][tdo_internal::kNumHeadings][tdo_internal::kNumDirs];
-  double vt_prune_key[4];  // lambda, pivot cost, 1/voxel edge and theta_max of vt_prune
+  double vturn[tdo_internal::kNumHeadings][tdo_internal::kNumHeadings];  // voxel_turn(), edges
+  double vt_prune_key[4];  // lambda, pivot cost, 1/voxel edge and theta_max of both tables
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
   float* hdist[2];    // rounded down from the Dijkstra's keys (lower bounds stay lower bounds)
