@@ -544,17 +544,17 @@ void vt_prune_ensure(tdo_search* ctx, const Query& q) {
     for (int hp = 0; hp < kNumHeadings; ++hp)
       for (int si = 0; si < kNumDirs; ++si) {
         const int d_pu = back ? dir_opposite(si) : si;
-        const double via_u0 = ctx->step_q[si] + voxel_turn(ctx, q, hp, d_pu);
+        const double via_u0 = ctx->step_q[si] + ctx->vturn[hp][d_pu];
         uint32_t m = 0;
-        for (int e = 0; e < kNumDirs; ++e) {
-          const int x = dir_dx(si) + dir_dx(e), y = dir_dy(si) + dir_dy(e),
-                    z = dir_dz(si) + dir_dz(e);
-          if (x < -1 || x > 1 || y < -1 || y > 1 || z < -1 || z > 1 || (x | y | z) == 0) continue;
-          const int c = dir_of_cell(cell_of(x, y, z));
+        // The steps e with si + e a step (not back to p): pruned_steps' cells.
+        for (uint32_t b = pruned_steps(si, kAllMoves) & ~kPrune.back[si]; b != 0; b &= b - 1u) {
+          const int e = __builtin_ctz(b);
+          const int c = dir_of_cell(
+              cell_of(dir_dx(si) + dir_dx(e), dir_dy(si) + dir_dy(e), dir_dz(si) + dir_dz(e)));
           const int d_uw = back ? dir_opposite(e) : e;
           const int d_pw = back ? dir_opposite(c) : c;
-          const double via_p = ctx->step_q[c] + voxel_turn(ctx, q, hp, d_pw);
-          const double via_u = via_u0 + ctx->step_q[e] + voxel_turn(ctx, q, d_pu, d_uw);
+          const double via_p = ctx->step_q[c] + ctx->vturn[hp][d_pw];
+          const double via_u = via_u0 + ctx->step_q[e] + ctx->vturn[d_pu][d_uw];
           if (via_p + kMargin <= via_u) m |= 1u << e;
         }
         ctx->vt_prune[back][hp][si] = m;
