@@ -16,6 +16,8 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+
+#include "tdo/config.h"
 #if defined(__SSE2__)
 #include <emmintrin.h>  // the scalar square root (sqrt_sd)
 #endif
@@ -382,6 +384,11 @@ inline double voxel_turn(const tdo_search* ctx, const Query& q, int a, int b) {
   return t * q.inv_res;
 }
 
+// voxel_turn() from the table when the search has one (the same bits).
+inline double vturn_of(const tdo_search* ctx, const Query& q, int a, int b) {
+  return ctx->vtt != nullptr ? ctx->vtt->vturn[a][b] : voxel_turn(ctx, q, a, b);
+}
+
 // Offer the state just reached on side `a` as a meeting point with every state of the other side
 // in the same voxel; the join adds the turn between the two headings.
 template <bool kHeaded>
@@ -401,7 +408,7 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
       c += ctx->turn[hf][hb];
       if (sharp_join(ctx, q, hf, hb)) c += q.pivot_cost;  // the join itself is a sharp turn
     } else if (q.voxel_turns) {
-      c += voxel_turn(ctx, q, a == 0 ? n.heading : m.heading, a == 0 ? m.heading : n.heading);
+      c += vturn_of(ctx, q, a == 0 ? n.heading : m.heading, a == 0 ? m.heading : n.heading);
     }
     if (c < q.best) {
       q.best = c;
@@ -527,6 +534,43 @@ inline void classify(const tdo_search* ctx, const Query& q, int back, const Node
   }
 }
 
+// The tables of voxel-state searches with turn costs: voxel_turn() of every pair of headings
+// (VoxelTurnTables.vturn) and the dominance table (VoxelTurnTables.prune): a neighbour
+// w = p + c of the parent p is left out of u's expansion when p's own offer of it, step length plus
+// turn, undercuts the way through u by a margin, so the relaxation could not lower w's cost: the
+// pruning of the plain searches (pruned_steps) restricted to the steps where the turns keep the
+// triangle inequality. Built once per lambda, pivot cost and voxel edge.
+void vt_prune_ensure(tdo_search* ctx, const Query& q) {
+  VoxelTurnTables* t = ctx->vtt;
+  if (t == nullptr) return;
+  const double key[4] = {ctx->turn_lambda, q.constrained ? q.pivot_cost : -1.0, q.inv_res,
+                         ctx->cand_theta};
+  if (memcmp(key, t->key, sizeof(key)) == 0) return;
+  for (int a = 0; a < kNumHeadings; ++a)
+    for (int b = 0; b < kNumHeadings; ++b) t->vturn[a][b] = voxel_turn(ctx, q, a, b);
+  constexpr double kMargin = 1e-6;  // voxel edges: far above the rounding of the costs
+  for (int back = 0; back < 2; ++back)
+    for (int hp = 0; hp < kNumHeadings; ++hp)
+      for (int si = 0; si < kNumDirs; ++si) {
+        const int d_pu = back ? dir_opposite(si) : si;
+        const double via_u0 = ctx->step_q[si] + t->vturn[hp][d_pu];
+        uint32_t m = 0;
+        // The steps e with si + e a step (not back to p): pruned_steps' cells.
+        for (uint32_t b = pruned_steps(si, kAllMoves) & ~kPrune.back[si]; b != 0; b &= b - 1u) {
+          const int e = __builtin_ctz(b);
+          const int c = dir_of_cell(
+              cell_of(dir_dx(si) + dir_dx(e), dir_dy(si) + dir_dy(e), dir_dz(si) + dir_dz(e)));
+          const int d_uw = back ? dir_opposite(e) : e;
+          const int d_pw = back ? dir_opposite(c) : c;
+          const double via_p = ctx->step_q[c] + t->vturn[hp][d_pw];
+          const double via_u = via_u0 + ctx->step_q[e] + t->vturn[d_pu][d_uw];
+          if (via_p + kMargin <= via_u) m |= 1u << e;
+        }
+        t->prune[back][hp][si] = m;
+      }
+  memcpy(t->key, key, sizeof(key));
+}
+
 // Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
 // reached yet), at cost ng with parent ui over search-sense step e (forward-sense d): relax
 // without the heading lookup, the closed test (the slot word holds it) and the heading index.
@@ -572,10 +616,16 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
   const tdo_grid* g = q.grid;
   const Node u = s.nodes[ui];
   uint32_t mask = legal_steps(q, u);  // search-sense steps
-  if (u.parent != kNil && !q.voxel_turns) {
+  if (u.parent != kNil) {
     const int s_in = back ? dir_opposite(u.heading) : u.heading;  // search-sense step p -> u
     const uint32_t p_moves = g->moves[static_cast<int64_t>(u.voxel) - ctx->offset[s_in]];
-    mask &= ~pruned_steps(s_in, p_moves);
+    uint32_t pruned = pruned_steps(s_in, p_moves);
+    if (q.voxel_turns)  // p offered those for less only where the turns allow (vt_prune_ensure)
+      pruned = ctx->vtt != nullptr
+                   ? pruned & (ctx->vtt->prune[back][s.nodes[u.parent].heading][s_in] |
+                               kPrune.back[s_in])
+                   : 0u;
+    mask &= ~pruned;
   }
   uint32_t state[kNumDirs];  // open state of each step's voxel, kNil when not reached yet
   for (uint32_t m = mask; m != 0; m &= m - 1u) {
@@ -592,8 +642,7 @@ tdo_status expand_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui) {
     const int e = __builtin_ctz(mask);
     const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u.voxel) + ctx->offset[e]);
     const int d = back ? dir_opposite(e) : e;
-    const double ng =
-        u.g + ctx->step_q[e] + (q.voxel_turns ? voxel_turn(ctx, q, u.heading, d) : 0.0);
+    const double ng = u.g + ctx->step_q[e] + (q.voxel_turns ? vturn_of(ctx, q, u.heading, d) : 0.0);
     const tdo_status st = relax_voxel(ctx, q, back, ui, w, e, d, ng, state[e]);
     if (st != TDO_OK) return st;
   }
@@ -1036,6 +1085,7 @@ using namespace tdo_internal;
 extern "C" size_t tdo_search_footprint(const tdo_search_config* cfg) {
   if (cfg == nullptr || cfg->max_voxels == 0 || cfg->max_nodes == 0 || cfg->max_path == 0) return 0;
   return tdo_arena_round(sizeof(tdo_search)) + 2u * side_bytes(*cfg) +
+         (cfg->max_voxels >= TDO_GUIDE_MIN_VOXELS ? tdo_arena_round(sizeof(VoxelTurnTables)) : 0u) +
          (cfg->exact_heuristic && !dj_in_pool(*cfg)
               ? tdo_arena_round(static_cast<size_t>(cfg->max_voxels) * kDjBytes)
               : 0u) +
@@ -1056,6 +1106,12 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
   ctx->max_open = cfg->max_open != 0u ? cfg->max_open : 0xFFFFFFFFu;  // 0: max_nodes bounds it
   ctx->turn_lambda = -1.0;
   ctx->cand_theta = -1.0;
+  ctx->vtt = nullptr;
+  if (cfg->max_voxels >= TDO_GUIDE_MIN_VOXELS) {  // the guide's grids (voxel-state searches)
+    ctx->vtt = static_cast<VoxelTurnTables*>(tdo_arena_alloc(arena, sizeof(VoxelTurnTables)));
+    if (ctx->vtt == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->vtt->key[0] = -2.0;  // no tables yet (vt_prune_ensure)
+  }
   for (int a = 0; a < kNumDirs; ++a) {
     double c[kNumDirs];
     for (int b = 0; b < kNumDirs; ++b) {
@@ -1153,6 +1209,7 @@ tdo_status run_voxel_turns(tdo_search* ctx, Query& q, int grid_first, tdo_search
     q.h_weight = q.h_weight > retry_weight(0) ? q.h_weight : retry_weight(0);
     q.dev_terms = 0;
   }
+  vt_prune_ensure(ctx, q);
   const tdo_status st = run_search<false>(ctx, q);
   report_counts(q, out);
   if (st != TDO_OK) return st;

@@ -146,6 +146,16 @@ constexpr uint32_t cells_of_dirs(uint32_t m) { return (m & 0x1FFFu) | ((m >> 13)
 constexpr uint32_t dirs_of_cells(uint32_t c) { return (c & 0x1FFFu) | ((c >> 14) << 13); }
 constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel with every step legal
 
+// Voxel-state searches with turn costs (vt_prune_ensure in search.cpp): voxel_turn() of every
+// pair of headings, and prune[back][hp][s]: the search-sense steps e of a state reached over step s
+// from a parent of heading hp whose neighbour the parent offered for less than the way through the
+// state, turns included.
+struct VoxelTurnTables {
+  double vturn[kNumHeadings][kNumHeadings];  // voxel edges
+  uint32_t prune[2][kNumHeadings][kNumDirs];
+  double key[4];  // lambda, pivot cost, 1/voxel edge and theta_max the tables were built for
+};
+
 }  // namespace TDO_SEARCH_NS
 }  // namespace tdo_internal
 
@@ -167,6 +177,9 @@ struct tdo_search {
   // first_sharp[h]: how many leading entries of by_angle[h] lie in cand[h] (no sharp step there)
   uint8_t first_sharp[tdo_internal::kNumDirs];
   double cand_theta;  // theta_max the cand table was built for
+  // The tables of voxel-state searches with turn costs; nullptr in searches of fewer than
+  // TDO_GUIDE_MIN_VOXELS voxels (small targets keep their memory; the search computes the turns).
+  tdo_internal::VoxelTurnTables* vtt;
   // Exact heuristic of turn-penalised searches (exact_lower_bounds): per side, max_voxels grid
   // distances (m) to the side's target; the Dijkstra's bucket lists (DjQueue), max_voxels each.
   float* hdist[2];    // rounded down from the Dijkstra's keys (lower bounds stay lower bounds)
