@@ -87,10 +87,12 @@ constexpr uint32_t kPiecesPerPlateau =
 constexpr double kKappaMargin = 1.01;   // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.01;  // on the sampled curvature-rate maximum
 // Profile.
-constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
-constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^-30 of the range)
-constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
-constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
+constexpr uint32_t kMoveWindow = 2;      // moves on either side that judge a change (choose_moves)
+constexpr int kBisections = 30;          // bisection steps (speed resolution ~ 2^-30 of the range)
+constexpr int kBracketSteps = 12;        // false-position steps before them (bisect_highest)
+constexpr double kBracketTol = 0x1p-30;  // of the range: the bracket they stop at
+constexpr double kRefineFactor = 0.8;    // speed/acc/jerk factor per refinement round
+constexpr double kAlignSlack = 1e-9;     // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
 constexpr double kRampJerk = 0.95;  // of j_max: the ramp that brings the start acceleration to 0
 // Of j_max: the steepest ramp, for one that would end above v_max at kRampJerk. Above the profile's
@@ -794,14 +796,49 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
 /** Whether a and b are the same double, bit for bit (the memo keys of the moves). */
 inline bool same(double a, double b) { return memcmp(&a, &b, sizeof(double)) == 0; }
 
-/** The highest v in [lo, hi] with fits(v), by kBisections bisection steps; `lo` must fit and
- *  fits must be monotone (true below some speed, false above). */
-template <class Fits>
-double bisect_highest(double lo, double hi, const Fits& fits) {
+/** The highest v in [lo, hi] with lhs(v) <= len (fits), as kBisections bisection steps find it;
+ *  `lo` must fit, `hi` not (lhs(hi) = lhs_hi > len), and lhs must grow with v. The steps are the
+ *  same, but a step is decided without evaluating lhs where a bracket [a, b] (a fits, b does not,
+ *  both evaluated) already decides it: by the growth, every v <= a fits and every v >= b does not.
+ *  False position (Illinois) narrows the bracket first, to about the bisection's last step, so
+ *  few steps are left to evaluate; the result is the plain bisection's, bit for bit. */
+template <class Lhs>
+double bisect_highest(double lo, double hi, double len, double lhs_hi, const Lhs& lhs) {
+  double a = lo, b = hi;
+  const double lhs_lo = lhs(lo);
+  if (lhs_lo <= len && lhs_hi > len) {
+    double fa = lhs_lo - len, fb = lhs_hi - len;
+    const double tol = (hi - lo) * kBracketTol;
+    int side = 0;
+    for (int i = 0; i < kBracketSteps && b - a > tol; ++i) {
+      double x = b - fb * ((b - a) / (fb - fa));
+      if (!(x > a && x < b)) x = 0.5 * (a + b);
+      if (!(x > a && x < b)) break;
+      const double l = lhs(x);
+      if (l <= len) {
+        a = x;
+        fa = l - len;
+        if (side < 0) fb *= 0.5;
+        side = -1;
+      } else {
+        b = x;
+        fb = l - len;
+        if (side > 0) fa *= 0.5;
+        side = 1;
+      }
+    }
+  }
   for (int i = 0; i < kBisections; ++i) {
     const double mid = 0.5 * (lo + hi);
     if (!(mid > lo && mid < hi)) break;
-    if (fits(mid))
+    bool fits;
+    if (mid <= a && a > lo)
+      fits = true;
+    else if (mid >= b && b < hi)
+      fits = false;
+    else
+      fits = lhs(mid) <= len;
+    if (fits)
       lo = mid;
     else
       hi = mid;
@@ -817,8 +854,11 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
   if (p.reach_key[from_end] == p.next && same(p.reach_v0[from_end], v0)) return p.reach_v[from_end];
   const double cap = move_level(ctx, k), len = move_len(ctx, k);
   double v = cap;
-  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
-  if (cap > v0 && !fits(cap)) v = bisect_highest(v0, cap, fits);  // v0 always reachable
+  const auto lhs = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist; };
+  if (cap > v0) {
+    const double at_cap = lhs(cap);
+    if (!(at_cap <= len)) v = bisect_highest(v0, cap, len, at_cap, lhs);  // v0 always reachable
+  }
   p.reach_key[from_end] = p.next;
   p.reach_v0[from_end] = v0;
   p.reach_v[from_end] = v;
@@ -829,12 +869,13 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
  *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
 double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
   const double len = move_len(ctx, k);
-  const auto fits = [&](double vp) {
-    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist <= len;
+  const auto lhs = [&](double vp) {
+    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist;
   };
   const double hi = move_level(ctx, k);
-  if (fits(hi)) return hi;
-  return bisect_highest(dmax(v0, v1), hi, fits);
+  const double at_hi = lhs(hi);
+  if (at_hi <= len) return hi;
+  return bisect_highest(dmax(v0, v1), hi, len, at_hi, lhs);
 }
 
 /** s, duration of an S-curve between speeds a and b. */
