@@ -93,6 +93,7 @@ constexpr double kDKappaMargin = 1.01;  // on the sampled curvature-rate maximum
 constexpr uint32_t kMoveWindow = 2;      // moves on either side that judge a change (choose_moves)
 constexpr int kBisections = 30;          // bisection steps (speed resolution ~ 2^-30 of the range)
 constexpr int kBracketSteps = 12;        // false-position steps before them (bisect_highest)
+constexpr double kBracketClip = 8.0;     // of the length: the largest excess they interpolate
 constexpr double kBracketTol = 0x1p-30;  // of the range: the bracket they stop at
 constexpr double kRefineFactor = 0.8;    // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;     // in units of dt when aligning stops to the sample grid
@@ -852,7 +853,9 @@ double bisect_highest(double lo, double hi, double len, double lhs_hi, const Lhs
   double a = lo, b = hi;
   const double lhs_lo = lhs(lo);
   if (lhs_lo <= len && lhs_hi > len) {
-    double fa = lhs_lo - len, fb = lhs_hi - len;
+    // Near a ceiling lhs grows steeply (the limits left there vanish): excesses are clipped to a
+    // few lengths, or the interpolation would crawl along the side that fits.
+    double fa = lhs_lo - len, fb = dmin(lhs_hi - len, kBracketClip * len);
     const double tol = (hi - lo) * kBracketTol;
     int side = 0;
     for (int i = 0; i < kBracketSteps && b - a > tol; ++i) {
@@ -867,7 +870,7 @@ double bisect_highest(double lo, double hi, double len, double lhs_hi, const Lhs
         side = -1;
       } else {
         b = x;
-        fb = l - len;
+        fb = dmin(l - len, kBracketClip * len);
         if (side > 0) fa *= 0.5;
         side = 1;
       }
