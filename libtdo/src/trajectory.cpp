@@ -39,6 +39,7 @@
 #include <immintrin.h>
 #endif
 
+#include "bisect_highest.h"
 #include "collision_internal.h"
 #include "path_segment.h"
 #include "sample_energy.h"
@@ -90,13 +91,9 @@ constexpr uint32_t kPiecesPerPlateau =
 constexpr double kKappaMargin = 1.01;   // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.01;  // on the sampled curvature-rate maximum
 // Profile.
-constexpr uint32_t kMoveWindow = 2;      // moves on either side that judge a change (choose_moves)
-constexpr int kBisections = 30;          // bisection steps (speed resolution ~ 2^-30 of the range)
-constexpr int kBracketSteps = 12;        // false-position steps before them (bisect_highest)
-constexpr double kBracketClip = 8.0;     // of the length: the largest excess they interpolate
-constexpr double kBracketTol = 0x1p-30;  // of the range: the bracket they stop at
-constexpr double kRefineFactor = 0.8;    // speed/acc/jerk factor per refinement round
-constexpr double kAlignSlack = 1e-9;     // in units of dt when aligning stops to the sample grid
+constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
+constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
+constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
 constexpr double kRampJerk = 0.95;  // of j_max: the ramp that brings the start acceleration to 0
 // Of j_max: the steepest ramp, for one that would end above v_max at kRampJerk. Above the profile's
@@ -841,58 +838,6 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
 
 /** Whether a and b are the same double, bit for bit (the memo keys of the moves). */
 inline bool same(double a, double b) { return memcmp(&a, &b, sizeof(double)) == 0; }
-
-/** The highest v in [lo, hi] with lhs(v) <= len (fits), as kBisections bisection steps find it;
- *  `lo` must fit, `hi` not (lhs(hi) = lhs_hi > len), and lhs must grow with v. The steps are the
- *  same, but a step is decided without evaluating lhs where a bracket [a, b] (a fits, b does not,
- *  both evaluated) already decides it: by the growth, every v <= a fits and every v >= b does not.
- *  False position (Illinois) narrows the bracket first, to about the bisection's last step, so
- *  few steps are left to evaluate; the result is the plain bisection's, bit for bit. */
-template <class Lhs>
-double bisect_highest(double lo, double hi, double len, double lhs_hi, const Lhs& lhs) {
-  double a = lo, b = hi;
-  const double lhs_lo = lhs(lo);
-  if (lhs_lo <= len && lhs_hi > len) {
-    // Near a ceiling lhs grows steeply (the limits left there vanish): excesses are clipped to a
-    // few lengths, or the interpolation would crawl along the side that fits.
-    double fa = lhs_lo - len, fb = dmin(lhs_hi - len, kBracketClip * len);
-    const double tol = (hi - lo) * kBracketTol;
-    int side = 0;
-    for (int i = 0; i < kBracketSteps && b - a > tol; ++i) {
-      double x = b - fb * ((b - a) / (fb - fa));
-      if (!(x > a && x < b)) x = 0.5 * (a + b);
-      if (!(x > a && x < b)) break;
-      const double l = lhs(x);
-      if (l <= len) {
-        a = x;
-        fa = l - len;
-        if (side < 0) fb *= 0.5;
-        side = -1;
-      } else {
-        b = x;
-        fb = dmin(l - len, kBracketClip * len);
-        if (side > 0) fa *= 0.5;
-        side = 1;
-      }
-    }
-  }
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    bool fits;
-    if (mid <= a && a > lo)
-      fits = true;
-    else if (mid >= b && b < hi)
-      fits = false;
-    else
-      fits = lhs(mid) <= len;
-    if (fits)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
-}
 
 /** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
  *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
