@@ -859,16 +859,23 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
 }
 
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
- *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
-double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
+ *  v1: its S-curve up at the start and its S-curve down at the end fit its length. Those two
+ *  S-curves at the peak into *up and *down (at the ceiling they are the ones just tested). */
+double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1, Ramp* up,
+                 Ramp* down) {
   const double len = move_len(ctx, k);
   const auto lhs = [&](double vp) {
     return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist;
   };
   const double hi = move_level(ctx, k);
-  const double at_hi = lhs(hi);
+  *up = move_ramp(ctx, lim, k, v0, hi, 0);
+  *down = move_ramp(ctx, lim, k, hi, v1, 1);
+  const double at_hi = up->dist + down->dist;
   if (at_hi <= len) return hi;
-  return bisect_highest(dmax(v0, v1), hi, len, at_hi, lhs);
+  const double vp = bisect_highest(dmax(v0, v1), hi, len, at_hi, lhs);
+  *up = move_ramp(ctx, lim, k, v0, vp, 0);
+  *down = move_ramp(ctx, lim, k, vp, v1, 1);
+  return vp;
 }
 
 /** s, duration of an S-curve between speeds a and b. */
@@ -903,8 +910,8 @@ double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k, double* pea
     *peak = p.time_peak;
     return p.time_t;
   }
-  const double vp = move_peak(ctx, lim, k, v0, v1);
-  const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
+  Ramp up, down;
+  const double vp = move_peak(ctx, lim, k, v0, v1, &up, &down);
   const double len = move_len(ctx, k), ramps = up.dist + down.dist;
   double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
   if (len > ramps && vp > 0.0) t += (len - ramps) / vp;
