@@ -35,7 +35,11 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
 
+#include "bisect_highest.h"
 #include "collision_internal.h"
 #include "path_segment.h"
 #include "sample_energy.h"
@@ -88,7 +92,6 @@ constexpr double kKappaMargin = 1.01;   // on the sampled curvature maximum
 constexpr double kDKappaMargin = 1.01;  // on the sampled curvature-rate maximum
 // Profile.
 constexpr uint32_t kMoveWindow = 2;    // moves on either side that judge a change (choose_moves)
-constexpr int kBisections = 30;        // bisection steps (speed resolution ~ 2^-30 of the range)
 constexpr double kRefineFactor = 0.8;  // speed/acc/jerk factor per refinement round
 constexpr double kAlignSlack = 1e-9;   // in units of dt when aligning stops to the sample grid
 // Moving start (docs/design.md s.5): the entry ramp's jerk and the braking line's limits.
@@ -279,6 +282,45 @@ inline double sqrt_pair_sum(V2 q) {
 #endif
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TDO_ARCLEN_AVX 1
+typedef double V4 __attribute__((vector_size(32)));  // four lanes of IEEE doubles
+
+/** bez_arclen's panels with AVX: two pairs of nodes side by side in a four-lane vector, the same
+ *  lane-wise operations in the same order (no FMA), the same sums: the same bits, half the
+ *  instructions (used where the processor has AVX). */
+__attribute__((target("avx"), noinline)) double bez_arclen_avx(const BezierCursor& b, double a,
+                                                               double h, uint32_t panels) {
+  const V4 h0x = {b.h[0].x, b.h[0].x, b.h[0].x, b.h[0].x};
+  const V4 h0y = {b.h[0].y, b.h[0].y, b.h[0].y, b.h[0].y};
+  const V4 h0z = {b.h[0].z, b.h[0].z, b.h[0].z, b.h[0].z};
+  const V4 h1x = {b.h[1].x, b.h[1].x, b.h[1].x, b.h[1].x};
+  const V4 h1y = {b.h[1].y, b.h[1].y, b.h[1].y, b.h[1].y};
+  const V4 h1z = {b.h[1].z, b.h[1].z, b.h[1].z, b.h[1].z};
+  const V4 h2x = {b.h[2].x, b.h[2].x, b.h[2].x, b.h[2].x};
+  const V4 h2y = {b.h[2].y, b.h[2].y, b.h[2].y, b.h[2].y};
+  const V4 h2z = {b.h[2].z, b.h[2].z, b.h[2].z, b.h[2].z};
+  double total = 0.0;
+  for (uint32_t k = 0; k < panels; ++k) {
+    const double m = a + h * (k + 0.5);
+    double sum = 0.0;
+    for (int i = 0; i < 4; i += 2) {
+      const double dx0 = 0.5 * h * kGlX[i], dx1 = 0.5 * h * kGlX[i + 1];
+      const V4 u = {m - dx0, m + dx0, m - dx1, m + dx1};
+      const V4 x = h0x + (h1x + h2x * u) * u;
+      const V4 y = h0y + (h1y + h2y * u) * u;
+      const V4 z = h0z + (h1z + h2z * u) * u;
+      const V4 r =
+          reinterpret_cast<V4>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x * x + y * y + z * z)));
+      sum += kGlW[i] * (r[0] + r[1]);
+      sum += kGlW[i + 1] * (r[2] + r[3]);
+    }
+    total += 0.5 * h * sum;
+  }
+  return total;
+}
+#endif
+
 /** m, arclength between parameters a and b (signed), panels of at most kCursorPanel. */
 double bez_arclen(const BezierCursor& b, double a, double e) {
   const double span = e - a;
@@ -291,6 +333,9 @@ double bez_arclen(const BezierCursor& b, double a, double e) {
     panels = static_cast<uint32_t>(n);
     h = span / panels;
   }
+#if defined(TDO_ARCLEN_AVX)
+  if (__builtin_cpu_supports("avx")) return bez_arclen_avx(b, a, h, panels);
+#endif
   double total = 0.0;
   // Each pair of nodes m -/+ dx goes through the same operations as bez_speed, side by side in
   // a two-lane vector (lane-wise IEEE arithmetic: the same results as one at a time).
@@ -794,21 +839,6 @@ Ramp move_ramp(const tdo_traj* ctx, const Limits& lim, uint32_t k, double a, dou
 /** Whether a and b are the same double, bit for bit (the memo keys of the moves). */
 inline bool same(double a, double b) { return memcmp(&a, &b, sizeof(double)) == 0; }
 
-/** The highest v in [lo, hi] with fits(v), by kBisections bisection steps; `lo` must fit and
- *  fits must be monotone (true below some speed, false above). */
-template <class Fits>
-double bisect_highest(double lo, double hi, const Fits& fits) {
-  for (int i = 0; i < kBisections; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (fits(mid))
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
-}
-
 /** m/s, highest speed in [v0, ceiling] that the move starting at plateau k can reach from v0
  *  with one S-curve at its start (from_end 0: forward) or, speeds read backwards, at its end
  *  (from_end 1). The length grows with the speed, so bisection finds it. */
@@ -817,8 +847,11 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
   if (p.reach_key[from_end] == p.next && same(p.reach_v0[from_end], v0)) return p.reach_v[from_end];
   const double cap = move_level(ctx, k), len = move_len(ctx, k);
   double v = cap;
-  const auto fits = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist <= len; };
-  if (cap > v0 && !fits(cap)) v = bisect_highest(v0, cap, fits);  // v0 always reachable
+  const auto lhs = [&](double v1) { return move_ramp(ctx, lim, k, v0, v1, from_end).dist; };
+  if (cap > v0) {
+    const double at_cap = lhs(cap);
+    if (!(at_cap <= len)) v = bisect_highest(v0, cap, len, at_cap, lhs);  // v0 always reachable
+  }
   p.reach_key[from_end] = p.next;
   p.reach_v0[from_end] = v0;
   p.reach_v[from_end] = v;
@@ -826,15 +859,23 @@ double move_reach(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0,
 }
 
 /** m/s, the highest peak in [max(v0, v1), ceiling] of the move starting at plateau k from v0 to
- *  v1: its S-curve up at the start and its S-curve down at the end fit its length. */
-double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1) {
+ *  v1: its S-curve up at the start and its S-curve down at the end fit its length. Those two
+ *  S-curves at the peak into *up and *down (at the ceiling they are the ones just tested). */
+double move_peak(const tdo_traj* ctx, const Limits& lim, uint32_t k, double v0, double v1, Ramp* up,
+                 Ramp* down) {
   const double len = move_len(ctx, k);
-  const auto fits = [&](double vp) {
-    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist <= len;
+  const auto lhs = [&](double vp) {
+    return move_ramp(ctx, lim, k, v0, vp, 0).dist + move_ramp(ctx, lim, k, vp, v1, 1).dist;
   };
   const double hi = move_level(ctx, k);
-  if (fits(hi)) return hi;
-  return bisect_highest(dmax(v0, v1), hi, fits);
+  *up = move_ramp(ctx, lim, k, v0, hi, 0);
+  *down = move_ramp(ctx, lim, k, hi, v1, 1);
+  const double at_hi = up->dist + down->dist;
+  if (at_hi <= len) return hi;
+  const double vp = bisect_highest(dmax(v0, v1), hi, len, at_hi, lhs);
+  *up = move_ramp(ctx, lim, k, v0, vp, 0);
+  *down = move_ramp(ctx, lim, k, vp, v1, 1);
+  return vp;
 }
 
 /** s, duration of an S-curve between speeds a and b. */
@@ -869,8 +910,8 @@ double move_time(const tdo_traj* ctx, const Limits& lim, uint32_t k, double* pea
     *peak = p.time_peak;
     return p.time_t;
   }
-  const double vp = move_peak(ctx, lim, k, v0, v1);
-  const Ramp up = move_ramp(ctx, lim, k, v0, vp, 0), down = move_ramp(ctx, lim, k, vp, v1, 1);
+  Ramp up, down;
+  const double vp = move_peak(ctx, lim, k, v0, v1, &up, &down);
   const double len = move_len(ctx, k), ramps = up.dist + down.dist;
   double t = scurve_time(v0, vp, up.acc, up.jerk) + scurve_time(vp, v1, down.acc, down.jerk);
   if (len > ramps && vp > 0.0) t += (len - ramps) / vp;

@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "../../libtdo/src/search_tables.h"
+#include "rng.h"
 #include "tdo/tdo.h"
 #include "test_util.h"
 
@@ -1484,4 +1486,45 @@ TEST(SearchCorridor, GivenACorridorWithoutTheEnds_WhenSearching_ThenInvalidArgum
   wrong.cnx = 5;  // not the grid's coarse width
   in.corridor = &wrong;
   EXPECT_EQ(run(pl.search(), in).status, TDO_ERR_INVALID_ARGUMENT);
+}
+
+// The retry's float tables (search_tables.cpp, store_lower_bounds, vectorised where the processor
+// allows): every key becomes the largest float not above it, whatever the position in the table
+// (lengths that are not multiples of the vector widths) and the magnitude (exact floats, +inf,
+// beyond the float range, subnormal).
+TEST(SearchTables, GivenDistanceKeys_WhenStoredAsFloats_ThenEachIsTheLargestFloatNotAbove) {
+  tdo_test::Rng rng(20261207u);
+  for (uint32_t n : {1u, 3u, 4u, 7u, 8u, 9u, 17u, 1003u}) {
+    std::vector<double> dist(n);
+    for (uint32_t v = 0; v < n; ++v) {
+      switch (rng.below(6)) {
+        case 0:
+          dist[v] = static_cast<double>(static_cast<float>(rng.uniform(0.0, 100.0)));
+          break;
+        case 1:
+          dist[v] = std::numeric_limits<double>::infinity();
+          break;
+        case 2:
+          dist[v] = rng.uniform(1e39, 1e40);
+          break;
+        case 3:
+          dist[v] = rng.uniform(0.0, 1e-40);
+          break;
+        default:
+          dist[v] = rng.uniform(0.0, 1000.0);
+          break;
+      }
+    }
+    std::vector<float> table(n + 1u, -1.0f);  // one more: nothing written past n
+    tdo_internal::store_lower_bounds(dist.data(), n, table.data());
+    for (uint32_t v = 0; v < n; ++v) {
+      const float f = table[v];
+      EXPECT_LE(static_cast<double>(f), dist[v]) << "n " << n << " v " << v;
+      if (std::isinf(dist[v])) continue;
+      EXPECT_GT(static_cast<double>(std::nextafter(f, std::numeric_limits<float>::infinity())),
+                dist[v])
+          << "n " << n << " v " << v;
+    }
+    EXPECT_EQ(table[n], -1.0f);
+  }
 }

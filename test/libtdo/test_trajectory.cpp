@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "../../libtdo/src/bisect_highest.h"
 #include "rng.h"
 #include "tdo/path.h"
 #include "tdo/trajectory.h"
@@ -1553,3 +1554,37 @@ TEST(TrajectoryStart,
 }
 
 }  // namespace
+
+// bisect_highest (the speed bisections of the moves) decides a step from its bracket where it can
+// instead of evaluating: on growing functions with smooth parts, jumps and a steep rise at the top
+// (what the S-curves' lengths look like near a ceiling) it returns what the plain kBisections
+// steps return, bit for bit.
+TEST(TrajectoryBisection, GivenGrowingFunctions_WhenBisected_ThenThePlainBisectionsResult) {
+  tdo_test::Rng rng(7122026u);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double lo = rng.uniform(0.0, 3.0), hi = lo + rng.uniform(1e-6, 3.0);
+    const double quad = rng.uniform(0.0, 5.0), lin = rng.uniform(0.0, 2.0);
+    const double steep = rng.below(2) ? rng.uniform(1e-6, 1e-2) : 0.0;
+    const double eps = rng.uniform(1e-9, 1e-3);
+    const double jump_at = rng.uniform(lo, hi), jump = rng.below(3) ? 0.0 : rng.uniform(0.0, 1e4);
+    const auto lhs = [&](double v) {
+      const double d = v - lo;
+      return lin * d + quad * (d * d) + steep / (hi + eps - v) + (v >= jump_at ? jump : 0.0);
+    };
+    const double len = rng.uniform(lhs(lo), lhs(hi));
+    const double lhs_hi = lhs(hi);
+    if (!(lhs(lo) <= len) || !(lhs_hi > len)) continue;
+    double plo = lo, phi = hi;  // the plain bisection
+    for (int i = 0; i < tdo_internal::kBisections; ++i) {
+      const double mid = 0.5 * (plo + phi);
+      if (!(mid > plo && mid < phi)) break;
+      if (lhs(mid) <= len)
+        plo = mid;
+      else
+        phi = mid;
+    }
+    const double got = tdo_internal::bisect_highest(lo, hi, len, lhs_hi, lhs);
+    EXPECT_EQ(std::memcmp(&got, &plo, sizeof got), 0)
+        << "trial " << trial << ": " << got << " vs " << plo;
+  }
+}
