@@ -25,6 +25,7 @@ namespace {
 
 using tdo_test::bytes_of;
 using tdo_test::collect;
+using tdo_test::heartbeat_reason;
 
 constexpr int32_t kVehicle = 1;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
@@ -454,20 +455,13 @@ Starved starve(double max_age_steps) {
   return r;
 }
 
-int64_t reason_count(const tdo::status_t& h, const std::string& key) {
-  for (int i = 0; i < h.n_reasons; ++i)
-    if (h.reason[static_cast<std::size_t>(i)] == key)
-      return h.reason_count[static_cast<std::size_t>(i)];
-  return 0;
-}
-
 // GIVEN the starved follower WHEN its last setpoint is more than 3 steps old THEN tdo-sim names
 // setpoint_stale in its heartbeat, brakes and hovers short of the wall; with the age check off
 // (0 steps) the vehicle flies the old command into the wall.
 TEST(SimNodeStandalone, StarvedSetpointStreamIsNamedStaleAndTheVehicleBrakesShortOfTheWall) {
   const Starved r = starve(3.0);
   EXPECT_GT(r.counters.stale_steps, 200);  // the 250 silent steps but the first 3
-  EXPECT_EQ(reason_count(r.heartbeat, "step.setpoint_stale"), r.counters.stale_steps);
+  EXPECT_EQ(heartbeat_reason(r.heartbeat, "step.setpoint_stale"), r.counters.stale_steps);
   EXPECT_EQ(r.counters.brakes, r.counters.stale_steps);
   EXPECT_EQ(r.counters.collision_steps, 0);
   EXPECT_GE(r.counters.min_static_dist, 0.25);  // the simulator's static clearance
@@ -475,7 +469,7 @@ TEST(SimNodeStandalone, StarvedSetpointStreamIsNamedStaleAndTheVehicleBrakesShor
 
   const Starved blind = starve(0.0);
   EXPECT_EQ(blind.counters.stale_steps, 0);
-  EXPECT_EQ(reason_count(blind.heartbeat, "step.setpoint_stale"), 0);
+  EXPECT_EQ(heartbeat_reason(blind.heartbeat, "step.setpoint_stale"), 0);
   EXPECT_GT(blind.counters.static_collisions, 0) << "the old command no longer reaches the wall";
 }
 
