@@ -137,7 +137,7 @@ tdo_status tdo_sim_reset(tdo_sim* ctx, const tdo_sim_params* params,
                          uint32_t n_movers);
 
 /**
- * @brief Advance one dt with the setpoint's acceleration (or braking: hold, stale setpoint).
+ * @brief Advance one dt with the setpoint's acceleration (braking instead when it is stale).
  * @return TDO_OK; TDO_ERR_SETPOINT_STALE when the setpoint was stale (the step was done, braking;
  *         `out` filled); TDO_ERR_INVALID_ARGUMENT for null pointers (nothing advanced);
  *         TDO_ERR_NOT_CONFIGURED before a successful reset.
