@@ -84,6 +84,10 @@ int main(int argc, char** argv) {
   app.add_option("--setpoint-timeout", cfg.setpoint_timeout_s,
                  "s without a setpoint before the vehicle brakes")
       ->capture_default_str();
+  app.add_option("--setpoint-max-age", cfg.setpoint_max_age_steps,
+                 "steps (of 1/rate), timed mode: a setpoint whose utime lies further behind the "
+                 "simulated clock is stale (setpoint_stale): the vehicle brakes (0 = no check)")
+      ->capture_default_str();
   app.add_option("--max-movers", cfg.max_movers, "capacity: movers simulated")
       ->capture_default_str();
   app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints in")->capture_default_str();
@@ -102,6 +106,7 @@ int main(int argc, char** argv) {
   tdo_lcm::add_run_options(app, &opt);
   if (int rc = 0; !tdo_lcm::parse_options(app, argc, argv, &rc)) return rc;
   cfg.movers = !no_movers;
+  cfg.log = !opt.quiet;
   if (start.size() == 3) {
     cfg.has_start = true;
     cfg.start = tdo_vec3{start[0], start[1], start[2]};

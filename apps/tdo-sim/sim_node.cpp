@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <new>
 #include <utility>
 
@@ -30,6 +31,8 @@ bool SimNode::start(std::string* error) {
   if (cfg_.map_id < 0) return fail_start(error, "the map id must be >= 0");
   if (!(cfg_.brake_gain >= 0.0) || !std::isfinite(cfg_.brake_gain))
     return fail_start(error, "the brake gain must be finite and >= 0");
+  if (!(cfg_.setpoint_max_age_steps >= 0.0) || !std::isfinite(cfg_.setpoint_max_age_steps))
+    return fail_start(error, "the setpoint max age must be finite and >= 0");
   if (cfg_.has_goal) {
     has_goal_ = true;
     goal_ = cfg_.goal;
@@ -118,6 +121,9 @@ bool SimNode::start(std::string* error) {
   sp.n_boxes = static_cast<uint32_t>(true_boxes_.size());
   sp.seed = cfg_.seed;
   sp.accel_noise = cfg_.accel_noise;
+  sp.brake_gain = cfg_.brake_gain;
+  // Lock-step waits for the follower: its setpoints cannot fall behind the clock.
+  sp.setpoint_max_age = cfg_.lockstep ? 0.0 : cfg_.setpoint_max_age_steps / cfg_.rate_hz;
   st = tdo_sim_reset(sim_, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()));
   if (st != TDO_OK)
     return fail_start(error,
@@ -188,30 +194,23 @@ void SimNode::step() { step_at(std::chrono::steady_clock::now()); }
 
 void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   if (sim_ == nullptr) return;
-  const tdo_sim_output before = current();
   tdo_sim_input in{};
-  const bool fresh =
+  in.setpoint = setpoint_;  // the library judges its age against the simulated clock
+  const bool came =
       have_setpoint_ &&
       (cfg_.lockstep || now - setpoint_wall_ <= steady_seconds(cfg_.setpoint_timeout_s));
-  if (fresh) {
-    in.setpoint = setpoint_;
-  } else {  // no command: brake through the simulator's limits
-    const tdo_vec3 v = before.state.v;
-    in.setpoint.t = before.state.t;
-    in.setpoint.p = before.state.p;
-    in.setpoint.a =
-        tdo_vec3{-cfg_.brake_gain * v.x, -cfg_.brake_gain * v.y, -cfg_.brake_gain * v.z};
-    ++counters_.brakes;
-  }
   tdo_sim_output out{};
   const auto t0 = std::chrono::steady_clock::now();
-  const tdo_status st = tdo_sim_run(sim_, &in, &out);
+  // None came lately: brake.
+  const tdo_status st = came ? tdo_sim_run(sim_, &in, &out) : tdo_sim_hold(sim_, &out);
   counters_.last_step_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (st != TDO_OK) {  // cannot happen after a good reset; count it, keep serving
+  if (st != TDO_OK && st != TDO_ERR_SETPOINT_STALE) {  // not after a good reset; count it
     ++counters_.reasons[std::string("step.") + tdo_status_str(st)];
     return;
   }
+  note_stale(st == TDO_ERR_SETPOINT_STALE, out);
+  if (out.braked != 0) ++counters_.brakes;
   ++counters_.steps;
   if (out.collision_mover != 0) ++counters_.mover_collisions;
   if (out.collision_static != 0) ++counters_.static_collisions;
@@ -220,6 +219,22 @@ void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   counters_.min_static_dist = std::min(counters_.min_static_dist, out.static_dist);
   if (sensing_) sense();  // before the state: a lock-step follower steps as soon as it arrives
   publish_state();
+}
+
+void SimNode::note_stale(bool stale, const tdo_sim_output& out) {
+  if (stale) {
+    ++counters_.stale_steps;
+    ++counters_.reasons[std::string("step.") + tdo_status_str(TDO_ERR_SETPOINT_STALE)];
+  }
+  if (cfg_.log && stale != stale_)
+    std::fprintf(stderr,
+                 stale ? "tdo-sim: %s at t = %.2f s: the setpoint is %.3f s old (more than %g "
+                         "steps): braking to a hover\n"
+                       : "tdo-sim: %s ended at t = %.2f s (setpoint %.3f s old, bound %g "
+                         "steps): flying the setpoints again\n",
+                 tdo_status_str(TDO_ERR_SETPOINT_STALE), out.state.t, out.setpoint_age,
+                 cfg_.setpoint_max_age_steps);
+  stale_ = stale;
 }
 
 void SimNode::publish_state() {

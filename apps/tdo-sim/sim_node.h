@@ -7,8 +7,11 @@
  *
  * Thin: decode (wire.h) -> adapter (vehicle.h) -> tdo_sim_run -> encode. Steps:
  *  - timed (default): one step per tick at the configured rate (poll() calls it) with the latest
- *    setpoint; when no setpoint came for setpoint_timeout_s the vehicle brakes (command
- *    a = -brake_gain v, through the simulator's motion limits);
+ *    setpoint; when no setpoint came for setpoint_timeout_s (wall clock), or the latest one is
+ *    stale (its utime more than setpoint_max_age_steps steps behind the simulated clock: the
+ *    follower fell behind, e.g. starved of CPU), the vehicle brakes towards a hover (the library's
+ *    braking, sim.h: command a = -brake_gain v through the motion limits). A stale step is counted
+ *    as "step.setpoint_stale" in the heartbeat and logged when staleness starts and ends;
  *  - lock-step: one step per accepted setpoint, at once, and nothing else (deterministic runs).
  * Every step publishes the state and the movers, both stamped with the simulated clock:
  * utime = the start utime + steps * dt. start() publishes the map and the initial state and movers.
@@ -73,8 +76,13 @@ struct SimConfig {
   double accel_noise = 0.0;        /**< m/s^2, standard deviation of the disturbance */
   double setpoint_timeout_s = 0.5; /**< s, timed mode: brake when no setpoint came for this long */
   double brake_gain = 2.0;         /**< 1/s, braking command a = -gain v */
-  int64_t start_utime = 0;         /**< us, utime of the initial state; 0 = the wall clock */
-  uint32_t max_movers = 256;       /**< capacity: movers simulated */
+  double setpoint_max_age_steps = 3.0; /**< timed mode: a setpoint more than this many steps
+                                            (1 / rate) older than the simulated clock is stale:
+                                            brake; 0: no age check */
+  bool log = false;                    /**< stale-setpoint transitions to stderr (tdo-sim: unless
+                                            --quiet) */
+  int64_t start_utime = 0;             /**< us, utime of the initial state; 0 = the wall clock */
+  uint32_t max_movers = 256;           /**< capacity: movers simulated */
   bool request_goal = false;       /**< demo: send one plan request, start -> goal, with libtdo's
                                         default parameters (as a ground station would) */
   bool has_goal = false;           /**< goal given (else the map's goal) */
@@ -92,6 +100,7 @@ struct SimCounters {
   int64_t setpoints = 0;         /**< setpoints accepted */
   int64_t steps = 0;             /**< simulator steps (heartbeat: answered) */
   int64_t brakes = 0;            /**< steps without a fresh setpoint (braking) */
+  int64_t stale_steps = 0;       /**< of them, steps whose setpoint was stale (setpoint_stale) */
   int64_t collision_steps = 0;   /**< steps ending in a collision (heartbeat: failed) */
   int64_t mover_collisions = 0;  /**< steps with a mover gap below 0 */
   int64_t static_collisions = 0; /**< steps closer than static_clearance to the map */
@@ -169,6 +178,7 @@ class SimNode {
  private:
   void refuse(const std::string& what, const Check& c);
   void step_at(std::chrono::steady_clock::time_point now);
+  void note_stale(bool stale, const tdo_sim_output& out);
   bool start_sensing(const tdo_io::Map& map, std::string* error);
   void sense(bool publish = true);
   Check known_map_msg();
@@ -196,6 +206,7 @@ class SimNode {
 
   int64_t utime0_ = 0; /**< us, utime of simulated t = 0 */
   bool have_setpoint_ = false;
+  bool stale_ = false;  // the last step's setpoint was stale (for the log's transitions)
   tdo_setpoint setpoint_{};
   double yaw_ = 0.0;
   std::chrono::steady_clock::time_point setpoint_wall_;

@@ -618,9 +618,20 @@ __attribute__((noinline)) bool bricks_min(const tdo_grid* g, const double p0[3],
   return true;
 }
 
-// 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not, -1 without
-// an index. Only bricks closer than c (or touching) are visited, in any order.
-int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
+// Voxel index of the cube with lower corner lo (as the cube loops compute it).
+inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t v[3];
+  for (int i = 0; i < 3; ++i) v[i] = static_cast<int64_t>(floor((lo[i] - o[i]) / d.res + 0.5));
+  return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
+}
+
+// 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not (the cube that
+// fails it goes to *hit), -1 without an index. Only bricks closer than c (or touching) are visited,
+// in any order.
+int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], double c,
+                     uint32_t* hit) {
   if (!g->bricks_valid) return -1;
   const double lim = c + brick_tol(g, p0, p1, c);
   const SpanBox sb = span_box(p0, p1);
@@ -629,10 +640,18 @@ int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], doub
     return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
       if (span_gap2(sb, lo, hi) >= lim * lim) return true;  // box_clear's quick test
-      return !violates(segment_box_d2(p0, p1, lo, hi, c * c), c);
+      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
+      *hit = cube_index(g, lo);
+      return false;
     });
   });
   return ok ? 1 : 0;
+}
+
+// bricks_clear_hit without the failing cube.
+int bricks_clear(const tdo_grid* g, const double p0[3], const double p1[3], double c) {
+  uint32_t hit = 0;
+  return bricks_clear_hit(g, p0, p1, c, &hit);
 }
 
 // What a piece walk's visitor decides for one piece.
@@ -1193,34 +1212,6 @@ bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], doubl
         if ((row[i] & (kFlagOccupied | kFlagCube)) != 0) return false;
     }
   return true;
-}
-
-// Voxel index of the cube with lower corner lo (as the cube loops compute it).
-inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
-  const tdo_grid_desc& d = g->desc;
-  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  int64_t v[3];
-  for (int i = 0; i < 3; ++i) v[i] = static_cast<int64_t>(floor((lo[i] - o[i]) / d.res + 0.5));
-  return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
-}
-
-// bricks_clear (the same visits and decisions), also naming the cube that fails it (*hit).
-int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], double c,
-                     uint32_t* hit) {
-  if (!g->bricks_valid) return -1;
-  const double lim = c + brick_tol(g, p0, p1, c);
-  const SpanBox sb = span_box(p0, p1);
-  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
-    if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
-    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
-      if (far_apart(p0, p1, lo, hi, c)) return true;
-      if (span_gap2(sb, lo, hi) >= lim * lim) return true;
-      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
-      *hit = cube_index(g, lo);
-      return false;
-    });
-  });
-  return ok ? 1 : 0;
 }
 
 // cubes_clear's test of one leaf piece; `need` as for steer_from. The block test first: no cube

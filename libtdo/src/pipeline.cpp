@@ -215,10 +215,11 @@ void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const
   mi.dt = p.dt;
   mi.grid = pl->grid;
   mi.clearance_cap = 10.0;
-  // The samples lie on the path, so its minimum is at most theirs (uncapped below clearance + 1 m,
-  // the trajectory report's cap): a tight hint (tdo_metrics_input.clearance_hint).
+  // The samples lie on the path, so its minimum is at most theirs (uncapped below the trajectory
+  // report's cap): a tight hint (tdo_metrics_input.clearance_hint).
   const double seen = r->feasibility.min_clearance;
-  if (r->reached == TDO_PLAN_TRAJECTORY && seen >= 0.0 && seen < tdo_grid_clearance(pl->grid) + 1.0)
+  const double cap = tdo_grid_clearance(pl->grid) + TDO_TRAJ_CLEARANCE_CAP_EXTRA;
+  if (r->reached == TDO_PLAN_TRAJECTORY && seen >= 0.0 && seen < cap)
     mi.clearance_hint = seen + 1e-9;
   tdo_metrics_compute(&mi, &r->metrics);
   if (traj != nullptr && traj->samples == nullptr && traj->n_samples >= 2u) {

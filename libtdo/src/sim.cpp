@@ -22,6 +22,8 @@ struct tdo_sim {
   uint64_t rng;
   uint32_t steps;
   double t_start;  // s
+  int braked;      // the last step braked
+  double age;      // s, the last step's setpoint age
   int ready;
 };
 
@@ -94,6 +96,13 @@ void fill_output(const tdo_sim* c, tdo_sim_output* out) {
     out->static_dist = dmin(out->static_dist, dmin(box_dist, kStaticCap));
   out->collision_mover = out->mover_gap < 0.0 ? 1 : 0;
   out->collision_static = out->static_dist < c->prm.static_clearance ? 1 : 0;
+  out->braked = c->braked;
+  out->setpoint_age = c->age;
+}
+
+// Whether a step at clock `now` must not fly `sp`: older than the bound (or without a time).
+bool stale(const tdo_sim_params& q, const tdo_setpoint& sp, double now) {
+  return q.setpoint_max_age > 0.0 && !(now - sp.t <= q.setpoint_max_age);
 }
 
 }  // namespace
@@ -189,6 +198,8 @@ extern "C" void tdo_sim_params_default(tdo_sim_params* p) {
   p->n_boxes = 0u;
   p->seed = 1u;
   p->accel_noise = 0.0;
+  p->setpoint_max_age = 0.0;
+  p->brake_gain = 2.0;
 }
 
 extern "C" size_t tdo_sim_footprint(const tdo_sim_config* cfg) {
@@ -219,6 +230,7 @@ extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
   if (!positive(prm->dt) || !positive(prm->v_max) || !positive(prm->a_max) ||
       !positive(prm->j_max) || !non_negative(prm->vehicle_radius) ||
       !non_negative(prm->static_clearance) || !non_negative(prm->accel_noise) ||
+      !non_negative(prm->setpoint_max_age) || !non_negative(prm->brake_gain) ||
       !finite3(prm->bounds.min) || !finite3(prm->bounds.max) ||
       !(prm->bounds.max.x > prm->bounds.min.x) || !(prm->bounds.max.y > prm->bounds.min.y) ||
       !(prm->bounds.max.z > prm->bounds.min.z))
@@ -242,16 +254,24 @@ extern "C" tdo_status tdo_sim_reset(tdo_sim* c, const tdo_sim_params* prm,
   c->n = n_movers;
   c->rng = prm->seed;
   c->steps = 0u;
+  c->braked = 0;
+  c->age = 0.0;
   c->ready = 1;
   return TDO_OK;
 }
 
-extern "C" tdo_status tdo_sim_run(tdo_sim* c, const tdo_sim_input* in, tdo_sim_output* out) {
-  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
-  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+namespace {
+
+// One step with command `sp`, or braking towards a hover (sp null, or stale): a = -brake_gain v
+// through the motion limits.
+tdo_status advance(tdo_sim* c, const tdo_setpoint* sp, tdo_sim_output* out) {
   const tdo_sim_params& q = c->prm;
+  const bool is_stale = sp != nullptr && stale(q, *sp, c->state.t);
+  c->braked = (sp == nullptr || is_stale) ? 1 : 0;
+  c->age = sp != nullptr ? c->state.t - sp->t : 0.0;
+  const tdo_vec3 a_cmd = c->braked ? mul(c->state.v, -q.brake_gain) : sp->a;
   tdo_setpoint next;
-  tdo_motion_limit(&c->state, in->setpoint.a, q.v_max, q.a_max, q.j_max, q.dt, &next);
+  tdo_motion_limit(&c->state, a_cmd, q.v_max, q.a_max, q.j_max, q.dt, &next);
   if (q.accel_noise > 0.0) {
     const tdo_vec3 w = v3(noise(&c->rng), noise(&c->rng), noise(&c->rng));
     next.a = add(next.a, mul(w, q.accel_noise));
@@ -271,7 +291,21 @@ extern "C" tdo_status tdo_sim_run(tdo_sim* c, const tdo_sim_input* in, tdo_sim_o
   c->state.a = next.a;
   for (uint32_t i = 0; i < c->n; ++i) advance_mover(&c->movers[i], q.bounds, q.dt);
   fill_output(c, out);
-  return TDO_OK;
+  return is_stale ? TDO_ERR_SETPOINT_STALE : TDO_OK;
+}
+
+}  // namespace
+
+extern "C" tdo_status tdo_sim_run(tdo_sim* c, const tdo_sim_input* in, tdo_sim_output* out) {
+  if (c == nullptr || in == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  return advance(c, &in->setpoint, out);
+}
+
+extern "C" tdo_status tdo_sim_hold(tdo_sim* c, tdo_sim_output* out) {
+  if (c == nullptr || out == nullptr) return TDO_ERR_INVALID_ARGUMENT;
+  if (!c->ready) return TDO_ERR_NOT_CONFIGURED;
+  return advance(c, nullptr, out);
 }
 
 extern "C" tdo_status tdo_sim_step(tdo_sim* c, const tdo_setpoint* setpoint,
@@ -281,7 +315,7 @@ extern "C" tdo_status tdo_sim_step(tdo_sim* c, const tdo_setpoint* setpoint,
   in.setpoint = *setpoint;
   tdo_sim_output out;
   const tdo_status s = tdo_sim_run(c, &in, &out);
-  if (s == TDO_OK && state != nullptr) *state = out.state;
+  if ((s == TDO_OK || s == TDO_ERR_SETPOINT_STALE) && state != nullptr) *state = out.state;
   return s;
 }
 

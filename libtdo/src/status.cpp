@@ -58,6 +58,8 @@ extern "C" const char* tdo_status_str(tdo_status status) {
       return "state_over_limits";
     case TDO_ERR_STATE_CANNOT_STOP:
       return "state_cannot_stop";
+    case TDO_ERR_SETPOINT_STALE:
+      return "setpoint_stale";
     case TDO_STATUS_COUNT:
       break;
   }

@@ -51,9 +51,10 @@ namespace tdo_internal {
 namespace {
 
 // Verification.
-constexpr double kTolerance = 0.01;         // 1 % discretisation tolerance on v, a, j and r
-constexpr double kClearanceSlack = 1e-9;    // m, clearance check slack
-constexpr double kClearanceCapExtra = 1.0;  // m, point distances are capped at clearance + this
+constexpr double kTolerance = 0.01;       // 1 % discretisation tolerance on v, a, j and r
+constexpr double kClearanceSlack = 1e-9;  // m, clearance check slack
+constexpr double kClearanceCapExtra =
+    TDO_TRAJ_CLEARANCE_CAP_EXTRA;           // m, distance cap above clearance
 constexpr double kLipschitzSlack = 1e-9;    // m, rounding allowance of the skipped-sample bound
 constexpr uint32_t kClearanceStride = 256;  // samples between the clearance pre-pass's points
 // m, the clearance pass evaluates a sample's distance capped at this much above what can still

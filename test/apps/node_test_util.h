@@ -69,6 +69,14 @@ class NodeTest : public ::testing::Test {
   std::unique_ptr<Node> node_;
 };
 
+/** @return the count of `key` in heartbeat `s` (0 when absent). */
+inline int64_t heartbeat_reason(const tdo::status_t& s, const std::string& key) {
+  for (int32_t k = 0; k < s.n_reasons; ++k)
+    if (s.reason[static_cast<std::size_t>(k)] == key)
+      return s.reason_count[static_cast<std::size_t>(k)];
+  return 0;
+}
+
 }  // namespace tdo_test
 
 #endif  // TDO_TEST_APPS_NODE_TEST_UTIL_H

@@ -23,6 +23,7 @@ namespace {
 
 using tdo_test::bytes_of;
 using tdo_test::collect;
+using tdo_test::heartbeat_reason;
 
 constexpr int32_t kVehicle = 2;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
@@ -574,13 +575,6 @@ tdo::map_update_t wall_update(int64_t map_id, int64_t seq) {
   u.boxes = {{9.0, -1.0, -1.0, 10.0, 11.0, 6.0}};  // across the whole map at x = 9..10 m
   u.n_boxes = 1;
   return u;
-}
-
-int64_t heartbeat_reason(const tdo::status_t& s, const std::string& key) {
-  for (int32_t k = 0; k < s.n_reasons; ++k)
-    if (s.reason[static_cast<std::size_t>(k)] == key)
-      return s.reason_count[static_cast<std::size_t>(k)];
-  return 0;
 }
 
 TEST_F(AvoidNodeTest, GivenAFollowedPlan_WhenAnUpdatePutsAWallAcrossIt_ThenBrakesAndNeverOk) {

@@ -25,6 +25,7 @@ namespace {
 
 using tdo_test::bytes_of;
 using tdo_test::collect;
+using tdo_test::heartbeat_reason;
 
 constexpr int32_t kVehicle = 1;
 constexpr int64_t kT0 = 1767225600000000;  // us, 2026-01-01
@@ -398,6 +399,78 @@ TEST(SimNodeStandalone, CollisionsAreCountedAndWithoutAMapTheBoundsAreUsed) {
   std::string error;
   EXPECT_FALSE(node.start(&error));
   EXPECT_NE(error.find("no_such_map"), std::string::npos) << error;
+}
+
+// A follower starved of CPU (the netns runs under load: 799 setpoints for 1,081 steps) stops
+// answering while the simulator's timer keeps stepping. Map1's wall (x = 6 .. 7) lies ahead of
+// its start (2, 2, 3); the follower asks for 2 m/s^2 towards it for 1 s, each setpoint stamped
+// with the state it answers, then falls silent; the wall-clock timeout is set far out (as when
+// late setpoints keep trickling in). Returns the node's counters and last heartbeat.
+struct Starved {
+  tdo_lcm::SimCounters counters;
+  tdo::status_t heartbeat{};
+  double final_speed = 0.0;
+};
+
+Starved starve(double max_age_steps) {
+  tdo_lcm::Bus bus("memq://");
+  std::vector<tdo::vehicle_state_t> states;
+  std::vector<tdo::status_t> status;
+  tdo_lcm::SimConfig cfg;
+  cfg.vehicle_id = kVehicle;
+  cfg.map_file = std::string(TDO_MAPS_DIR) + "/map1.tdomap";
+  cfg.start_utime = kT0;
+  cfg.map_period_s = 0.0;
+  cfg.setpoint_timeout_s = 1e6;
+  cfg.setpoint_max_age_steps = max_age_steps;
+  EXPECT_TRUE(bus.subscribe(cfg.state_channel, collect(&states)));
+  EXPECT_TRUE(bus.subscribe(cfg.status_channel, collect(&status)));
+  tdo_lcm::SimNode node(&bus, cfg);
+  std::string error;
+  EXPECT_TRUE(node.start(&error)) << error;
+  auto pump = [&bus] {
+    for (int i = 0; i < 10000 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  };
+  pump();
+  const auto t0 = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  for (int k = 0; k < 300; ++k) {  // 6 s at 50 Hz
+    if (k < 50) {
+      EXPECT_EQ(states.size(), static_cast<std::size_t>(k + 1));
+      EXPECT_TRUE(bus.publish(cfg.setpoint_channel, setpoint(k, 2.0, 0.0, 0.0)));
+      pump();
+    }
+    node.poll(t0 + std::chrono::milliseconds(20 * k));
+    pump();
+  }
+  node.publish_status();
+  pump();
+  Starved r;
+  r.counters = node.counters();
+  if (!status.empty()) r.heartbeat = status.back();
+  const tdo_vehicle_state s = node.current().state;
+  r.final_speed = std::sqrt(s.v.x * s.v.x + s.v.y * s.v.y + s.v.z * s.v.z);
+  EXPECT_EQ(r.counters.steps, 300);
+  EXPECT_EQ(r.counters.setpoints, 50);
+  return r;
+}
+
+// GIVEN the starved follower WHEN its last setpoint is more than 3 steps old THEN tdo-sim names
+// setpoint_stale in its heartbeat, brakes and hovers short of the wall; with the age check off
+// (0 steps) the vehicle flies the old command into the wall.
+TEST(SimNodeStandalone, StarvedSetpointStreamIsNamedStaleAndTheVehicleBrakesShortOfTheWall) {
+  const Starved r = starve(3.0);
+  EXPECT_GT(r.counters.stale_steps, 200);  // the 250 silent steps but the first 3
+  EXPECT_EQ(heartbeat_reason(r.heartbeat, "step.setpoint_stale"), r.counters.stale_steps);
+  EXPECT_EQ(r.counters.brakes, r.counters.stale_steps);
+  EXPECT_EQ(r.counters.collision_steps, 0);
+  EXPECT_GE(r.counters.min_static_dist, 0.25);  // the simulator's static clearance
+  EXPECT_LT(r.final_speed, 0.01);
+
+  const Starved blind = starve(0.0);
+  EXPECT_EQ(blind.counters.stale_steps, 0);
+  EXPECT_EQ(heartbeat_reason(blind.heartbeat, "step.setpoint_stale"), 0);
+  EXPECT_GT(blind.counters.static_collisions, 0) << "the old command no longer reaches the wall";
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 namespace {
 
 using tdo_test::Rng;
+using tdo_test::TestCorrector;
 using tdo_test::TestPlanner;
 using tdo_test::VoxelMap;
 
@@ -58,26 +59,13 @@ struct Map {
   }
 };
 
-/** A correction context on its own exactly sized heap arena. */
-class Corrector {
- public:
-  Corrector(uint32_t max_points, uint32_t max_checks) {
-    cfg_.max_points = max_points;
-    cfg_.max_checks = max_checks;
-    mem_.assign(tdo_correct_footprint(&cfg_), 0u);
-    tdo_arena arena;
-    tdo_arena_init(&arena, mem_.data(), mem_.size());
-    status_ = tdo_correct_init(&ctx_, &arena, &cfg_);
-  }
-  tdo_status status() const { return status_; }
-  tdo_correct* ctx() { return ctx_; }
-
- private:
-  tdo_correct_config cfg_{};
-  std::vector<unsigned char> mem_;
-  tdo_correct* ctx_ = nullptr;
-  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
-};
+/** Capacities of a correction context (tdo_test::TestCorrector: its own exactly sized arena). */
+tdo_correct_config correct_cfg(uint32_t max_points, uint32_t max_checks) {
+  tdo_correct_config cfg{};
+  cfg.max_points = max_points;
+  cfg.max_checks = max_checks;
+  return cfg;
+}
 
 tdo_correct_input make_in(const tdo_grid* g, const std::vector<tdo_vec3>& pts,
                           tdo_correct_mode mode, double clearance,
@@ -150,7 +138,7 @@ TEST(
     GivenRandomMapsAndGridPaths_WhenCorrected_ThenEndsMatchEverySegmentKeepsClearanceAndNoPointIsAdded) {
   TestPlanner pl(tdo_test::make_cap(24 * 24 * 10, 24 * 24 * 10, 2000, 64, 20000));
   ASSERT_EQ(pl.status(), TDO_OK);
-  Corrector corr(2000, 200000);
+  TestCorrector corr(correct_cfg(2000, 200000));
   ASSERT_EQ(corr.status(), TDO_OK);
   Rng rng(7);
   const double clearance = 0.5;
@@ -242,7 +230,7 @@ TEST(Correct, GivenAStraightInputWithRepeatedPoints_WhenCorrected_ThenTwoPointsR
   }
   pts.front() = a;
   pts.back() = b;
-  Corrector corr(100, 1000);
+  TestCorrector corr(correct_cfg(100, 1000));
   for (tdo_correct_mode mode : kModes) {
     const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
     tdo_correct_output out{};
@@ -274,7 +262,7 @@ TEST(Correct, GivenAWallBetweenStartAndGoal_WhenCorrected_ThenTheDetourCornerIsS
   }
   for (int k = 0; k <= 8; ++k) pts.push_back(lerp(corner, c, k / 8.0));
   for (size_t i = 1; i < pts.size(); ++i) ASSERT_TRUE(mp.segment_ok(pts[i - 1], pts[i], 0.5));
-  Corrector corr(100, 10000);
+  TestCorrector corr(correct_cfg(100, 10000));
   for (tdo_correct_mode mode : {TDO_CORRECT_MULTISCALE, TDO_CORRECT_GREEDY_LOS}) {
     const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
     tdo_correct_output out{};
@@ -298,7 +286,7 @@ TEST(Correct, GivenAnInputSegmentThroughAnObstacle_WhenCorrected_ThenNoPathAndNo
   mp.boxes.push_back(tdo_box{v3(9, 9, -1), v3(9.05, 11, 5)});  // thin
   ASSERT_EQ(load_boxes(pl.grid(), mp, 0.5), TDO_OK);
   const std::vector<tdo_vec3> pts = {v3(2, 10, 2), v3(5, 10, 2), v3(15, 10, 2), v3(15, 15, 2)};
-  Corrector corr(100, 1000);
+  TestCorrector corr(correct_cfg(100, 1000));
   for (tdo_correct_mode mode : kModes) {
     const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
     tdo_correct_output out{};
@@ -317,7 +305,7 @@ TEST(Correct, GivenASmallCheckBudget_WhenCorrected_ThenBudgetStatusAndNoOutput) 
   std::vector<tdo_vec3> pts;
   for (int k = 0; k < 12; ++k) pts.push_back(v3(1.5 + k, 1.5 + (k % 2), 2.0));  // a zig-zag
   for (uint32_t budget : {1u, 5u, 11u, 12u}) {
-    Corrector corr(100, budget);
+    TestCorrector corr(correct_cfg(100, budget));
     for (tdo_correct_mode mode : kModes) {
       const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
       tdo_correct_output out{};
@@ -356,7 +344,7 @@ TEST(Correct, GivenBadArguments_WhenInitOrRun_ThenNamedStatuses) {
   EXPECT_EQ(tdo_correct_init(&ctx, &arena, &cfg), TDO_ERR_ARENA_TOO_SMALL);
 
   TestPlanner pl(tdo_test::make_cap(1000, 100, 100));
-  Corrector corr(8, 100);
+  TestCorrector corr(correct_cfg(8, 100));
   const tdo_grid_desc d{10, 10, 10, 1.0, v3(0, 0, 0)};
   ASSERT_EQ(tdo_grid_reset(pl.grid(), &d), TDO_OK);
   std::vector<tdo_vec3> pts = {v3(1, 1, 1), v3(5, 5, 5)};
@@ -404,7 +392,7 @@ TEST(Correct, GivenTheSameInput_WhenRunTwice_ThenOutputsAreBitIdentical) {
   ASSERT_EQ(load_boxes(pl.grid(), mp, 0.5), TDO_OK);
   std::vector<tdo_vec3> pts;
   ASSERT_TRUE(grid_path(pl, v3(0.25, 0.25, 2.25), v3(11.75, 11.75, 2.25), &pts));
-  Corrector corr(2000, 100000);
+  TestCorrector corr(correct_cfg(2000, 100000));
   for (tdo_correct_mode mode : kModes) {
     const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
     tdo_correct_output a{}, b{};
@@ -433,7 +421,7 @@ TEST(
     GivenRandomMaps_WhenMultiscaleShortens_ThenSegmentsKeepClearanceAndPathIsNoLongerWithNoMorePoints) {
   TestPlanner pl(tdo_test::make_cap(24 * 24 * 10, 24 * 24 * 10, 2000, 64, 20000));
   ASSERT_EQ(pl.status(), TDO_OK);
-  Corrector plain(2000, 200000), shortened(2000, 200000);
+  TestCorrector plain(correct_cfg(2000, 200000)), shortened(correct_cfg(2000, 200000));
   ASSERT_EQ(plain.status(), TDO_OK);
   ASSERT_EQ(shortened.status(), TDO_OK);
   Rng rng(11);
@@ -492,13 +480,13 @@ TEST(Correct, GivenEveryBudget_WhenShortened_ThenChecksUseItExactlyAndSegmentsKe
     if (!random_pillar_query(pl, rng, 30, clearance, 4, 4, &mp, &pts)) continue;
     tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, clearance);
     in.shorten = 1;
-    Corrector full(2000, 0);
+    TestCorrector full(correct_cfg(2000, 0));
     tdo_correct_output ref{};
     if (tdo_correct_run(full.ctx(), &in, &ref) != TDO_OK) continue;  // grazing grid path
     ++runs;
     const uint32_t n = ref.checks;
     for (uint32_t budget = n + 2u; budget > 0u; budget = budget > 7u ? budget - 7u : budget - 1u) {
-      Corrector corr(2000, budget);
+      TestCorrector corr(correct_cfg(2000, budget));
       tdo_correct_output out{};
       const tdo_status st = tdo_correct_run(corr.ctx(), &in, &out);
       if (st == TDO_ERR_BUDGET) {  // before the shortening

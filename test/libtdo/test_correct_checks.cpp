@@ -89,12 +89,7 @@ class MapGrid {
         map_(m) {}
   tdo_status load(double finish_c) {
     if (pl_.status() != TDO_OK) return pl_.status();
-    tdo_status st = tdo_grid_reset(grid(), &map_.desc);
-    for (size_t i = 0; i < map_.boxes.size() && st == TDO_OK; ++i)
-      st = tdo_grid_add_box(grid(), &map_.boxes[i]);
-    for (size_t i = 0; i < map_.cubes.size() && st == TDO_OK; ++i)
-      st = tdo_grid_add_voxel(grid(), map_.cubes[i].i, map_.cubes[i].j, map_.cubes[i].k);
-    return st == TDO_OK ? tdo_grid_finish(grid(), finish_c) : st;
+    return tdo_test::load_grid(grid(), map_.desc, map_.boxes, finish_c, map_.cubes);
   }
   tdo_grid* grid() { return pl_.grid(); }
 

@@ -132,12 +132,8 @@ struct Model {
 class Ends {
  public:
   Ends(const World& w, double clearance) : m_{w, clearance}, pl_(cap_for(w, clearance)) {
-    ok_ = pl_.status() == TDO_OK;
-    tdo_status st = ok_ ? tdo_grid_reset(pl_.grid(), &w.desc) : TDO_ERR_INVALID_ARGUMENT;
-    for (const tdo_box& b : w.boxes)
-      if (st == TDO_OK) st = tdo_grid_add_box(pl_.grid(), &b);
-    if (st == TDO_OK) st = tdo_grid_finish(pl_.grid(), clearance);
-    ok_ = st == TDO_OK;
+    ok_ = pl_.status() == TDO_OK &&
+          tdo_test::load_grid(pl_.grid(), w.desc, w.boxes, clearance) == TDO_OK;
   }
   bool ok() const { return ok_; }
   const Model& model() const { return m_; }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "rng.h"
@@ -307,6 +308,143 @@ TEST(Sim, SeededDisturbanceIsDeterministic) {
   const double sd = std::sqrt(s2 / static_cast<double>(a.size()));
   EXPECT_GT(sd, 0.46);
   EXPECT_LT(sd, 0.54);
+}
+
+}  // namespace
+
+namespace {
+
+// A flight towards a wall (x = 7) whose setpoint stream starves after 1 s: the follower's last
+// setpoint (a = 2 m/s^2 along +x, stamped with the time of the state it answered) is all the
+// simulator gets from then on.
+struct StarvedRun {
+  std::vector<tdo_status> status;   // phase 2, per step
+  std::vector<tdo_sim_output> out;  // phase 2, per step
+  std::vector<tdo_vehicle_state> before;
+  bool collided = false;
+};
+
+StarvedRun starved_run(double max_age) {
+  StarvedRun r;
+  Sim s(1u);
+  EXPECT_EQ(s.status, TDO_OK);
+  const tdo_box wall{{7.0, 0.0, 0.0}, {8.0, 10.0, 5.0}};
+  tdo_sim_params p = box_params();
+  p.boxes = &wall;
+  p.n_boxes = 1u;
+  p.setpoint_max_age = max_age;
+  tdo_vehicle_state v0{};
+  v0.p = tdo_vec3{2.0, 5.0, 2.5};
+  EXPECT_EQ(tdo_sim_reset(s.sim, &p, &v0, nullptr, 0u), TDO_OK);
+  tdo_sim_input in{};
+  in.setpoint.a = tdo_vec3{2.0, 0.0, 0.0};
+  tdo_sim_output o{};
+  EXPECT_EQ(tdo_sim_get(s.sim, &o), TDO_OK);
+  for (int k = 0; k < 50; ++k) {  // fresh: each answers the state it is flown from
+    in.setpoint.t = o.state.t;
+    EXPECT_EQ(tdo_sim_run(s.sim, &in, &o), TDO_OK);
+    EXPECT_EQ(o.braked, 0);
+    EXPECT_EQ(o.setpoint_age, 0.0);
+    r.collided = r.collided || o.collision_static != 0;
+  }
+  for (int k = 0; k < 250; ++k) {  // starved: the last setpoint again and again, 5 s
+    r.before.push_back(o.state);
+    r.status.push_back(tdo_sim_run(s.sim, &in, &o));
+    r.out.push_back(o);
+    r.collided = r.collided || o.collision_static != 0;
+  }
+  return r;
+}
+
+// GIVEN a setpoint stream that starves WHEN the last setpoint is older than setpoint_max_age
+// THEN each step says setpoint_stale, brakes with a = -brake_gain v through the motion limits
+// and the vehicle comes to a hover short of the wall; without the age check it flies the old
+// command into the wall.
+TEST(Sim, StaleSetpointBrakesToAHoverAndIsNamed) {
+  const double dt = 0.02, max_age = 3 * dt;
+  const StarvedRun r = starved_run(max_age);
+  ASSERT_EQ(r.out.size(), 250u);
+  for (size_t k = 0; k < r.out.size(); ++k) {
+    SCOPED_TRACE("starved step " + std::to_string(k + 1));
+    const double age = r.before[k].t - (r.before[0].t - dt);  // the setpoint answered step 0's
+    EXPECT_NEAR(r.out[k].setpoint_age, age, 1e-12);
+    if (k < 2) {  // 0.02 and 0.04 s old: still flown
+      EXPECT_EQ(r.status[k], TDO_OK);
+      EXPECT_EQ(r.out[k].braked, 0);
+      continue;
+    }
+    if (k == 2) continue;  // 0.06 s: at the bound (rounding decides)
+    EXPECT_STREQ(tdo_status_str(r.status[k]), "setpoint_stale");
+    EXPECT_EQ(r.out[k].braked, 1);
+    // The braking command through the motion limits (sim.h), from the state before the step.
+    const tdo_vec3 v = r.before[k].v;
+    tdo_setpoint want{};
+    tdo_motion_limit(&r.before[k], tdo_vec3{-2.0 * v.x, -2.0 * v.y, -2.0 * v.z}, 3.0, 3.0, 10.0, dt,
+                     &want);
+    EXPECT_EQ(std::memcmp(&want.p, &r.out[k].state.p, sizeof want.p), 0);
+    EXPECT_EQ(std::memcmp(&want.v, &r.out[k].state.v, sizeof want.v), 0);
+  }
+  EXPECT_FALSE(r.collided);
+  const tdo_sim_output& end = r.out.back();
+  EXPECT_LT(norm3(end.state.v), 0.01) << "not hovering after 5 s of braking";
+  EXPECT_LT(norm3(sub3(end.state.p, r.out[r.out.size() - 50].state.p)), 0.01)
+      << "still moving in the last second: not a hover in place";
+  EXPECT_GE(end.static_dist, 0.25);
+
+  // The same starvation without the age check: the old command flies into the wall.
+  const StarvedRun blind = starved_run(0.0);
+  for (size_t k = 0; k < blind.out.size(); ++k) {
+    EXPECT_EQ(blind.status[k], TDO_OK);
+    EXPECT_EQ(blind.out[k].braked, 0);
+  }
+  EXPECT_TRUE(blind.collided);
+}
+
+// GIVEN a stale setpoint WHEN a fresh one comes THEN it is flown again; tdo_sim_hold brakes with
+// TDO_OK; a negative or non-finite bound or gain is refused.
+TEST(Sim, FreshSetpointAfterStaleAndHoldAndBadBounds) {
+  Sim s(1u);
+  ASSERT_EQ(s.status, TDO_OK);
+  tdo_sim_params p = box_params();
+  p.setpoint_max_age = 0.05;
+  tdo_vehicle_state v0{};
+  v0.p = tdo_vec3{5.0, 5.0, 2.5};
+  ASSERT_EQ(tdo_sim_reset(s.sim, &p, &v0, nullptr, 0u), TDO_OK);
+  tdo_sim_input in{};
+  in.setpoint.t = -1.0;  // 1 s old
+  in.setpoint.a = tdo_vec3{1.0, 0.0, 0.0};
+  tdo_sim_output o{};
+  EXPECT_EQ(tdo_sim_run(s.sim, &in, &o), TDO_ERR_SETPOINT_STALE);
+  EXPECT_EQ(o.braked, 1);
+  EXPECT_EQ(o.state.v.x, 0.0);  // braking from rest: stays at rest
+  in.setpoint.t = o.state.t;
+  EXPECT_EQ(tdo_sim_run(s.sim, &in, &o), TDO_OK);
+  EXPECT_EQ(o.braked, 0);
+  EXPECT_GT(o.state.a.x, 0.0);  // flying the command again
+  tdo_sim_output got{};
+  ASSERT_EQ(tdo_sim_get(s.sim, &got), TDO_OK);
+  EXPECT_EQ(got.braked, 0);
+  const double v_before = o.state.v.x;
+  EXPECT_EQ(tdo_sim_hold(s.sim, &o), TDO_OK);
+  EXPECT_EQ(o.braked, 1);
+  EXPECT_EQ(o.setpoint_age, 0.0);
+  EXPECT_LT(o.state.a.x, got.state.a.x);  // the acceleration turns towards -2 v
+  EXPECT_GT(v_before, 0.0);
+  EXPECT_EQ(tdo_sim_hold(nullptr, &o), TDO_ERR_INVALID_ARGUMENT);
+  EXPECT_EQ(tdo_sim_hold(s.sim, nullptr), TDO_ERR_INVALID_ARGUMENT);
+  in.setpoint.t = std::nan("");  // no time: never fresh
+  EXPECT_EQ(tdo_sim_run(s.sim, &in, &o), TDO_ERR_SETPOINT_STALE);
+  tdo_vehicle_state st{};
+  EXPECT_EQ(tdo_sim_step(s.sim, &in.setpoint, &st), TDO_ERR_SETPOINT_STALE);
+  EXPECT_EQ(st.t, o.state.t + 0.02);  // stepped, the state out
+  for (double bad : {-0.01, std::nan(""), HUGE_VAL}) {
+    tdo_sim_params q = p;
+    q.setpoint_max_age = bad;
+    EXPECT_EQ(tdo_sim_reset(s.sim, &q, &v0, nullptr, 0u), TDO_ERR_INVALID_ARGUMENT);
+    q = p;
+    q.brake_gain = bad;
+    EXPECT_EQ(tdo_sim_reset(s.sim, &q, &v0, nullptr, 0u), TDO_ERR_INVALID_ARGUMENT);
+  }
 }
 
 }  // namespace

@@ -77,6 +77,7 @@ TEST(Status, GivenTheEnumIdentifiers_WhenNamed_ThenNameIsTheIdentifierWithoutPre
       {TDO_ERR_STATE_TOO_FAST, "state_too_fast"},
       {TDO_ERR_STATE_OVER_LIMITS, "state_over_limits"},
       {TDO_ERR_STATE_CANNOT_STOP, "state_cannot_stop"},
+      {TDO_ERR_SETPOINT_STALE, "setpoint_stale"},
   };
   EXPECT_EQ(sizeof(table) / sizeof(table[0]), static_cast<size_t>(TDO_STATUS_COUNT))
       << "a status was added to status.h without a name in this table";

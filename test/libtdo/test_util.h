@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "arena_contexts.h"
 #include "rng.h"
 #include "tdo/tdo.h"
 
@@ -35,34 +36,6 @@ inline tdo_capacity make_cap(uint32_t voxels, uint32_t nodes, uint32_t path, uin
   cap.max_expansions = expansions;
   return cap;
 }
-
-/** A planner living in an exactly footprint-sized heap block (so ASan sees any overrun). */
-class TestPlanner {
- public:
-  explicit TestPlanner(const tdo_capacity& cap) {
-    cfg_.cap = cap;
-    const size_t bytes = tdo_planner_footprint(&cfg_);
-    if (bytes == 0) {
-      status_ = TDO_ERR_INVALID_ARGUMENT;
-      return;
-    }
-    mem_.assign(bytes, 0u);
-    status_ = tdo_planner_init(&planner_, mem_.data(), bytes, &cfg_);
-  }
-  TestPlanner(const TestPlanner&) = delete;
-  TestPlanner& operator=(const TestPlanner&) = delete;
-
-  tdo_status status() const { return status_; }
-  tdo_planner* planner() { return planner_; }
-  tdo_grid* grid() { return tdo_planner_grid(planner_); }
-  tdo_search* search() { return tdo_planner_search(planner_); }
-
- private:
-  tdo_planner_config cfg_{};
-  std::vector<unsigned char> mem_;
-  tdo_planner* planner_ = nullptr;
-  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
-};
 
 inline bool same_voxel(const tdo_voxel& a, const tdo_voxel& b) {
   return a.i == b.i && a.j == b.j && a.k == b.k;

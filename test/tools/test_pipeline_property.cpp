@@ -38,11 +38,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "arena_contexts.h"
 #include "mapgen.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
@@ -491,27 +491,17 @@ struct Seen {
 // ---------------------------------------------------------------------------------------------
 // Planner on a heap arena, the A* reference run and one property case.
 
-class Planner {
- public:
-  Planner(const tdo_io::Map& map, double clearance, uint32_t node_cap, uint32_t stream = 0u) {
-    cfg_.cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
-    cfg_.cap.exact_heuristic = 1u;  // the obstacle-aware retry: geb079 G4 and G5 need it
-    cfg_.cap.stream_samples = stream;
-    bytes_ = tdo_planner_footprint(&cfg_);
-    mem_.reset(new unsigned char[bytes_]);
-    status_ = tdo_planner_init(&planner_, mem_.get(), bytes_, &cfg_);
-    if (status_ == TDO_OK) status_ = tdo_io::load_into(map, tdo_planner_grid(planner_), clearance);
-  }
-  tdo_status status() const { return status_; }
-  tdo_planner* get() { return planner_; }
+using tdo_test::TestPlanner;
 
- private:
-  tdo_planner_config cfg_{};
-  size_t bytes_ = 0;
-  std::unique_ptr<unsigned char[]> mem_;
-  tdo_planner* planner_ = nullptr;
-  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
-};
+/** `map` at `clearance` in a planner of tdo_io::capacity_for's sizes with the obstacle-aware retry
+ *  (geb079 G4 and G5 need it). */
+TestPlanner map_planner(const tdo_io::Map& map, double clearance, uint32_t node_cap,
+                        uint32_t stream = 0u) {
+  tdo_capacity cap = tdo_io::capacity_for(map, clearance, 27u, node_cap);
+  cap.exact_heuristic = 1u;
+  cap.stream_samples = stream;
+  return TestPlanner(cap, [&](tdo_grid* g) { return tdo_io::load_into(map, g, clearance); });
+}
 
 tdo_plan_params astar_params() {
   tdo_plan_params p;
@@ -536,7 +526,7 @@ struct Tally {
  * Plan start -> goal with plain A* and with the pipeline (`params`), and check the properties.
  * @return the pipeline's status.
  */
-tdo_status run_case(const std::string& label, const World& world, Planner& pl, double clearance,
+tdo_status run_case(const std::string& label, const World& world, TestPlanner& pl, double clearance,
                     const tdo_vec3& start, const tdo_vec3& goal, const tdo_plan_params& params,
                     Tally* tally) {
   SCOPED_TRACE(label + ": " + str(vec(start)) + " -> " + str(vec(goal)));
@@ -546,9 +536,9 @@ tdo_status run_case(const std::string& label, const World& world, Planner& pl, d
   req.goal = goal;
   req.params = astar_params();
   tdo_plan_result res{};
-  const tdo_status astar = tdo_planner_plan(pl.get(), &req, &res);
+  const tdo_status astar = tdo_planner_plan(pl.planner(), &req, &res);
   req.params = params;
-  const tdo_status st = tdo_planner_plan(pl.get(), &req, &res);
+  const tdo_status st = tdo_planner_plan(pl.planner(), &req, &res);
   if (astar == TDO_OK) {
     ++tally->astar_ok;
     EXPECT_EQ(st, TDO_OK) << "A* found a path, the pipeline returned " << tdo_status_str(st)
@@ -654,7 +644,7 @@ TEST_F(PipelineProperty, GivenSeededRandomMapsWhenPlannedThenEveryPropertyHolds)
     std::ofstream(file) << gen.text;
     const tdo_io::Map map = load(file);
     const double clearance = p.clearance_mm / 1000.0;
-    Planner pl(map, clearance, 0u);
+    TestPlanner pl = map_planner(map, clearance, 0u);
     ASSERT_EQ(pl.status(), TDO_OK) << label;
     const World world(map);
 
@@ -708,7 +698,7 @@ TEST(PipelinePropertyMaps, GivenMap1ToMap5WhenPlannedThenEveryPropertyHolds) {
     const std::string name = "map" + std::to_string(n);
     const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
     const double clearance = 0.5;
-    Planner pl(map, clearance, 0u);
+    TestPlanner pl = map_planner(map, clearance, 0u);
     ASSERT_EQ(pl.status(), TDO_OK) << name;
     const World world(map);
     tdo_plan_params params;
@@ -766,7 +756,7 @@ TEST(PipelineMovingStart,
     const std::string name = "map" + std::to_string(n);
     const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
     const double clearance = 0.5;
-    Planner pl(map, clearance, 0u);
+    TestPlanner pl = map_planner(map, clearance, 0u);
     ASSERT_EQ(pl.status(), TDO_OK) << name;
     const World world(map);
     tdo_plan_request req{};
@@ -775,7 +765,7 @@ TEST(PipelineMovingStart,
     tdo_plan_params_default(&req.params);
     const Limits lim{req.params.v_max, req.params.a_max, req.params.j_max, req.params.dt};
     tdo_plan_result res{};
-    ASSERT_EQ(tdo_planner_plan(pl.get(), &req, &res), TDO_OK) << name;
+    ASSERT_EQ(tdo_planner_plan(pl.planner(), &req, &res), TDO_OK) << name;
     const std::vector<tdo_sample> plan(res.samples, res.samples + res.n_samples);
     std::vector<uint32_t> picks;
     for (uint32_t i = 100; i + 1 < plan.size(); i += 100) picks.push_back(i);  // every second
@@ -797,7 +787,7 @@ TEST(PipelineMovingStart,
           e.knot < e.ramp)
         ++two_piece;
       // WHEN planned from it
-      const tdo_status st = tdo_planner_plan(pl.get(), &r, &res);
+      const tdo_status st = tdo_planner_plan(pl.planner(), &r, &res);
       ++tried;
       // THEN it is not refused for its motion; a stop along the velocity that would come too
       // close to a column (state_cannot_stop) is the only refusal
@@ -840,7 +830,8 @@ TEST(PipelineStreaming,
   for (int n : {1, 2, 3, 5}) {
     const std::string name = "map" + std::to_string(n);
     const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
-    Planner stored(map, 0.5, 0u), streamed(map, 0.5, 0u, 1u);
+    TestPlanner stored = map_planner(map, 0.5, 0u);
+    TestPlanner streamed = map_planner(map, 0.5, 0u, 1u);
     ASSERT_EQ(stored.status(), TDO_OK) << name;
     ASSERT_EQ(streamed.status(), TDO_OK) << name;
     TestRng rng(300u + static_cast<uint64_t>(n));
@@ -850,8 +841,8 @@ TEST(PipelineStreaming,
       req.goal = q == 0 ? map.goal : random_point(rng, map.desc);
       tdo_plan_params_default(&req.params);
       tdo_plan_result a{}, b{};
-      const tdo_status sa = tdo_planner_plan(stored.get(), &req, &a);
-      const tdo_status sb = tdo_planner_plan(streamed.get(), &req, &b);
+      const tdo_status sa = tdo_planner_plan(stored.planner(), &req, &a);
+      const tdo_status sb = tdo_planner_plan(streamed.planner(), &req, &b);
       const std::string what = name + " query " + std::to_string(q);
       ASSERT_EQ(sa, sb) << what;
       EXPECT_EQ(b.samples, nullptr) << what;
@@ -887,8 +878,8 @@ TEST(PipelineStreaming,
       if (sa != TDO_OK || a.n_samples == 0u) continue;
       ++compared;
       EXPECT_GT(b.metrics.energy, 0.0) << what;  // the streamed energy is there, not left at 0
-      const std::vector<tdo_sample> via_a = collect_samples(stored.get());
-      const std::vector<tdo_sample> via_b = collect_samples(streamed.get());
+      const std::vector<tdo_sample> via_a = collect_samples(stored.planner());
+      const std::vector<tdo_sample> via_b = collect_samples(streamed.planner());
       ASSERT_EQ(via_a.size(), a.n_samples) << what;
       ASSERT_EQ(via_b.size(), a.n_samples) << what;
       EXPECT_EQ(std::memcmp(via_a.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
@@ -905,7 +896,7 @@ TEST(PipelineStreaming,
 TEST(PipelinePropertyMaps, GivenGeb079WhenPlannedThenEveryPropertyHolds) {
   const tdo_io::Map map = load(kMaps + "/octomap/geb079.bt", 0.2);
   const double clearance = 0.3;
-  Planner pl(map, clearance, 2000000u);
+  TestPlanner pl = map_planner(map, clearance, 2000000u);
   ASSERT_EQ(pl.status(), TDO_OK);
   const World world(map);
   tdo_plan_params params;
@@ -945,7 +936,7 @@ TEST(PipelinePropertyMaps, GivenForestsWithPublishedPairsWhenPlannedThenEveryPro
     const std::string name = "forest" + std::to_string(id);
     const tdo_io::Map map = load(kMaps + "/forest_gen/" + name + ".bt");
     const double clearance = 0.3;
-    Planner pl(map, clearance, 0u);
+    TestPlanner pl = map_planner(map, clearance, 0u);
     ASSERT_EQ(pl.status(), TDO_OK) << name;
     const World world(map);
     tdo_plan_params params;

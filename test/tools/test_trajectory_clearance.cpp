@@ -10,10 +10,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "arena_contexts.h"
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 
@@ -25,50 +25,25 @@ constexpr double kSlack = 1e-9;    // m, the report's clearance slack (a sample 
                                    // clearance keeps it)
 constexpr uint32_t kMaxViolations = 64;
 
-class Planner {
- public:
-  Planner(const tdo_io::Map& map, double clearance) {
-    cfg_.cap = tdo_io::capacity_for(map, clearance, 27u, 400000u);
-    bytes_ = tdo_planner_footprint(&cfg_);
-    mem_.reset(new unsigned char[bytes_]);
-    status_ = tdo_planner_init(&planner_, mem_.get(), bytes_, &cfg_);
-    if (status_ == TDO_OK) status_ = tdo_io::load_into(map, tdo_planner_grid(planner_), clearance);
-  }
-  tdo_status status() const { return status_; }
-  tdo_planner* get() { return planner_; }
+using tdo_test::TestPlanner;
+using tdo_test::TestTraj;
 
- private:
-  tdo_planner_config cfg_{};
-  size_t bytes_ = 0;
-  std::unique_ptr<unsigned char[]> mem_;
-  tdo_planner* planner_ = nullptr;
-  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
-};
+/** `map` at `clearance` in a planner of tdo_io::capacity_for's sizes. */
+TestPlanner map_planner(const tdo_io::Map& map, double clearance) {
+  return TestPlanner(tdo_io::capacity_for(map, clearance, 27u, 400000u),
+                     [&](tdo_grid* g) { return tdo_io::load_into(map, g, clearance); });
+}
 
-class Traj {
- public:
-  Traj(uint32_t max_samples, uint32_t max_segments, uint32_t stream) {
-    cfg_.max_samples = max_samples;
-    cfg_.max_segments = max_segments;
-    cfg_.max_profile = max_segments * TDO_TRAJ_PIECES_PER_SEGMENT + 1u;
-    cfg_.max_violations = kMaxViolations;
-    cfg_.max_refinements = 8;
-    cfg_.stream_samples = stream;
-    const size_t bytes = tdo_traj_footprint(&cfg_);
-    mem_.assign(bytes + 64u, 0u);
-    tdo_arena_init(&arena_, mem_.data(), mem_.size());
-    status_ = tdo_traj_init(&ctx_, &arena_, &cfg_);
-  }
-  tdo_status status() const { return status_; }
-  tdo_traj* ctx() { return ctx_; }
-
- private:
-  tdo_traj_config cfg_{};
-  std::vector<unsigned char> mem_;
-  tdo_arena arena_{};
-  tdo_traj* ctx_ = nullptr;
-  tdo_status status_ = TDO_ERR_INVALID_ARGUMENT;
-};
+tdo_traj_config traj_cfg(uint32_t max_samples, uint32_t max_segments, uint32_t stream) {
+  tdo_traj_config cfg{};
+  cfg.max_samples = max_samples;
+  cfg.max_segments = max_segments;
+  cfg.max_profile = max_segments * TDO_TRAJ_PIECES_PER_SEGMENT + 1u;
+  cfg.max_violations = kMaxViolations;
+  cfg.max_refinements = 8;
+  cfg.stream_samples = stream;
+  return cfg;
+}
 
 /** What the report's clearance part must be: every sample queried. */
 struct Brute {
@@ -100,7 +75,7 @@ void collect(void* user, uint32_t /*index*/, const tdo_sample* s) {
   static_cast<std::vector<tdo_sample>*>(user)->push_back(*s);
 }
 
-Run run_traj(Traj* traj, const tdo_grid* grid, const tdo_path& path, double clearance) {
+Run run_traj(TestTraj* traj, const tdo_grid* grid, const tdo_path& path, double clearance) {
   tdo_plan_params params;
   tdo_plan_params_default(&params);
   tdo_traj_input in{};
@@ -170,14 +145,14 @@ tdo_io::Map load(const std::string& file) {
 
 /** Plans start -> goal at `clearance` and checks the report of the plan and of its path verified
  *  again at other clearances and moved (stored and streamed samples) against brute force. */
-void check_plan(Planner* pl, double clearance, tdo_vec3 start, tdo_vec3 goal) {
+void check_plan(TestPlanner* pl, double clearance, tdo_vec3 start, tdo_vec3 goal) {
   tdo_plan_request req{};
   req.start = start;
   req.goal = goal;
   tdo_plan_params_default(&req.params);
   tdo_plan_result res{};
-  ASSERT_EQ(tdo_planner_plan(pl->get(), &req, &res), TDO_OK);
-  const tdo_grid* grid = tdo_planner_grid(pl->get());
+  ASSERT_EQ(tdo_planner_plan(pl->planner(), &req, &res), TDO_OK);
+  const tdo_grid* grid = tdo_planner_grid(pl->planner());
   // The planner's own run: its report is brute force's too.
   std::vector<tdo_sample> planned(res.samples, res.samples + res.n_samples);
   const Brute bp = brute_force(grid, planned, clearance);
@@ -190,7 +165,8 @@ void check_plan(Planner* pl, double clearance, tdo_vec3 start, tdo_vec3 goal) {
   path.seg = segs.data();
   const uint32_t max_samples = 4u * res.n_samples + 1000u;
   const uint32_t max_segments = res.path.n + 8u;
-  Traj stored(max_samples, max_segments, 0u), streamed(max_samples, max_segments, 1u);
+  TestTraj stored(traj_cfg(max_samples, max_segments, 0u), 64u),
+      streamed(traj_cfg(max_samples, max_segments, 1u), 64u);
   ASSERT_EQ(stored.status(), TDO_OK);
   ASSERT_EQ(streamed.status(), TDO_OK);
 
@@ -233,7 +209,8 @@ void check_map(const std::string& name) {
   SCOPED_TRACE(name);
   const tdo_io::Map map = load(name + ".tdomap");
   ASSERT_TRUE(map.has_start && map.has_goal);
-  Planner pl(map, 0.5);  // tdo-plan's default clearance on .tdomap maps (obstacle boxes)
+  TestPlanner pl =
+      map_planner(map, 0.5);  // tdo-plan's default clearance on .tdomap maps (obstacle boxes)
   ASSERT_EQ(pl.status(), TDO_OK);
   check_plan(&pl, 0.5, map.start, map.goal);
 }
@@ -252,7 +229,7 @@ TEST(TrajectoryClearance, GivenMovingAISimpleWhenVerifiedThenClearanceEqualsBrut
   std::string err;
   ASSERT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
   ASSERT_GE(queries.size(), 40u);
-  Planner pl(map, 0.0);
+  TestPlanner pl = map_planner(map, 0.0);
   ASSERT_EQ(pl.status(), TDO_OK);
   for (size_t k = 0; k < 40u; ++k) {
     SCOPED_TRACE("Simple query " + std::to_string(queries[k].line));
@@ -264,7 +241,7 @@ TEST(TrajectoryClearance, GivenMovingAISimpleWhenVerifiedThenClearanceEqualsBrut
 // 0.05 m at the forests' 0.1 m) instead of 0.2 m: the report is still brute force's.
 TEST(TrajectoryClearance, GivenGeb079CorridorQueriesWhenVerifiedThenClearanceEqualsBruteForce) {
   const tdo_io::Map map = load("octomap/geb079.bt");
-  Planner pl(map, 0.3);
+  TestPlanner pl = map_planner(map, 0.3);
   ASSERT_EQ(pl.status(), TDO_OK);
   // maps/octomap/README.md: G2 and G3, straight along the corridor's walls.
   check_plan(&pl, 0.3, tdo_vec3{-5.0, 0.0, 1.2}, tdo_vec3{10.0, 0.0, 1.2});
@@ -273,7 +250,7 @@ TEST(TrajectoryClearance, GivenGeb079CorridorQueriesWhenVerifiedThenClearanceEqu
 
 TEST(TrajectoryClearance, GivenForestPairsWhenVerifiedThenClearanceEqualsBruteForce) {
   const tdo_io::Map map = load("forest_gen/forest2.bt");
-  Planner pl(map, 0.5);
+  TestPlanner pl = map_planner(map, 0.5);
   ASSERT_EQ(pl.status(), TDO_OK);
   // maps/forest_gen/start_and_end.csv, pairs 205 and 200.
   check_plan(&pl, 0.5, tdo_vec3{2.083444, -3.562597, 1.0}, tdo_vec3{-1.367670, 3.574024, 1.0});

@@ -16,6 +16,11 @@
  *   over the step; zero mean, standard deviation accel_noise, a sum of four uniform draws so no
  *   libm call is involved) added to a' before the speed limit (splitmix64 generator in the
  *   context, seeded by `seed`; no global state).
+ * Stale or missing command: a setpoint whose t lies more than setpoint_max_age behind the
+ * simulator's clock (state.t - setpoint.t > setpoint_max_age, when that is > 0; a NaN t too), or
+ * a step without one (tdo_sim_hold), is not flown: the step brakes towards a hover in place,
+ * command a = -brake_gain v through the same motion limits, and says so (tdo_sim_output.braked;
+ * a stale setpoint also makes tdo_sim_run return TDO_ERR_SETPOINT_STALE, the step done).
  * Movers: q' = q + u dt; a centre that leaves the bounds on an axis is mirrored back into them and
  * that velocity component flips (at most 4 reflections per axis and step, then clamped).
  * Fixed memory from the caller's arena (the movers), no heap, bounded work per step.
@@ -70,6 +75,12 @@ typedef struct tdo_sim_params {
   uint32_t n_boxes;        /**< count of boxes (default 0) */
   uint64_t seed;           /**< seed of the disturbance generator (default 1) */
   double accel_noise;      /**< m/s^2, standard deviation of the disturbance, >= 0 (default 0) */
+  double setpoint_max_age; /**< s, >= 0: a setpoint whose t lies more than this behind the
+                                simulator's clock is stale and the step brakes instead; 0: no
+                                age check (default 0: setpoints without a time; a caller whose
+                                setpoints carry the time of the state they answer sets a few
+                                steps, e.g. tdo-sim 3 dt) */
+  double brake_gain;       /**< 1/s, >= 0: braking command a = -brake_gain v (default 2) */
 } tdo_sim_params;
 
 /** Fill `p` with the defaults documented in tdo_sim_params (bounds 0..1 m: set them). */
@@ -80,7 +91,8 @@ typedef struct tdo_sim tdo_sim;
 
 /** Input of one step. */
 typedef struct tdo_sim_input {
-  tdo_setpoint setpoint; /**< command; its acceleration is applied through tdo_motion_limit */
+  tdo_setpoint setpoint; /**< command; its acceleration is applied through tdo_motion_limit;
+                              its t (s, the simulator's clock) for the age check */
 } tdo_sim_input;
 
 /** State after one step (or after the reset, for tdo_sim_get). */
@@ -96,6 +108,10 @@ typedef struct tdo_sim_output {
                                 the boxes) capped at 10 m (HUGE_VAL without a grid or boxes) */
   int collision_mover;     /**< 1 when mover_gap < 0 */
   int collision_static;    /**< 1 when static_dist < static_clearance */
+  int braked;              /**< 1 when the step braked instead of flying a setpoint
+                                (tdo_sim_hold, or a stale setpoint) */
+  double setpoint_age;     /**< s, clock at the step's start - setpoint.t (0 after a reset or
+                                tdo_sim_hold) */
 } tdo_sim_output;
 
 /** @return arena bytes tdo_sim_init carves for `cfg`; 0 for an invalid configuration. */
@@ -121,11 +137,20 @@ tdo_status tdo_sim_reset(tdo_sim* ctx, const tdo_sim_params* params,
                          uint32_t n_movers);
 
 /**
- * @brief Advance one dt with the setpoint's acceleration.
- * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers (nothing advanced);
+ * @brief Advance one dt with the setpoint's acceleration (braking instead when it is stale).
+ * @return TDO_OK; TDO_ERR_SETPOINT_STALE when the setpoint was stale (the step was done, braking;
+ *         `out` filled); TDO_ERR_INVALID_ARGUMENT for null pointers (nothing advanced);
  *         TDO_ERR_NOT_CONFIGURED before a successful reset.
  */
 tdo_status tdo_sim_run(tdo_sim* ctx, const tdo_sim_input* in, tdo_sim_output* out);
+
+/**
+ * @brief Advance one dt without a command (none came, or the caller timed it out): brake towards
+ *        a hover (a = -brake_gain v through the motion limits), out->braked = 1.
+ * @return TDO_OK; TDO_ERR_INVALID_ARGUMENT for null pointers; TDO_ERR_NOT_CONFIGURED before a
+ *         successful reset.
+ */
+tdo_status tdo_sim_hold(tdo_sim* ctx, tdo_sim_output* out);
 
 /** @brief tdo_sim_run with only the vehicle state out (`state` may be NULL). */
 tdo_status tdo_sim_step(tdo_sim* ctx, const tdo_setpoint* setpoint, tdo_vehicle_state* state);

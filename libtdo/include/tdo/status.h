@@ -44,7 +44,10 @@ typedef enum tdo_status {
   TDO_ERR_STATE_CANNOT_STOP =
       27, /**< an obstacle or the map bound lies within the stopping distance along the start
                velocity: no braking or curving in keeps the clearance (docs/design.md s.5) */
-  TDO_STATUS_COUNT = 28 /**< number of statuses (not a status) */
+  TDO_ERR_SETPOINT_STALE =
+      28, /**< the setpoint's time lies more than tdo_sim_params.setpoint_max_age behind the
+               simulator's clock: the step braked to a hover instead of flying it (sim.h) */
+  TDO_STATUS_COUNT = 29 /**< number of statuses (not a status) */
 } tdo_status;
 
 /**

@@ -46,6 +46,9 @@ typedef struct tdo_violation {
   double limit;      /**< the limit, same unit */
 } tdo_violation;
 
+/** m, tdo_feasibility.min_clearance is capped at the clearance + this. */
+#define TDO_TRAJ_CLEARANCE_CAP_EXTRA 1.0
+
 /**
  * Feasibility report of a sampled trajectory, computed from the sampled positions only (paper
  * eq. 15-19): v_i = (P_{i+1} - P_i)/dt, a_i = (v_{i+1} - v_i)/dt, j_i = (a_{i+1} - a_i)/dt as
@@ -58,7 +61,8 @@ typedef struct tdo_feasibility {
   double max_jerk;                 /**< m/s^3 */
   double min_turn_radius;          /**< m, minimum of |v|^2/|a_perp| (HUGE_VAL when straight) */
   double min_clearance;            /**< m, minimum exact distance of the samples to obstacles,
-                                        capped at clearance + 1 m; HUGE_VAL without a grid */
+                                        capped at clearance + TDO_TRAJ_CLEARANCE_CAP_EXTRA;
+                                        HUGE_VAL without a grid */
   uint32_t n_violations;           /**< violations listed */
   uint32_t n_violations_total;     /**< violations found (may exceed the listed ones: capacity) */
   const tdo_violation* violations; /**< the first n_violations */
