@@ -311,10 +311,11 @@ namespace {
 /**
  * Clearance of a corner curve; counts the queries. `margin` (m) is added to the clearance: it
  * covers the at most kMergeRel * max(1, L) shift of an end point that step 4 may snap onto its
- * neighbour's (along the line, so the curve moves by no more than that).
+ * neighbour's (along the line, so the curve moves by no more than that). `first` (0 or 1): the G2
+ * half to check first, set to the half that fails.
  */
 int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev, double margin,
-                 uint32_t* checks) {
+                 uint32_t* checks, int* first) {
   if (in.grid == nullptr) return 1;
   const double clearance = in.clearance + margin;
   const tdo_vec3 entry = sub(c.w, mul(prev.u, c.t));
@@ -322,9 +323,14 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   if (in.mode == TDO_SMOOTHING_G2) {
     tdo_path_segment b[2];
     g2_corner(c.w, prev.u, c.u, c.gf, c.hf, c.t, entry, exit, b);
-    for (int i = 0; i < 2; ++i) {
+    // Both halves must be clear: the one that failed the corner's last check goes first.
+    for (int q = 0; q < 2; ++q) {
+      const int i = q == 0 ? *first : 1 - *first;
       ++*checks;
-      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) return 0;
+      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) {
+        *first = i;
+        return 0;
+      }
     }
     return 1;
   }
@@ -512,12 +518,13 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
     k.shrunk = 1u;
   }
   int ok = 0;
+  int first = 0;        // G2 half checked first (corner_clear)
   double r_fail = 0.0;  // m, the last radius that did not keep the clearance (0: none)
   for (uint32_t attempt = 0; attempt <= max_shrinks; ++attempt) {
     if (!(r >= r_floor)) break;
     k.r = r;
     k.t = dmin(k.tau * r, room);
-    if (corner_clear(in, k, c[i - 1u], margin, checks)) {
+    if (corner_clear(in, k, c[i - 1u], margin, checks, &first)) {
       ok = 1;
       break;
     }
@@ -534,7 +541,7 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
       const double mid = sqrt(lo * hi);
       k.r = mid;
       k.t = dmin(k.tau * mid, room);
-      if (corner_clear(in, k, c[i - 1u], margin, checks))
+      if (corner_clear(in, k, c[i - 1u], margin, checks, &first))
         lo = mid;
       else
         hi = mid;
