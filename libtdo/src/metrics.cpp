@@ -35,6 +35,11 @@ constexpr uint32_t kPanels = 4;             // Gauss-Legendre panels per curved 
 constexpr double kSagittaTarget = 1e-4;     // m, aimed chord sagitta for the clearance bound
 constexpr uint32_t kMaxChords = 256;        // chords per curved segment, at most
 constexpr double kSagittaSlack = 1e-12;     // m, rounding of chord end points on an arc
+// m, allowance of bezier_above for the rounding of the pieces' end points, control points and
+// distances (all far below it)
+constexpr double kWholeMargin = 1e-7;
+constexpr uint32_t kLeafPieces = 2;  // chord pieces queried one by one below this many
+constexpr uint32_t kPartDepth = 9;   // halvings of kMaxChords pieces down to one: log2(256) + 1
 
 // 8-point Gauss-Legendre on [-1, 1] (nodes and weights of the positive half).
 constexpr double kGlX[4] = {0.1834346424956498049394761, 0.5255324099163289858177390,
@@ -228,15 +233,15 @@ tdo_vec3 bez_d1(const Bezier& b, double u) {
   return mul(add(add(mul(d0, w * w), mul(d1, 2.0 * w * u)), mul(d2, u * u)), 3.0);
 }
 
-double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap,
-                        double best) {
-  const Bezier b{{seg.p[0], seg.p[1], seg.p[2], seg.p[3]}};
-  const double flat =
-      dmax(point_segment(b.p[1], b.p[0], b.p[3]), point_segment(b.p[2], b.p[0], b.p[3]));
-  const uint32_t k = chords_for(flat);
-  tdo_vec3 q0 = b.p[0], d0 = bez_d1(b, 0.0);
-  for (uint32_t i = 0; i < k; ++i) {
-    const double u1 = i + 1u == k ? 1.0 : static_cast<double>(i + 1u) / k;
+/** Parameter at which chord piece i of k of a Bezier starts (i = k: the end, exactly 1). */
+inline double piece_u(uint32_t i, uint32_t k) { return i == k ? 1.0 : static_cast<double>(i) / k; }
+
+/** The bound of the chord pieces [i0, i1) of the k of b, into best (piece_bound, in order). */
+double bezier_pieces(const tdo_grid* grid, const Bezier& b, uint32_t k, uint32_t i0, uint32_t i1,
+                     double cap, double best) {
+  tdo_vec3 q0 = bez_point(b, piece_u(i0, k)), d0 = bez_d1(b, piece_u(i0, k));
+  for (uint32_t i = i0; i < i1; ++i) {
+    const double u1 = piece_u(i + 1u, k);
     const double u0 = static_cast<double>(i) / k;
     const double du = u1 - u0;
     const tdo_vec3 q3 = bez_point(b, u1), d1 = bez_d1(b, u1);
@@ -247,6 +252,61 @@ double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, doubl
     best = piece_bound(grid, q0, q3, sag, cap, best);
     q0 = q3;
     d0 = d1;
+  }
+  return best;
+}
+
+/**
+ * True when none of the chord pieces [i0, i1) of the k of b can lower best: one capped query of
+ * the chord of that part of the curve. The part lies in the hull of its control points, within
+ * `flat` of its chord, and so does every piece chord: its distance is at least the part chord's
+ * minus flat. A piece's sagitta is at most its end tangent times du / 3 <= `sag` (the longest
+ * control polygon edge / k). So a part chord at least best + flat + sag + kWholeMargin away keeps
+ * every piece's bound (distance - sagitta) above best, where piece_bound leaves best as it is.
+ */
+bool part_above(const tdo_grid* grid, const Bezier& b, uint32_t k, uint32_t i0, uint32_t i1,
+                double sag, double best) {
+  const double u0 = piece_u(i0, k), u1 = piece_u(i1, k), du = u1 - u0;
+  const tdo_vec3 c0 = bez_point(b, u0), c3 = bez_point(b, u1);
+  const tdo_vec3 c1 = add(c0, mul(bez_d1(b, u0), du / 3.0));
+  const tdo_vec3 c2 = sub(c3, mul(bez_d1(b, u1), du / 3.0));
+  const double flat = dmax(point_segment(c1, c0, c3), point_segment(c2, c0, c3));
+  const double q = best + flat + sag + kWholeMargin;
+  return tdo_collision_segment_distance(grid, c0, c3, q) >= q;
+}
+
+/**
+ * min(best, the chord pieces' bounds of the Bezier `seg`). Below the cap, parts of the curve that
+ * cannot lower best (part_above) are skipped whole, halving the rest down to kLeafPieces: the
+ * minimum is that of all the pieces, bit for bit, with fewer queries where the curve is far.
+ */
+double bezier_clearance(const tdo_grid* grid, const tdo_path_segment& seg, double cap,
+                        double best) {
+  const Bezier b{{seg.p[0], seg.p[1], seg.p[2], seg.p[3]}};
+  const double flat =
+      dmax(point_segment(b.p[1], b.p[0], b.p[3]), point_segment(b.p[2], b.p[0], b.p[3]));
+  const uint32_t k = chords_for(flat);
+  if (!(best < cap)) return bezier_pieces(grid, b, k, 0u, k, cap, best);
+  const double sag =
+      dmax(norm(sub(b.p[1], b.p[0])), dmax(norm(sub(b.p[2], b.p[1])), norm(sub(b.p[3], b.p[2])))) /
+      k;
+  uint32_t stack[2u * kPartDepth][2];  // ranges [i0, i1), the left one on top
+  uint32_t top = 0;
+  stack[top][0] = 0u;
+  stack[top++][1] = k;
+  while (top > 0u) {  // every range is split or consumed: at most 2 k ranges
+    const uint32_t i0 = stack[top - 1u][0], i1 = stack[top - 1u][1];
+    --top;
+    if (i1 - i0 <= kLeafPieces) {
+      best = bezier_pieces(grid, b, k, i0, i1, cap, best);
+      continue;
+    }
+    if (part_above(grid, b, k, i0, i1, sag, best)) continue;
+    const uint32_t mid = i0 + (i1 - i0) / 2u;
+    stack[top][0] = mid;
+    stack[top++][1] = i1;
+    stack[top][0] = i0;
+    stack[top++][1] = mid;
   }
   return best;
 }

@@ -196,8 +196,20 @@ bool keeps_braking_line(const tdo_path& path, const Entry& en) {
   return path.n > 0 && path.seg[0].kind == TDO_SEGMENT_LINE && path.seg[0].length >= en.e.brake;
 }
 
-// `traj`: the trajectory stage's output when samples were streamed (not stored): the energy and
-// flight time come from its streaming pass (the same sums over the same samples).
+// True when the trajectory stage's energy is the one tdo_metrics_compute would sum over its stored
+// samples (the same steps in the same order, sample_energy.h) and would accept them: a finite
+// energy means finite accelerations and times, and the times increase.
+bool energy_known(const tdo_traj_output* traj, double dt) {
+  if (traj == nullptr || traj->samples == nullptr || traj->n_samples < 2u) return false;
+  if (!(isfinite(dt) && dt > 0.0) || !isfinite(traj->energy)) return false;
+  for (uint32_t i = 1; i < traj->n_samples; ++i)
+    if (!(traj->samples[i].t > traj->samples[i - 1u].t)) return false;
+  return true;
+}
+
+// `traj`: the trajectory stage's output: when its samples were streamed (not stored), or stored
+// and energy_known, the energy and flight time come from its pass (the same sums over the same
+// samples) instead of a second pass in tdo_metrics_compute.
 void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const tdo_plan_params& p,
                 const tdo_traj_output* traj = nullptr) {
   tdo_metrics_input mi;
@@ -210,7 +222,8 @@ void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const
     mi.n_waypoints = r->n_grid_path;
   }
   mi.path = path;
-  mi.samples = r->n_samples > 0 ? r->samples : nullptr;
+  const bool known = energy_known(traj, p.dt);
+  mi.samples = r->n_samples > 0 && !known ? r->samples : nullptr;
   mi.n_samples = r->n_samples;
   mi.dt = p.dt;
   mi.grid = pl->grid;
@@ -222,9 +235,11 @@ void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const
   if (r->reached == TDO_PLAN_TRAJECTORY && seen >= 0.0 && seen < cap)
     mi.clearance_hint = seen + 1e-9;
   tdo_metrics_compute(&mi, &r->metrics);
-  if (traj != nullptr && traj->samples == nullptr && traj->n_samples >= 2u) {
+  if (traj != nullptr && traj->n_samples >= 2u && (traj->samples == nullptr || known)) {
     r->metrics.energy = traj->energy;
-    r->metrics.flight_time_s = traj->duration;  // last t - first t, the first t being 0
+    r->metrics.flight_time_s = traj->samples != nullptr
+                                   ? traj->samples[traj->n_samples - 1u].t - traj->samples[0].t
+                                   : traj->duration;  // last t - first t, the first t being 0
   }
 }
 

@@ -98,42 +98,91 @@ double g2_tau(double beta) {
 }
 
 /**
- * |dkappa/ds| at parameter t of the first Bezier of the unit-radius G2 corner in the plane
- * (u_in = x axis, turning left by theta): control points on the x axis and at the junction.
+ * The first Bezier of the unit-radius G2 corner in the plane (u_in = x axis, turning left by
+ * theta): control points on the x axis and at the junction, held as the differences its
+ * derivatives are made of (the same operations, computed once per curve instead of once per t).
  */
-double g2_rate_at(const double px[4], const double py[4], double t) {
-  const double u = 1.0 - t;
-  double d1[2], d2[2], d3[2];
+struct PlanarBez {
+  double a[2], b[2], e[2];  // c1 - c0, c2 - c1, c3 - c2
+  double s[2], w[2];        // c2 - 2 c1 + c0, c3 - 2 c2 + c1
+  double d3[2];             // third derivative
+};
+
+PlanarBez planar_bez(const double px[4], const double py[4]) {
+  PlanarBez z;
   const double* p[2] = {px, py};
   for (int i = 0; i < 2; ++i) {
     const double* c = p[i];
-    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
-    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
-    d3[i] = 6.0 * (c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]);
+    z.a[i] = c[1] - c[0];
+    z.b[i] = c[2] - c[1];
+    z.e[i] = c[3] - c[2];
+    z.s[i] = c[2] - 2.0 * c[1] + c[0];
+    z.w[i] = c[3] - 2.0 * c[2] + c[1];
+    z.d3[i] = 6.0 * (c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]);
   }
+  return z;
+}
+
+/** First and second derivative of a PlanarBez at parameter t. */
+struct PlanarDeriv {
+  double d1[2], d2[2];
+};
+
+inline PlanarDeriv planar_deriv(const PlanarBez& z, double t) {
+  const double u = 1.0 - t;
+  const double uu = u * u, ut2 = 2.0 * u * t, tt = t * t;
+  PlanarDeriv d;
+  for (int i = 0; i < 2; ++i) {
+    d.d1[i] = 3.0 * (uu * z.a[i] + ut2 * z.b[i] + tt * z.e[i]);
+    d.d2[i] = 6.0 * (u * z.s[i] + t * z.w[i]);
+  }
+  return d;
+}
+
+/** |dkappa/ds| of the curve with derivatives d (third derivative z.d3). */
+inline double g2_rate_of(const PlanarBez& z, const PlanarDeriv& d) {
+  const double* d1 = d.d1;
+  const double* d2 = d.d2;
   const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
   const double sp = sqrt(sp2);
   if (!(sp > 0.0)) return 0.0;
   // Signed curvature kappa = c / sp^3 with c = d1 x d2 (>= 0 for a left turn), c' = d1 x d3.
   const double c = d1[0] * d2[1] - d1[1] * d2[0];
-  const double cp = d1[0] * d3[1] - d1[1] * d3[0];
+  const double cp = d1[0] * z.d3[1] - d1[1] * z.d3[0];
   const double sp3 = sp2 * sp;
   const double dk_dt = cp / sp3 - 3.0 * c * (d1[0] * d2[0] + d1[1] * d2[1]) / (sp3 * sp2);
   return fabs(dk_dt / sp);
 }
 
-/** Maximum over t in [0, 1] of f: kRateSamples + 1 samples, golden-section refinement. */
-template <typename F>
-double max_on_unit(F f) {
+/** kappa (signed, >= 0 for a left turn) of the curve with derivatives d. */
+inline double g2_kappa_of(const PlanarDeriv& d) {
+  const double* d1 = d.d1;
+  const double* d2 = d.d2;
+  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
+  if (!(sp2 > 0.0)) return 0.0;
+  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
+}
+
+inline double g2_rate_at(const PlanarBez& z, double t) { return g2_rate_of(z, planar_deriv(z, t)); }
+
+inline double g2_kappa_at(const PlanarBez& z, double t) { return g2_kappa_of(planar_deriv(z, t)); }
+
+/** Running maximum of the samples of max_on_unit. */
+struct UnitSamples {
   int best = 0;
   double best_v = -HUGE_VAL;
-  for (int i = 0; i <= kRateSamples; ++i) {
-    const double v = f(static_cast<double>(i) / kRateSamples);
+  void add(int i, double v) {
     if (v > best_v) {
       best_v = v;
       best = i;
     }
   }
+};
+
+/** Golden-section refinement of f around the best sample s; the maximum found. */
+template <typename F>
+double refine_on_unit(F f, const UnitSamples& s) {
+  const int best = s.best;
   double lo = static_cast<double>(best > 0 ? best - 1 : 0) / kRateSamples;
   double hi = static_cast<double>(best < kRateSamples ? best + 1 : kRateSamples) / kRateSamples;
   const double gr = 0.6180339887498948482;
@@ -154,7 +203,15 @@ double max_on_unit(F f) {
       f1 = f(x1);
     }
   }
-  return dmax(best_v, dmax(f1, f2));
+  return dmax(s.best_v, dmax(f1, f2));
+}
+
+/** Maximum over t in [0, 1] of f: kRateSamples + 1 samples, golden-section refinement. */
+template <typename F>
+double max_on_unit(F f) {
+  UnitSamples s;
+  for (int i = 0; i <= kRateSamples; ++i) s.add(i, f(static_cast<double>(i) / kRateSamples));
+  return refine_on_unit(f, s);
 }
 
 /**
@@ -170,37 +227,31 @@ double g2_rate(double beta) {
   const double b2 = d - g - h;
   const double px[4] = {-d, -(d - g), -b2, 0.5 * (-b2 + b2 * cos(theta))};
   const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
-  return max_on_unit([&](double t) { return g2_rate_at(px, py, t); }) * kRateMargin;
-}
-
-/** kappa (signed, >= 0 for a left turn) at parameter t of a planar Bezier (see g2_rate_at). */
-double g2_kappa_at(const double px[4], const double py[4], double t) {
-  const double u = 1.0 - t;
-  double d1[2], d2[2];
-  const double* p[2] = {px, py};
-  for (int i = 0; i < 2; ++i) {
-    const double* c = p[i];
-    d1[i] = 3.0 * (u * u * (c[1] - c[0]) + 2.0 * u * t * (c[2] - c[1]) + t * t * (c[3] - c[2]));
-    d2[i] = 6.0 * (u * (c[2] - 2.0 * c[1] + c[0]) + t * (c[3] - 2.0 * c[2] + c[1]));
-  }
-  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
-  if (!(sp2 > 0.0)) return 0.0;
-  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
+  const PlanarBez z = planar_bez(px, py);
+  return max_on_unit([&](double t) { return g2_rate_at(z, t); }) * kRateMargin;
 }
 
 /**
  * Tangent length per metre of radius (tau) and rate = max|dkappa/ds| r^2 of the G2 corner whose
  * inner control points sit at fractions gf, hf of the tangent length, with half-deflection beta:
  * "radius" r = 1 / max kappa, so that the corner of radius r has tangent length tau r, peak
- * curvature 1/r and max|dkappa/ds| = rate / r^2, as for the Yang-Sukkarieh shape.
+ * curvature 1/r and max|dkappa/ds| = rate / r^2, as for the Yang-Sukkarieh shape. The two maxima
+ * share their samples (each the same value max_on_unit would find).
  */
 void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
   const double theta = 2.0 * beta;
   const double b2 = 1.0 - gf - hf;  // unit tangent length
   const double px[4] = {-1.0, -(1.0 - gf), -b2, 0.5 * (-b2 + b2 * cos(theta))};
   const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
-  const double k = max_on_unit([&](double t) { return g2_kappa_at(px, py, t); }) * kRateMargin;
-  const double f = max_on_unit([&](double t) { return g2_rate_at(px, py, t); }) * kRateMargin;
+  const PlanarBez z = planar_bez(px, py);
+  UnitSamples sk, sf;
+  for (int i = 0; i <= kRateSamples; ++i) {
+    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
+    sk.add(i, g2_kappa_of(d));
+    sf.add(i, g2_rate_of(z, d));
+  }
+  const double k = refine_on_unit([&](double t) { return g2_kappa_at(z, t); }, sk) * kRateMargin;
+  const double f = refine_on_unit([&](double t) { return g2_rate_at(z, t); }, sf) * kRateMargin;
   *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
   *rate = f / (k * k);  // max|dkappa/ds| = f / d^2 = f / (k r)^2
 }
@@ -260,10 +311,11 @@ namespace {
 /**
  * Clearance of a corner curve; counts the queries. `margin` (m) is added to the clearance: it
  * covers the at most kMergeRel * max(1, L) shift of an end point that step 4 may snap onto its
- * neighbour's (along the line, so the curve moves by no more than that).
+ * neighbour's (along the line, so the curve moves by no more than that). `first` (0 or 1): the G2
+ * half to check first, set to the half that fails.
  */
 int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev, double margin,
-                 uint32_t* checks) {
+                 uint32_t* checks, int* first) {
   if (in.grid == nullptr) return 1;
   const double clearance = in.clearance + margin;
   const tdo_vec3 entry = sub(c.w, mul(prev.u, c.t));
@@ -271,9 +323,14 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   if (in.mode == TDO_SMOOTHING_G2) {
     tdo_path_segment b[2];
     g2_corner(c.w, prev.u, c.u, c.gf, c.hf, c.t, entry, exit, b);
-    for (int i = 0; i < 2; ++i) {
+    // Both halves must be clear: the one that failed the corner's last check goes first.
+    for (int q = 0; q < 2; ++q) {
+      const int i = q == 0 ? *first : 1 - *first;
       ++*checks;
-      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) return 0;
+      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) {
+        *first = i;
+        return 0;
+      }
     }
     return 1;
   }
@@ -461,12 +518,13 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
     k.shrunk = 1u;
   }
   int ok = 0;
+  int first = 0;        // G2 half checked first (corner_clear)
   double r_fail = 0.0;  // m, the last radius that did not keep the clearance (0: none)
   for (uint32_t attempt = 0; attempt <= max_shrinks; ++attempt) {
     if (!(r >= r_floor)) break;
     k.r = r;
     k.t = dmin(k.tau * r, room);
-    if (corner_clear(in, k, c[i - 1u], margin, checks)) {
+    if (corner_clear(in, k, c[i - 1u], margin, checks, &first)) {
       ok = 1;
       break;
     }
@@ -483,7 +541,7 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
       const double mid = sqrt(lo * hi);
       k.r = mid;
       k.t = dmin(k.tau * mid, room);
-      if (corner_clear(in, k, c[i - 1u], margin, checks))
+      if (corner_clear(in, k, c[i - 1u], margin, checks, &first))
         lo = mid;
       else
         hi = mid;
