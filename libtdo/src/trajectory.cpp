@@ -390,27 +390,26 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
  *  derivatives at the new parameter are left in the cursor. */
 void cursor_seek(BezierCursor* c, double s) {
   double u = c->u, at = c->s;
-  // Derivatives at u (the same expressions wherever u came from; computed once per u).
+  // Derivatives at u (the same expressions wherever u came from; computed once per u, right
+  // where u changes, so none of them is carried across the arclength quadrature's call).
   tdo_vec3 d1 = c->d1u, d2 = c->d2u;
   double sp = c->spu, curv = c->curvu;
-  bool have = c->have != 0;
   const auto derivs = [&]() {
-    if (have) return;
     d1 = bez_d1(*c, u);
     d2 = bez_d2(*c, u);
     sp = norm(d1);
     curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
-    have = true;
   };
   if (s <= 0.0) {
     u = 0.0;
     at = 0.0;
-    have = false;
+    derivs();
   } else if (s >= c->len) {
     u = 1.0;
     at = c->len;
-    have = false;
+    derivs();
   } else {
+    if (c->have == 0) derivs();
     const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
     double lo = 0.0, hi = 1.0;  // bracket of the solution in u
     for (int it = 0; it < kCursorSteps; ++it) {
@@ -421,7 +420,6 @@ void cursor_seek(BezierCursor* c, double s) {
       else
         hi = u;
       // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
-      derivs();
       double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
       if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
       double un = u + du;
@@ -435,10 +433,9 @@ void cursor_seek(BezierCursor* c, double s) {
       else
         at += bez_arclen(*c, u, un);
       u = un;
-      have = false;
+      derivs();
     }
   }
-  derivs();
   c->u = u;
   c->s = at;
   c->d1u = d1;
