@@ -1127,7 +1127,8 @@ struct Sampler {
 
 /** tdo_segment_eval of line segment `index` at local arclength s in [0, length], with the
  *  per-segment quantities computed once (same expressions, same results). */
-void line_eval(Sampler* g, uint32_t index, double s, tdo_segment_state* st) {
+__attribute__((always_inline)) inline void line_eval(Sampler* g, uint32_t index, double s,
+                                                     tdo_segment_state* st) {
   const tdo_path_segment& seg = g->segs[index];
   if (g->lseg != index) {
     g->lseg = index;
