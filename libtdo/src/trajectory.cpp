@@ -301,21 +301,32 @@ __attribute__((target("avx"), noinline)) double bez_arclen_avx(const BezierCurso
   const V4 h2x = {b.h[2].x, b.h[2].x, b.h[2].x, b.h[2].x};
   const V4 h2y = {b.h[2].y, b.h[2].y, b.h[2].y, b.h[2].y};
   const V4 h2z = {b.h[2].z, b.h[2].z, b.h[2].z, b.h[2].z};
+  // The nodes m -/+ dx as m + (-dx) (the same IEEE result), the offsets once per call.
+  double dx[4];
+  for (int i = 0; i < 4; ++i) dx[i] = 0.5 * h * kGlX[i];
+  const V4 off0 = {-dx[0], dx[0], -dx[1], dx[1]}, off1 = {-dx[2], dx[2], -dx[3], dx[3]};
+  // The pair sums in the order hadd leaves them (nodes 0, 2, 1, 3) and their weights.
+  const V4 w = {kGlW[0], kGlW[2], kGlW[1], kGlW[3]};
   double total = 0.0;
   for (uint32_t k = 0; k < panels; ++k) {
     const double m = a + h * (k + 0.5);
-    double sum = 0.0;
-    for (int i = 0; i < 4; i += 2) {
-      const double dx0 = 0.5 * h * kGlX[i], dx1 = 0.5 * h * kGlX[i + 1];
-      const V4 u = {m - dx0, m + dx0, m - dx1, m + dx1};
+    const V4 mv = {m, m, m, m};
+    V4 r[2];
+    for (int i = 0; i < 2; ++i) {
+      const V4 u = mv + (i == 0 ? off0 : off1);
       const V4 x = h0x + (h1x + h2x * u) * u;
       const V4 y = h0y + (h1y + h2y * u) * u;
       const V4 z = h0z + (h1z + h2z * u) * u;
-      const V4 r =
-          reinterpret_cast<V4>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x * x + y * y + z * z)));
-      sum += kGlW[i] * (r[0] + r[1]);
-      sum += kGlW[i + 1] * (r[2] + r[3]);
+      r[i] = reinterpret_cast<V4>(_mm256_sqrt_pd(reinterpret_cast<__m256d>(x * x + y * y + z * z)));
     }
+    // {r0[0] + r0[1], r1[0] + r1[1], r0[2] + r0[3], r1[2] + r1[3]}: the pairs of nodes 0, 2, 1, 3.
+    const V4 p = w * reinterpret_cast<V4>(_mm256_hadd_pd(reinterpret_cast<__m256d>(r[0]),
+                                                         reinterpret_cast<__m256d>(r[1])));
+    double sum = 0.0;
+    sum += p[0];
+    sum += p[2];
+    sum += p[1];
+    sum += p[3];
     total += 0.5 * h * sum;
   }
   return total;
@@ -379,27 +390,26 @@ void cursor_reset(BezierCursor* c, const tdo_path_segment& seg, uint32_t index) 
  *  derivatives at the new parameter are left in the cursor. */
 void cursor_seek(BezierCursor* c, double s) {
   double u = c->u, at = c->s;
-  // Derivatives at u (the same expressions wherever u came from; computed once per u).
+  // Derivatives at u (the same expressions wherever u came from; computed once per u, right
+  // where u changes, so none of them is carried across the arclength quadrature's call).
   tdo_vec3 d1 = c->d1u, d2 = c->d2u;
   double sp = c->spu, curv = c->curvu;
-  bool have = c->have != 0;
   const auto derivs = [&]() {
-    if (have) return;
     d1 = bez_d1(*c, u);
     d2 = bez_d2(*c, u);
     sp = norm(d1);
     curv = sp > 0.0 ? dot(d1, d2) / sp : 0.0;
-    have = true;
   };
   if (s <= 0.0) {
     u = 0.0;
     at = 0.0;
-    have = false;
+    derivs();
   } else if (s >= c->len) {
     u = 1.0;
     at = c->len;
-    have = false;
+    derivs();
   } else {
+    if (c->have == 0) derivs();
     const double tol = 1e-13 * (c->len > 1.0 ? c->len : 1.0);
     double lo = 0.0, hi = 1.0;  // bracket of the solution in u
     for (int it = 0; it < kCursorSteps; ++it) {
@@ -410,7 +420,6 @@ void cursor_seek(BezierCursor* c, double s) {
       else
         hi = u;
       // Second-order inversion of s(u + du) - s(u) = sp du + (d1.d2 / sp) du^2 / 2.
-      derivs();
       double du = sp > 0.0 ? r / sp : 0.5 * (lo + hi) - u;
       if (sp > 0.0) du -= 0.5 * curv * du * du / sp;
       double un = u + du;
@@ -424,10 +433,9 @@ void cursor_seek(BezierCursor* c, double s) {
       else
         at += bez_arclen(*c, u, un);
       u = un;
-      have = false;
+      derivs();
     }
   }
-  derivs();
   c->u = u;
   c->s = at;
   c->d1u = d1;
@@ -1106,6 +1114,9 @@ struct Sampler {
   uint32_t n;
   uint32_t i;  // next sample
   uint32_t ph, q;
+  // Where the next phase and the next plateau begin (phases[ph + 1].t0, plateaus[q + 1].s0; only
+  // read while there is one): the walk's tests without reloading them for every sample.
+  double next_t0, next_s0;
   BezierCursor cursor;
   // The line segment of the last sample (lseg, UINT32_MAX when unset): its end points, direction
   // d, length |d| and unit tangent, as tdo_segment_eval computes them for every sample.
@@ -1116,7 +1127,8 @@ struct Sampler {
 
 /** tdo_segment_eval of line segment `index` at local arclength s in [0, length], with the
  *  per-segment quantities computed once (same expressions, same results). */
-void line_eval(Sampler* g, uint32_t index, double s, tdo_segment_state* st) {
+__attribute__((always_inline)) inline void line_eval(Sampler* g, uint32_t index, double s,
+                                                     tdo_segment_state* st) {
   const tdo_path_segment& seg = g->segs[index];
   if (g->lseg != index) {
     g->lseg = index;
@@ -1146,65 +1158,90 @@ void sampler_start(Sampler* g, const tdo_traj* ctx, const tdo_path_segment* segs
   g->i = 0;
   g->ph = 0;
   g->q = 0;
+  g->next_t0 = ctx->n_phases > 1u ? ctx->phases[1].t0 : 0.0;
+  g->next_s0 = ctx->n_plateaus > 1u ? ctx->plateaus[1].s0 : 0.0;
   memset(&g->cursor, 0, sizeof(g->cursor));
   g->cursor.seg = 0xFFFFFFFFu;
   g->lseg = 0xFFFFFFFFu;
 }
 
-/** Sample g->i (< g->n) and the plateau it lies on; then the next one. */
-void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) {
+/** Samples g->i, ..., g->i + count - 1 (< g->n) into out[0..count) and the plateaus they lie on
+ *  into owner[0..count): the sampler's state in locals across the run (one sample per call for
+ *  the streamed window, the whole run for the stored samples). */
+void sampler_fill(Sampler* g, tdo_sample* out, uint32_t* owner, uint32_t count) {
   const tdo_traj* ctx = g->ctx;
-  const uint32_t i = g->i++;
-  const uint32_t n = g->n;
-  const double t = g->dt * i;
-  if (ctx->moving && (i == 0u || t < ctx->entry.ramp) && i + 1u < n) {
-    entry_sample(ctx, t, i, out);
-    *owner = 0u;
-    return;
+  const tdo_path_segment* segs = g->segs;
+  const uint32_t n = g->n, n_phases = ctx->n_phases, n_plateaus = ctx->n_plateaus;
+  const double dt = g->dt;
+  uint32_t ph = g->ph, qq = g->q;
+  double next_t0 = g->next_t0, next_s0 = g->next_s0;
+  for (uint32_t k = 0; k < count; ++k) {
+    const uint32_t i = g->i + k;
+    const double t = dt * i;
+    if (ctx->moving && (i == 0u || t < ctx->entry.ramp) && i + 1u < n) {
+      entry_sample(ctx, t, i, &out[k]);
+      owner[k] = 0u;
+      continue;
+    }
+    while (ph + 1u < n_phases && next_t0 <= t) {  // bounded by n_phases
+      ++ph;
+      if (ph + 1u < n_phases) next_t0 = ctx->phases[ph + 1u].t0;
+    }
+    const Phase& f = ctx->phases[ph];
+    double tau = t - f.t0;
+    if (tau < 0.0) tau = 0.0;
+    if (tau > f.dur) tau = f.dur;
+    double s = f.s0 + tau * (f.v0 + tau * (0.5 * f.a0 + tau * f.j / 6.0));
+    double sd = f.v0 + tau * (f.a0 + 0.5 * tau * f.j);
+    double sdd = f.a0 + tau * f.j;
+    if (i + 1u == n) {  // exactly at the goal, at rest
+      s = ctx->total;
+      sd = 0.0;
+      sdd = 0.0;
+    }
+    if (sd < 0.0) sd = 0.0;                         // rounding at the end of a deceleration
+    while (qq + 1u < n_plateaus && s >= next_s0) {  // bounded by n_plateaus
+      ++qq;
+      if (qq + 1u < n_plateaus) next_s0 = ctx->plateaus[qq + 1u].s0;
+    }
+    const uint32_t q = qq;
+    const Plateau& p = ctx->plateaus[q];
+    double local = s - p.s0;
+    if (local < 0.0) local = 0.0;
+    if (local > p.len) local = p.len;
+    local += p.off;
+    const tdo_path_segment& seg = segs[p.seg];
+    if (i + 1u == n) local = seg.length;  // exactly at the goal
+    tdo_segment_state st;
+    if (seg.kind == TDO_SEGMENT_BEZIER) {
+      if (g->cursor.seg != p.seg) cursor_reset(&g->cursor, seg, p.seg);
+      cursor_eval(&g->cursor, local, &st);
+    } else if (seg.kind == TDO_SEGMENT_LINE) {
+      line_eval(g, p.seg, local, &st);
+    } else {
+      tdo_segment_eval(&seg, local, &st);
+    }
+    out[k].t = t;
+    out[k].p = st.p;
+    out[k].v = mul(st.t, sd);
+    out[k].a = add(mul(st.t, sdd), mul(st.kn, sd * sd));
+    owner[k] = q;
   }
-  while (g->ph + 1u < ctx->n_phases && ctx->phases[g->ph + 1u].t0 <= t) ++g->ph;
-  const Phase& f = ctx->phases[g->ph];
-  double tau = t - f.t0;
-  if (tau < 0.0) tau = 0.0;
-  if (tau > f.dur) tau = f.dur;
-  double s = f.s0 + tau * (f.v0 + tau * (0.5 * f.a0 + tau * f.j / 6.0));
-  double sd = f.v0 + tau * (f.a0 + 0.5 * tau * f.j);
-  double sdd = f.a0 + tau * f.j;
-  if (i + 1u == n) {  // exactly at the goal, at rest
-    s = ctx->total;
-    sd = 0.0;
-    sdd = 0.0;
-  }
-  if (sd < 0.0) sd = 0.0;  // rounding at the end of a deceleration
-  while (g->q + 1u < ctx->n_plateaus && s >= ctx->plateaus[g->q + 1u].s0) ++g->q;
-  const uint32_t q = g->q;
-  const Plateau& p = ctx->plateaus[q];
-  double local = s - p.s0;
-  if (local < 0.0) local = 0.0;
-  if (local > p.len) local = p.len;
-  local += p.off;
-  if (i + 1u == n) local = g->segs[p.seg].length;  // exactly at the goal
-  tdo_segment_state st;
-  if (g->segs[p.seg].kind == TDO_SEGMENT_BEZIER) {
-    if (g->cursor.seg != p.seg) cursor_reset(&g->cursor, g->segs[p.seg], p.seg);
-    cursor_eval(&g->cursor, local, &st);
-  } else if (g->segs[p.seg].kind == TDO_SEGMENT_LINE) {
-    line_eval(g, p.seg, local, &st);
-  } else {
-    tdo_segment_eval(&g->segs[p.seg], local, &st);
-  }
-  out->t = t;
-  out->p = st.p;
-  out->v = mul(st.t, sd);
-  out->a = add(mul(st.t, sdd), mul(st.kn, sd * sd));
-  *owner = q;
+  g->i += count;
+  g->ph = ph;
+  g->q = qq;
+  g->next_t0 = next_t0;
+  g->next_s0 = next_s0;
 }
+
+/** Sample g->i (< g->n) and the plateau it lies on; then the next one. */
+void sampler_next(Sampler* g, tdo_sample* out, uint32_t* owner) { sampler_fill(g, out, owner, 1u); }
 
 /** Stored samples: all of them into the context's arrays. */
 void sample(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n) {
   Sampler g;
   sampler_start(&g, ctx, in->path.seg, lim.dt, n);
-  for (uint32_t i = 0; i < n; ++i) sampler_next(&g, &ctx->samples[i], &ctx->owner[i]);
+  sampler_fill(&g, ctx->samples, ctx->owner, n);
 }
 
 /** Sample source of the verification: the stored arrays. */
