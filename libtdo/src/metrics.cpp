@@ -361,14 +361,9 @@ tdo_status validate(const tdo_metrics_input* in) {
       if (!segment_shape_ok(p.seg[i])) return TDO_ERR_INVALID_ARGUMENT;
     }
   }
-  if (in->samples != nullptr && in->n_samples > 0u) {
-    if (!(isfinite(in->dt) && in->dt > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
-    for (uint32_t i = 0; i < in->n_samples; ++i) {
-      const tdo_sample& s = in->samples[i];
-      if (!isfinite(s.t) || !finite3(s.a)) return TDO_ERR_INVALID_ARGUMENT;
-      if (i > 0u && !(s.t > in->samples[i - 1u].t)) return TDO_ERR_INVALID_ARGUMENT;
-    }
-  }
+  if (in->samples != nullptr && in->n_samples > 0u &&
+      !samples_accepted(in->samples, in->n_samples, in->dt))
+    return TDO_ERR_INVALID_ARGUMENT;
   if (in->grid != nullptr) {
     if (isnan(in->clearance_cap) || !(in->clearance_cap > 0.0)) return TDO_ERR_INVALID_ARGUMENT;
     if (tdo_grid_clearance(in->grid) < 0.0) return TDO_ERR_MAP_NOT_READY;

@@ -6,6 +6,7 @@
 
 #include "grid_internal.h"
 #include "planner_internal.h"
+#include "sample_energy.h"
 #include "search_ends.h"
 #include "search_headed.h"
 #include "tdo/collision.h"
@@ -197,14 +198,10 @@ bool keeps_braking_line(const tdo_path& path, const Entry& en) {
 }
 
 // True when the trajectory stage's energy is the one tdo_metrics_compute would sum over its stored
-// samples (the same steps in the same order, sample_energy.h) and would accept them: a finite
-// energy means finite accelerations and times, and the times increase.
+// samples (the same steps in the same order) and those are samples it accepts (sample_energy.h).
 bool energy_known(const tdo_traj_output* traj, double dt) {
   if (traj == nullptr || traj->samples == nullptr || traj->n_samples < 2u) return false;
-  if (!(isfinite(dt) && dt > 0.0) || !isfinite(traj->energy)) return false;
-  for (uint32_t i = 1; i < traj->n_samples; ++i)
-    if (!(traj->samples[i].t > traj->samples[i - 1u].t)) return false;
-  return true;
+  return isfinite(traj->energy) && samples_accepted(traj->samples, traj->n_samples, dt);
 }
 
 // `traj`: the trajectory stage's output: when its samples were streamed (not stored), or stored
