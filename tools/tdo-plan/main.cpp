@@ -686,9 +686,10 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const bool planned = st == TDO_OK || st == TDO_ERR_INFEASIBLE;
   const tdo_metrics& m = res.metrics;
-  // Stored or regenerated (--samples): the same samples.
+  // Stored or regenerated (--samples): the same samples; read only for the outputs that use them.
   std::vector<tdo_sample> samples;
-  const tdo_status sst = tdo_samples::plan_samples(p.planner, res, &samples);
+  const tdo_status sst =
+      o.json || o.optimum ? tdo_samples::plan_samples(p.planner, res, &samples) : TDO_OK;
   if (sst != TDO_OK)
     throw BadInput{std::string(tdo_status_str(sst)) + ": cannot read the plan's " +
                    std::to_string(res.n_samples) + " samples" +
