@@ -31,8 +31,16 @@ bool PlannerNode::start(std::string* error) {
   tdo_capacity_for_grid(&cfg_tdo_.cap, cfg_.max_nx, cfg_.max_ny, cfg_.max_nz,
                         cfg_.max_clearance_ratio, 27u, cfg_.max_nodes);
   cfg_tdo_.cap.max_boxes = cfg_.max_boxes > 0 ? cfg_.max_boxes : 1u;
+  if (cfg_.stream_samples >= 0)
+    cfg_tdo_.cap.stream_samples = static_cast<uint32_t>(cfg_.stream_samples);
   arena_bytes_ = tdo_planner_footprint(&cfg_tdo_);
-  if (arena_bytes_ == 0) return fail_start(error, "invalid planner configuration");
+  if (arena_bytes_ == 0) {  // the library names what it refuses
+    unsigned char byte = 0;
+    tdo_planner* none = nullptr;
+    return fail_start(error, std::string("tdo_planner_init: ") +
+                                 tdo_status_str(tdo_planner_init(&none, &byte, 1u, &cfg_tdo_)) +
+                                 ": invalid planner configuration");
+  }
   if (alloc_node_arena(&arena_, arena_bytes_, error) == 0) return false;
   const tdo_status st = tdo_planner_init(&planner_, arena_.get(), arena_bytes_, &cfg_tdo_);
   if (st != TDO_OK)
@@ -189,7 +197,7 @@ void PlannerNode::on_request(const void* data, std::size_t size) {
                        tdo_traj_piece_at(traj_ctx, 0u, &first) == TDO_OK && !(first.t0 > 0.0);
   const bool with_samples =
       m.samples == tdo::plan_request_t::SAMPLES_ON || (st == TDO_OK && !compact);
-  c = trajectory_to_msg(result, req, ids, plan_ms, &traj, with_samples);
+  c = trajectory_to_msg(result, req, ids, plan_ms, &traj, with_samples, planner_);
   if (c.ok() && compact) c = compact_to_msg(result.path, traj_ctx, &traj);
   if (c.ok()) c = feasibility_to_msg(result, req, clearance, ids, &feas);
   if (!c.ok()) {

@@ -66,6 +66,9 @@ struct PlannerConfig {
   uint32_t max_boxes = 4096;        /**< obstacle boxes of one map */
   double max_clearance_ratio = 4.0; /**< largest clearance / resolution the stencil fits */
   double heartbeat_period_s = 1.0;  /**< s between TDO_STATUS messages; <= 0: none from poll() */
+  int32_t stream_samples = -1;      /**< tdo_capacity.stream_samples: 0 stored, 1 streamed,
+                                         2 pieces; -1: as tdo_capacity_for_grid sets it. The
+                                         answers are the same in every mode */
 };
 
 /** Message counters, also sent in each heartbeat. */

@@ -8,6 +8,9 @@
 #define TDO_PLANNER_OPTIONS_H
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "planner_node.h"
@@ -41,6 +44,12 @@ inline void add_planner_options(CLI::App& app, PlannerConfig& cfg, std::vector<i
   app.add_option("--max-clearance-ratio", cfg.max_clearance_ratio,
                  "capacity: largest clearance / resolution")
       ->capture_default_str();
+  const std::map<std::string, int32_t> modes{{"stored", 0}, {"streamed", 1}, {"pieces", 2}};
+  app.add_option("--samples", cfg.stream_samples,
+                 "stored | streamed | pieces: trajectory samples kept in the arena, or regenerated "
+                 "on demand (tdo_capacity.stream_samples; the answers are the same). Default: as "
+                 "tdo_capacity_for_grid sets it")
+      ->transform(CLI::CheckedTransformer(modes));
 }
 
 inline void apply_max_size(const std::vector<int>& max_size, PlannerConfig* cfg) {

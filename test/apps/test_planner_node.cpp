@@ -592,6 +592,129 @@ TEST_F(PlannerNodeTest, GivenOnlyStartAndGoalWithUseDefaultsThenPlannedWithTheLi
 
 }  // namespace
 
+namespace {
+
+// ---- samples stored or regenerated (tdo_capacity.stream_samples): the same answers -----------
+
+/** What a node planning with `stream_samples` publishes for one map and a set of requests. */
+struct ModeRun {
+  bool started = false;
+  std::string error;
+  std::size_t arena = 0;
+  std::vector<std::vector<uint8_t>> traj, feas; /**< encoded, wall-clock fields zeroed */
+  std::vector<int32_t> n_samples, sample_count;
+};
+
+ModeRun run_mode(int32_t stream_samples) {
+  ModeRun out;
+  tdo_lcm::Bus bus("memq://");  // first: outlives the node
+  EXPECT_TRUE(bus.good());
+  tdo_lcm::PlannerConfig cfg;
+  cfg.vehicle_id = kVehicle;
+  cfg.max_nx = 24;
+  cfg.max_ny = 24;
+  cfg.max_nz = 12;
+  cfg.max_nodes = 400000;
+  cfg.max_boxes = 8;
+  cfg.max_clearance_ratio = 2.0;
+  cfg.heartbeat_period_s = 0.0;
+  cfg.stream_samples = stream_samples;
+  tdo_lcm::PlannerNode node(&bus, cfg);
+  out.started = node.start(&out.error);
+  if (!out.started) return out;
+  out.arena = node.arena_bytes();
+  std::vector<tdo::trajectory_t> traj;
+  std::vector<tdo::feasibility_t> feas;
+  EXPECT_TRUE(bus.subscribe(cfg.trajectory_channel, collect(&traj)));
+  EXPECT_TRUE(bus.subscribe(cfg.feasibility_channel, collect(&feas)));
+  const auto pump = [&bus]() {
+    for (int i = 0; i < 1000 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  };
+  EXPECT_TRUE(bus.publish(cfg.map_channel, wall_map(5)));
+  pump();
+  std::vector<tdo::plan_request_t> reqs;
+  reqs.push_back(request(1));  // samples on
+  reqs.push_back(request(2));
+  reqs.back().samples = tdo::plan_request_t::SAMPLES_OFF;  // the compact form only
+  reqs.push_back(request(3));
+  reqs.back().samples = tdo::plan_request_t::SAMPLES_OFF;  // a moving start: travels as samples
+  reqs.back().start_vel[1] = 1.0;
+  reqs.back().start_acc[0] = 0.5;
+  reqs.push_back(request(4));
+  reqs.back().start[0] = 3.25;  // cannot stop before the wall: no samples
+  reqs.back().start_vel[0] = 3.0;
+  reqs.push_back(request(5));  // served again after the failure
+  for (const tdo::plan_request_t& r : reqs) {
+    EXPECT_TRUE(bus.publish(cfg.request_channel, r));
+    pump();
+  }
+  for (tdo::trajectory_t t : traj) {
+    out.n_samples.push_back(t.n_samples);
+    out.sample_count.push_back(t.sample_count);
+    t.utime = 0;
+    t.plan_time_ms = 0.0;
+    out.traj.push_back(bytes_of(t));
+  }
+  for (tdo::feasibility_t f : feas) {
+    f.utime = 0;
+    out.feas.push_back(bytes_of(f));
+  }
+  return out;
+}
+
+TEST(PlannerNodeSamples, GivenSamplesStreamedWhenPlannedThenEveryAnswerIsTheStoredModesBytes) {
+  // GIVEN two nodes, one keeping the samples in its arena, one regenerating them on demand
+  const ModeRun stored = run_mode(0);
+  const ModeRun streamed = run_mode(1);
+  ASSERT_TRUE(stored.started) << stored.error;
+  ASSERT_TRUE(streamed.started) << streamed.error;
+  // (the mode took effect: the streamed arena holds no samples)
+  EXPECT_LT(streamed.arena, stored.arena);
+  // THEN the stored node's answers carry the samples asked for ...
+  ASSERT_EQ(stored.traj.size(), 5u);
+  ASSERT_EQ(stored.feas.size(), 5u);
+  EXPECT_GT(stored.n_samples[0], 2);
+  EXPECT_EQ(stored.n_samples[0], stored.sample_count[0]);
+  EXPECT_EQ(stored.n_samples[1], 0);  // SAMPLES_OFF: the compact form counts them
+  EXPECT_GT(stored.sample_count[1], 2);
+  EXPECT_GT(stored.n_samples[2], 2);  // the moving start's samples
+  EXPECT_EQ(stored.n_samples[3], 0);  // state_cannot_stop
+  EXPECT_EQ(stored.n_samples[4], stored.n_samples[0]);
+  // AND the streaming node publishes the same bytes, samples included
+  EXPECT_EQ(streamed.n_samples, stored.n_samples);
+  EXPECT_EQ(streamed.sample_count, stored.sample_count);
+  ASSERT_EQ(streamed.traj.size(), stored.traj.size());
+  ASSERT_EQ(streamed.feas.size(), stored.feas.size());
+  for (std::size_t i = 0; i < stored.traj.size(); ++i) {
+    EXPECT_TRUE(streamed.traj[i] == stored.traj[i]) << "trajectory answer " << i;
+    EXPECT_TRUE(streamed.feas[i] == stored.feas[i]) << "feasibility answer " << i;
+  }
+}
+
+TEST(PlannerNodeSamples, GivenSamplesPiecesThenTheSameAnswersOrAStartFailureNamingTheStatus) {
+  // Mode 2 (samples regenerated from the pieces): the same answers once the library accepts it;
+  // until then the node does not start, and says which status the library returned.
+  const ModeRun pieces = run_mode(2);
+  if (!pieces.started) {
+    EXPECT_EQ(pieces.error.rfind("tdo_planner_init: ", 0), 0u) << pieces.error;
+    bool named = false;
+    for (int st = 1; st < TDO_STATUS_COUNT; ++st)
+      named = named ||
+              pieces.error.find(std::string(": ") + tdo_status_str(static_cast<tdo_status>(st))) !=
+                  std::string::npos;
+    EXPECT_TRUE(named) << pieces.error;
+    return;
+  }
+  const ModeRun stored = run_mode(0);
+  ASSERT_TRUE(stored.started) << stored.error;
+  EXPECT_EQ(pieces.n_samples, stored.n_samples);
+  ASSERT_EQ(pieces.traj.size(), stored.traj.size());
+  for (std::size_t i = 0; i < stored.traj.size(); ++i)
+    EXPECT_TRUE(pieces.traj[i] == stored.traj[i]) << "trajectory answer " << i;
+}
+}  // namespace
+
 #if TDO_LCM_HAVE_OCTOMAP
 namespace {
 

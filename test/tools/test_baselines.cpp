@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "baselines.h"
+#include "planners_internal.h"
 
 namespace {
 
@@ -250,6 +251,70 @@ TEST(Baselines, EvaluatePolyline) {
   r = tdo_baselines::evaluate_polyline(*env, {s, a, b, tdo_vec3{11.0, 1.0, 1.5}}, s, g);
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.status, "endpoints");
+}
+
+// The measuring stage reads a trajectory's samples stored or regenerated (tdo_traj_config
+// stream_samples): the same metrics from both, and the samples count (a dropped sample array
+// would give the polyline's metrics without flight time or energy).
+TEST(Baselines, MetricsWithTrajectoryAreTheSameWithSamplesStreamed) {
+  const tdo_io::Map map = wall_map();
+  std::string err;
+  auto env = Environment::create(map, kClearance, 0, &err);
+  ASSERT_TRUE(env) << err;
+  const std::vector<tdo_vec3> pts = {
+      {1.0, 1.0, 1.0}, {4.0, 10.5, 1.0}, {7.0, 10.5, 1.0}, {11.0, 1.0, 1.0}};
+  const tdo_plan_params dp = tdo_baselines::default_params();
+  tdo_smooth_input si{};
+  si.grid = env->grid();
+  si.waypoints = pts.data();
+  si.n_waypoints = static_cast<uint32_t>(pts.size());
+  si.clearance = env->clearance();
+  tdo_plan_smooth_input(&dp, &si);
+  si.mode = TDO_SMOOTHING_NONE;
+  tdo_smooth_output so{};
+  ASSERT_EQ(tdo_smooth_run(env->smoother(), &si, &so), TDO_OK);
+  tdo_traj_input ti{};
+  ti.path = so.path;
+  ti.grid = env->grid();
+  ti.clearance = env->clearance();
+  tdo_plan_traj_input(&dp, &ti);
+  tdo_metrics_input mi{};
+  mi.waypoints = pts.data();
+  mi.n_waypoints = static_cast<uint32_t>(pts.size());
+  mi.grid = env->grid();
+  mi.clearance_cap = 10.0;
+
+  PlanResult by_mode[2];
+  uint32_t n[2] = {0u, 0u};
+  for (uint32_t stream = 0; stream < 2u; ++stream) {
+    const uint32_t segs = 64u;
+    const tdo_traj_config tc{1u << 14, segs, TDO_TRAJ_PIECES_PER_SEGMENT * segs + 1u,
+                             16u,      0u,   stream};
+    std::vector<unsigned char> mem(tdo_traj_footprint(&tc));
+    ASSERT_FALSE(mem.empty());
+    tdo_arena arena;
+    tdo_arena_init(&arena, mem.data(), mem.size());
+    tdo_traj* traj = nullptr;
+    ASSERT_EQ(tdo_traj_init(&traj, &arena, &tc), TDO_OK);
+    tdo_traj_output to{};
+    const tdo_status ts = tdo_traj_run(traj, &ti, &to);
+    ASSERT_EQ(ts, TDO_OK);
+    EXPECT_EQ(to.samples == nullptr, stream == 1u);  // the mode took effect
+    n[stream] = to.n_samples;
+    ASSERT_TRUE(tdo_baselines::metrics_with_trajectory(mi, ts, traj, to, dp.dt, &by_mode[stream]))
+        << by_mode[stream].status;
+  }
+  EXPECT_GT(n[0], 2u);
+  EXPECT_EQ(n[1], n[0]);
+  EXPECT_TRUE(by_mode[0].has_trajectory);
+  EXPECT_TRUE(by_mode[1].has_trajectory);
+  EXPECT_NEAR(by_mode[0].metrics.flight_time_s, (n[0] - 1u) * dp.dt, 1e-9);
+  EXPECT_GT(by_mode[0].metrics.energy, 0.0);
+  for (uint32_t i = 0; i < tdo_metric_count(); ++i) {  // bit for bit
+    const double a = tdo_metric_value(&by_mode[0].metrics, i);
+    const double b = tdo_metric_value(&by_mode[1].metrics, i);
+    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << tdo_metric_name(i) << ": " << a << " vs " << b;
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <new>
 
 #include "planners_internal.h"
+#include "tdo_samples/samples.h"
 
 namespace tdo_baselines {
 namespace {
@@ -130,11 +131,17 @@ static bool same_point(const tdo_vec3& a, const tdo_vec3& b) {
          !(a.z > b.z);
 }
 
-bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj_output& to,
-                             double dt, PlanResult* r) {
+bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj* traj,
+                             const tdo_traj_output& to, double dt, PlanResult* r) {
+  std::vector<tdo_sample> samples;  // stored or regenerated: the same samples
   if ((ts == TDO_OK || ts == TDO_ERR_INFEASIBLE) && to.n_samples >= 2) {
-    mi.samples = to.samples;
-    mi.n_samples = to.n_samples;
+    const tdo_status st = tdo_samples::traj_samples(traj, to, &samples);
+    if (st != TDO_OK) {
+      r->status = tdo_status_str(st);
+      return false;
+    }
+    mi.samples = samples.data();
+    mi.n_samples = static_cast<uint32_t>(samples.size());
     mi.dt = dt;
     r->has_trajectory = true;
     r->feasible = ts == TDO_OK;
@@ -190,7 +197,7 @@ PlanResult evaluate_polyline(Environment& env, const std::vector<tdo_vec3>& pts,
     tdo_plan_traj_input(&dp, &ti);
     ts = tdo_traj_run(env.traj(), &ti, &to);
   }
-  if (!metrics_with_trajectory(mi, ts, to, dp.dt, &r)) return r;
+  if (!metrics_with_trajectory(mi, ts, env.traj(), to, dp.dt, &r)) return r;
   if (r.metrics.min_clearance_m < env.clearance() - 1e-9) {  // cannot happen after the checks
     r.status = "collides";
     return r;

@@ -185,7 +185,7 @@ class PipelinePlanner : public Planner {
       mi.path = &res.path;
       mi.grid = env.grid();
       mi.clearance_cap = 10.0;
-      if (!metrics_with_trajectory(mi, traj_status, to, pp.dt, &r)) return r;
+      if (!metrics_with_trajectory(mi, traj_status, env.traj(), to, pp.dt, &r)) return r;
     }
     r.curve = sample_path(res.path, 0.1, 20000);
     // Independent of what the stages claim: exact ends and the clearance of the final path.

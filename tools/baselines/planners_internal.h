@@ -17,12 +17,13 @@ std::unique_ptr<Planner> make_ompl_planner(const std::string& name);
 std::unique_ptr<Planner> make_swarm_planner(const std::string& name);
 
 /**
- * The metrics of `mi` into r->metrics, with the samples of stage 5 (status ts, output to, period
- * dt) when it gave a trajectory (ok or infeasible, >= 2 samples): r->has_trajectory and
- * r->feasible then set. False with r->status named after the status when the metrics fail.
+ * The metrics of `mi` into r->metrics, with the samples of stage 5 (status ts, output to of the
+ * last run of `traj`, period dt) when it gave a trajectory (ok or infeasible, >= 2 samples), read
+ * stored or regenerated (tdo_samples::traj_samples): r->has_trajectory and r->feasible then set.
+ * False with r->status named after the status when the samples or the metrics fail.
  */
-bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj_output& to,
-                             double dt, PlanResult* r);
+bool metrics_with_trajectory(tdo_metrics_input mi, tdo_status ts, const tdo_traj* traj,
+                             const tdo_traj_output& to, double dt, PlanResult* r);
 
 }  // namespace tdo_baselines
 

@@ -19,6 +19,7 @@
 #include "tdo/tdo.h"
 #include "tdo_io/map_io.h"
 #include "tdo_io/text.h"
+#include "tdo_samples/samples.h"
 #include "tool_cli.h"
 #include "va_optimum.h"
 
@@ -50,6 +51,8 @@ struct Options {
   std::string stop = "first-meet"; /**< tdo bidirectional stopping rule (first_meet) */
   std::string retry = "on";        /**< obstacle-aware retry of a flooding tdo search */
   std::string guide = "on";        /**< coarse guide of turn-penalised searches on large grids */
+  std::string samples;             /**< stored | streamed | pieces (stream_samples); empty: the
+                                        capacity's own (tdo_capacity_for_grid) */
   /** One option per row of tdo/params.h but depth, search, first_meet and grid_first (the
    *  planner, --stop and --retry set those), indexed by row; angles in degrees. */
   std::vector<double> real;
@@ -289,6 +292,8 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   if (o.guide != "on") cfg.cap.guide_shift = 0u;
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
+  if (!o.samples.empty()) (void)tdo_samples::mode_parse(o.samples.c_str(), &cfg.cap.stream_samples);
+  const std::string samples_note = o.samples.empty() ? "" : " (--samples " + o.samples + ")";
   const double nvox = voxel_count(map.desc);
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
@@ -305,7 +310,13 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
     cfg.cap.max_expansions = cfg.cap.max_nodes;
   }
   p->footprint = tdo_planner_footprint(&cfg);
-  if (p->footprint == 0) throw BadInput{"invalid planner configuration for this map"};
+  if (p->footprint == 0) {  // the library names what it refuses
+    unsigned char byte = 0;
+    tdo_planner* none = nullptr;
+    const tdo_status why = tdo_planner_init(&none, &byte, 1u, &cfg);
+    throw BadInput{std::string(tdo_status_str(why)) +
+                   ": invalid planner configuration for this map" + samples_note};
+  }
   p->bytes = o.arena_bytes >= 0 ? static_cast<std::size_t>(o.arena_bytes) : p->footprint;
   p->memory.reset(new (std::nothrow) unsigned char[std::max<std::size_t>(p->bytes, 1u)]);
   if (!p->memory)
@@ -316,7 +327,8 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
                    " bytes, this configuration needs " + std::to_string(p->footprint)};
   }
   if (st != TDO_OK)
-    throw BadInput{std::string(tdo_status_str(st)) + ": planner initialisation failed"};
+    throw BadInput{std::string(tdo_status_str(st)) + ": planner initialisation failed" +
+                   samples_note};
   p->grid = tdo_planner_grid(p->planner);
   p->search = tdo_planner_search(p->planner);
   st = tdo_io::load_into(map, p->grid, clearance);
@@ -603,11 +615,11 @@ int run_scen(const Options& o, const tdo_io::Map& map, double clearance, tdo_sea
   return failed == 0 ? kExitOk : kExitNoPlan;
 }
 
-/** The v/a time optimum along the samples of a plan (va_optimum.h); time 0 without samples. */
-tdo_tools::VaOptimum plan_optimum(const tdo_plan_result& res, const Options& o) {
+/** The v/a time optimum along a plan's samples (va_optimum.h); time 0 without samples. */
+tdo_tools::VaOptimum plan_optimum(const std::vector<tdo_sample>& samples, const Options& o) {
   std::vector<tdo_vec3> pts;
-  pts.reserve(res.n_samples);
-  for (uint32_t i = 0; i < res.n_samples; ++i) pts.push_back(res.samples[i].p);
+  pts.reserve(samples.size());
+  for (const tdo_sample& q : samples) pts.push_back(q.p);
   return tdo_tools::va_optimum(pts, o.params.v_max, o.params.a_max, 0.02, o.params.j_max);
 }
 
@@ -674,8 +686,16 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
   const double plan_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
   const bool planned = st == TDO_OK || st == TDO_ERR_INFEASIBLE;
   const tdo_metrics& m = res.metrics;
-  const bool optimum = o.optimum && planned && res.n_samples > 1;
-  const tdo_tools::VaOptimum opt = optimum ? plan_optimum(res, o) : tdo_tools::VaOptimum{};
+  // Stored or regenerated (--samples): the same samples; read only for the outputs that use them.
+  std::vector<tdo_sample> samples;
+  const tdo_status sst =
+      o.json || o.optimum ? tdo_samples::plan_samples(p.planner, res, &samples) : TDO_OK;
+  if (sst != TDO_OK)
+    throw BadInput{std::string(tdo_status_str(sst)) + ": cannot read the plan's " +
+                   std::to_string(res.n_samples) + " samples" +
+                   (o.samples.empty() ? "" : " (--samples " + o.samples + ")")};
+  const bool optimum = o.optimum && planned && samples.size() > 1;
+  const tdo_tools::VaOptimum opt = optimum ? plan_optimum(samples, o) : tdo_tools::VaOptimum{};
   const double ratio = opt.time_s > 0.0 ? m.flight_time_s / opt.time_s : 0.0;
 
   if (o.json) {
@@ -686,13 +706,11 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
     j["grid_path"] = points_json(res.grid_path, res.n_grid_path);
     if (res.reached >= TDO_PLAN_CORRECT)
       j["waypoints"] = points_json(res.waypoints, res.n_waypoints);
-    if (res.n_samples > 0) {
-      nlohmann::json samples = nlohmann::json::array();
-      for (uint32_t i = 0; i < res.n_samples; ++i) {
-        const tdo_sample& q = res.samples[i];
-        samples.push_back({q.t, q.p.x, q.p.y, q.p.z, q.v.x, q.v.y, q.v.z, q.a.x, q.a.y, q.a.z});
-      }
-      j["trajectory"] = {{"dt", req.params.dt}, {"samples", samples}};
+    if (!samples.empty()) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const tdo_sample& q : samples)
+        rows.push_back({q.t, q.p.x, q.p.y, q.p.z, q.v.x, q.v.y, q.v.z, q.a.x, q.a.y, q.a.z});
+      j["trajectory"] = {{"dt", req.params.dt}, {"samples", rows}};
     }
     if (planned) {
       j["metrics"] = metrics_json(m);
@@ -883,6 +901,11 @@ int run(int argc, char** argv) {
                  "| off: the whole grid")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  app.add_option("--samples", o.samples,
+                 "stored | streamed | pieces: the trajectory samples kept in the arena, or "
+                 "regenerated on demand (tdo_capacity.stream_samples 0 / 1 / 2; same output, "
+                 "smaller arena). Default: as tdo_capacity_for_grid sets it")
+      ->check(CLI::IsMember({"stored", "streamed", "pieces"}));
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))
       ->capture_default_str();

@@ -8,6 +8,8 @@
 #include <new>
 #include <nlohmann/json.hpp>
 
+#include "tdo_samples/samples.h"
+
 namespace tdo_episode {
 namespace {
 
@@ -122,6 +124,7 @@ bool plan_episode(const tdo_io::Map& map, const Options& o, PlannerBox* box, Epi
   Metrics& m = out->m;
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(map, o.clearance, 27u, 0u);
+  if (o.stream_samples >= 0) cfg.cap.stream_samples = static_cast<uint32_t>(o.stream_samples);
   const std::size_t fp = tdo_planner_footprint(&cfg);
   if (fp == 0) {
     *error = "invalid planner configuration for this map";
@@ -150,8 +153,12 @@ bool plan_episode(const tdo_io::Map& map, const Options& o, PlannerBox* box, Epi
   m.plan_status = static_cast<int>(st);
   m.movers = o.movers ? static_cast<uint32_t>(map.movers.size()) : 0u;
   if (st != TDO_OK || res.n_samples < 2u) return true;
+  st = tdo_samples::plan_samples(planner, res, &out->plan);  // stored or regenerated
+  if (st != TDO_OK) {
+    *error = std::string("plan samples: ") + tdo_status_str(st);
+    return false;
+  }
   m.planned = true;
-  out->plan.assign(res.samples, res.samples + res.n_samples);
   m.plan_duration = out->plan.back().t;
   m.v_limit = req.params.v_max;
   m.a_limit = req.params.a_max;

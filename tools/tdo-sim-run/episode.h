@@ -30,6 +30,8 @@ struct Options {
   uint64_t seed = 1;              /**< simulator disturbance seed */
   double accel_noise = 0.0;       /**< m/s^2, simulator disturbance (0: none) */
   bool keep_samples = true;       /**< keep the per-step record (JSON); false for benches */
+  int32_t stream_samples = -1;    /**< planner's tdo_capacity.stream_samples (0 stored, 1 streamed,
+                                       2 pieces); -1: as tdo_capacity_for_grid sets it */
   std::vector<std::pair<std::string, double>> params; /**< follower parameter overrides by name
                                                            (see set_param) */
 };

@@ -17,6 +17,7 @@
 #include "episode.h"
 #include "mapgen.h"
 #include "online.h"
+#include "tdo_samples/samples.h"
 #include "tool_cli.h"
 
 namespace {
@@ -493,6 +494,12 @@ int run(int argc, char** argv) {
                  "NAME=VALUE follower parameter override (tdo_apf_params field, e.g. k_r=2); "
                  "applies to both followers in --bench");
   app.add_flag("--check", check, "exit 1 unless success and no collision (single episode)");
+  std::string samples;
+  app.add_option("--samples", samples,
+                 "stored | streamed | pieces: the planner's trajectory samples kept in its arena, "
+                 "or regenerated on demand (tdo_capacity.stream_samples; same episodes). Default: "
+                 "as tdo_capacity_for_grid sets it")
+      ->check(CLI::IsMember({"stored", "streamed", "pieces"}));
   tdo_online::Options online;
   std::string replanner = "tdo";
   CLI::Option* unknown_opt = add_online_options(&app, &online, &replanner);
@@ -528,6 +535,11 @@ int run(int argc, char** argv) {
     if (!tdo_episode::set_param(&probe, kv.substr(0, eq), v))
       throw BadInput{"--param: unknown follower parameter '" + kv.substr(0, eq) + "'"};
     o.params.emplace_back(kv.substr(0, eq), v);
+  }
+  uint32_t mode = 0;
+  if (!samples.empty() && tdo_samples::mode_parse(samples.c_str(), &mode)) {
+    o.stream_samples = static_cast<int32_t>(mode);
+    online.stream_samples = static_cast<int32_t>(mode);
   }
   o.movers = !no_movers;
   o.seed = seed;

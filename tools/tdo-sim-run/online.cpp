@@ -7,6 +7,8 @@
 #include <ctime>
 #include <memory>
 
+#include "tdo_samples/samples.h"
+
 namespace tdo_online {
 namespace {
 
@@ -77,6 +79,7 @@ tdo_plan_params planner_params(Replanner r) {
 bool setup_planner(Loop* L, std::string* error) {
   tdo_planner_config cfg{};
   cfg.cap = tdo_io::capacity_for(L->map, L->o.clearance, 27u, 0u);
+  if (L->o.stream_samples >= 0) cfg.cap.stream_samples = static_cast<uint32_t>(L->o.stream_samples);
   const std::size_t fp = tdo_planner_footprint(&cfg);
   if (fp == 0) {
     *error = "invalid planner configuration for this map";
@@ -110,8 +113,9 @@ tdo_status plan(Loop* L, tdo_vec3 start, tdo_start_state state, std::vector<tdo_
   req.state = state;
   tdo_plan_result res{};
   const tdo_status st = tdo_planner_plan(L->planner, &req, &res);
-  if (st == TDO_OK && res.n_samples >= 2u) out->assign(res.samples, res.samples + res.n_samples);
-  return st == TDO_OK && res.n_samples < 2u ? TDO_ERR_INFEASIBLE : st;
+  if (st != TDO_OK) return st;
+  if (res.n_samples < 2u) return TDO_ERR_INFEASIBLE;
+  return tdo_samples::plan_samples(L->planner, res, out);  // stored or regenerated
 }
 
 // Sense at p and apply what was revealed to the known grid. False with `error` when the update

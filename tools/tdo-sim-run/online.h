@@ -64,6 +64,8 @@ struct Options {
                                        takeover start stays plannable) */
   uint32_t mover_cells = 40000;   /**< capacity of temporary voxels per mover replan (a larger
                                        region is not replanned round) */
+  int32_t stream_samples = -1;    /**< planner's tdo_capacity.stream_samples (0 stored, 1 streamed,
+                                       2 pieces); -1: as tdo_capacity_for_grid sets it */
 };
 
 /** Metrics of one online episode. */

@@ -112,12 +112,17 @@ struct AnswerIds {
  *        is compact.h's compact_to_msg.
  * @param plan_ms ms, wall time of the library call
  * @param with_samples false: n_samples 0 and no samples (the request's SAMPLES_OFF)
+ * @param planner the planner whose last plan `r` is: reads the samples the library did not store
+ *        (r.samples NULL, tdo_capacity.stream_samples) with tdo_planner_each_sample
+ *        (tdo_samples::plan_samples); may be null when r.samples is stored
  * @return ok; too_large (a count above INT32_MAX); non_finite (a path point or sample, or a NaN
  *         metric; metrics may be +inf where the library documents HUGE_VAL); count_mismatch (a
- *         null array with a non-zero count).
+ *         null array with a non-zero count and no planner); library_error (the planner could not
+ *         hand over r.n_samples samples).
  */
 Check trajectory_to_msg(const tdo_plan_result& r, const tdo_plan_request& req, const AnswerIds& ids,
-                        double plan_ms, tdo::trajectory_t* out, bool with_samples = true);
+                        double plan_ms, tdo::trajectory_t* out, bool with_samples = true,
+                        const tdo_planner* planner = nullptr);
 
 /**
  * @brief A plan result -> feasibility message (maxima, limits, violations).
