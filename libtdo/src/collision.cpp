@@ -38,6 +38,8 @@ inline void load(const tdo_vec3& v, double p[3]) {
   p[2] = v.z;
 }
 
+inline tdo_vec3 vec(const double p[3]) { return tdo_vec3{p[0], p[1], p[2]}; }
+
 inline double dmin(double a, double b) { return b < a ? b : a; }
 inline double dmax(double a, double b) { return b > a ? b : a; }
 
@@ -1063,7 +1065,8 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   for (int i = 0; i < 4; ++i)
     if (!finite3(c[i])) return 0;
   const double tol = dmax(tolerance, kMinTolerance);
-  uint32_t hint = 0;  // box that failed the last chord test (segment_clear_hint)
+  uint32_t hint = 0;       // box that failed the last chord test (segment_clear_steered)
+  uint32_t cube_hint = 0;  // surface cube that failed the last chord test
   Bezier stack[kBezierStackCap];
   int top = 0;
   for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
@@ -1077,7 +1080,10 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
                               point_segment_distance(bz.c[2], bz.c[0], bz.c[3]));
     bool in = true;
     for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
-    if (in && segment_clear_hint(grid, bz.c[0], bz.c[3], clearance + bound, &hint)) continue;
+    // The chord test: segment_clear_steered (the same answer as segment_clear, cheaper).
+    if (in && segment_clear_steered(grid, vec(bz.c[0]), vec(bz.c[3]), clearance + bound, &hint,
+                                    &cube_hint) != 0)
+      continue;
     // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
     // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.
     if (!(bound > 0.5 * tol)) return 0;
@@ -1262,8 +1268,24 @@ bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3],
     lo[i] += kHintMargin;
     hi[i] -= kHintMargin;
   }
-  if (far_apart(a, b, lo, hi, 0.0)) return false;
-  return !(segment_box_d2(a, b, lo, hi) > 0.0);
+  // A point of the segment (as seg_point evaluates it) inside the shrunk cube: the middle of the
+  // parameter interval where every coordinate lies strictly between the shrunk faces (no point:
+  // no claim).
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double di = b[i] - a[i];
+    if (!(di < 0.0 || di > 0.0)) {
+      if (!(a[i] > lo[i] && a[i] < hi[i])) return false;
+      continue;
+    }
+    const double ta = (lo[i] - a[i]) / di, tb = (hi[i] - a[i]) / di;
+    t0 = dmax(t0, dmin(ta, tb));
+    t1 = dmin(t1, dmax(ta, tb));
+  }
+  if (!(t0 < t1)) return false;
+  double p[3];
+  seg_point(a, b, 0.5 * (t0 + t1), p);
+  return !(point_box_d2(p, lo, hi) > 0.0);
 }
 
 // Extend *covered (every point of [a, b] up to it is farther than `need` from the cubes) by
@@ -1286,6 +1308,125 @@ void steer(const tdo_grid* g, const double a[3], const double b[3], double len, 
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Slab walk at small clearances (docs/design.md s.2). The segment is walked through the voxel
+// slabs of its dominant axis X (|d_X| >= |d_Y|, |d_Z|), in the order of t. For slab i, with the
+// segment's points q0, q1 on its two X planes (clamped to the segment), every voxel (i, j, k)
+// whose j and k ranges meet the ranges of q0 and q1 grown by 2 need is read: a segment point p
+// with p_X within `need` of the slab lies on the segment between q0 and q1 extended by need in X,
+// which moves Y and Z by need at most (|d_Y| <= |d_X|), so every voxel within `need` of p (per
+// axis, hence in Euclidean distance) is read in the slabs whose extended portion holds p.
+// - A slab whose voxels are all free: its points are farther than `need` from every occupied
+//   voxel, so no leaf of cubes_clear touching only such points can fail (the leaf test's points
+//   and midpoints lie within rounding, far below the margin in `need`, of the segment).
+// - An occupied surface voxel of a slab that cube_certainly_violates proves blocks the whole
+//   segment: cubes_clear fails too (see there); the walk stops with "not clear".
+// - Any other occupied voxel: the slab's parameter span is "open"; spans are merged into at most
+//   kSlabSpans. The answer then comes from cubes_clear_steered's own walk over the pieces that
+//   meet an open span widened by one voxel (far above the rounding of the parameters); every
+//   other piece is proven clear, as the steering's skips are.
+constexpr double kSlabMaxClearance = 0.25;  // of res: above it the slab walk is not used
+constexpr int64_t kSlabMaxSlabs = 4096;     // slabs of one walk at most (longer: not used)
+constexpr uint32_t kSlabSpans = 8;          // open parameter spans kept (more: merged)
+
+struct SlabSpans {
+  double u0[kSlabSpans], u1[kSlabSpans];  // open parameter spans, widened, in order of t
+  uint32_t n;
+};
+
+// Voxel range [lo, hi] of the coordinates [x0, x1] (m) on an axis of origin o and n voxels,
+// clamped to the grid; false when it misses the grid. In voxels the rounding of the product is
+// far below the walk's margin (as block_free).
+inline bool axis_range(double x0, double x1, double o, double inv, int32_t n, int64_t* lo,
+                       int64_t* hi) {
+  const double xa = (x0 - o) * inv, xb = (x1 - o) * inv;
+  const double top = static_cast<double>(n);
+  if (!(xa <= xb) || xb < 0.0 || xa >= top) return false;
+  *lo = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+  *hi = xb >= top ? n - 1 : static_cast<int64_t>(xb);
+  return true;
+}
+
+// Add the open span [u0, u1] (already widened) to *sp, merging with the last when they meet or
+// when no slot is left.
+inline void add_span(SlabSpans* sp, double u0, double u1) {
+  if (sp->n > 0u && (u0 <= sp->u1[sp->n - 1u] || sp->n == kSlabSpans)) {
+    sp->u1[sp->n - 1u] = dmax(sp->u1[sp->n - 1u], u1);
+    return;
+  }
+  sp->u0[sp->n] = u0;
+  sp->u1[sp->n] = u1;
+  ++sp->n;
+}
+
+// True when the piece meets an open span (then the walk must look at it).
+inline bool meets_open(const SlabSpans& sp, const Piece& pc) {
+  for (uint32_t k = 0; k < sp.n; ++k)
+    if (pc.t1 > sp.u0[k] && pc.t0 < sp.u1[k]) return true;
+  return false;
+}
+
+// The slab walk of [a, b] (length len > 0, inside the bounds) at clearance c (`need` as for
+// steer_from): 1 clear, 0 not clear (*hint: the cube), -1 open spans in *sp, -2 not used.
+__attribute__((noinline)) int slab_walk(const tdo_grid* g, const double a[3], const double b[3],
+                                        double len, double c, double need, uint32_t* hint,
+                                        SlabSpans* sp) {
+  sp->n = 0u;
+  const tdo_grid_desc& d = g->desc;
+  const double res = d.res;
+  if (!(c <= kSlabMaxClearance * res)) return -2;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nv[3] = {d.nx, d.ny, d.nz};
+  double dv[3];
+  int ax = 0;
+  for (int i = 0; i < 3; ++i) {
+    dv[i] = b[i] - a[i];
+    if (fabs(dv[i]) > fabs(dv[ax])) ax = i;
+  }
+  const int ay = (ax + 1) % 3, az = (ax + 2) % 3;
+  const double inv = 1.0 / res;
+  int64_t i0, i1;
+  if (!axis_range(dmin(a[ax], b[ax]) - need, dmax(a[ax], b[ax]) + need, o[ax], inv, nv[ax], &i0,
+                  &i1))
+    return 1;  // no voxel of the grid within reach: no cube
+  if (i1 - i0 + 1 > kSlabMaxSlabs || !(fabs(dv[ax]) > 0.0)) return -2;
+  const int64_t stride[3] = {1, g->stride_y, g->stride_z};
+  const double grow = 2.0 * need;
+  const double widen = res / len;  // one voxel, in parameter
+  // Bounded: one iteration per slab (at most kSlabMaxSlabs).
+  for (int64_t s = 0; s <= i1 - i0; ++s) {
+    const int64_t ix = dv[ax] > 0.0 ? i0 + s : i1 - s;
+    const double tl = (o[ax] + static_cast<double>(ix) * res - a[ax]) / dv[ax];
+    const double th = (o[ax] + static_cast<double>(ix + 1) * res - a[ax]) / dv[ax];
+    const double t0 = dmin(1.0, dmax(0.0, dmin(tl, th)));
+    const double t1 = dmin(1.0, dmax(0.0, dmax(tl, th)));
+    double q0[3], q1[3];
+    seg_point(a, b, t0, q0);
+    seg_point(a, b, t1, q1);
+    int64_t j0, j1, k0, k1;
+    if (!axis_range(dmin(q0[ay], q1[ay]) - grow, dmax(q0[ay], q1[ay]) + grow, o[ay], inv, nv[ay],
+                    &j0, &j1) ||
+        !axis_range(dmin(q0[az], q1[az]) - grow, dmax(q0[az], q1[az]) + grow, o[az], inv, nv[az],
+                    &k0, &k1))
+      continue;  // no voxel of the grid near this slab
+    bool open = false;
+    for (int64_t k = k0; k <= k1; ++k)
+      for (int64_t j = j0; j <= j1; ++j) {
+        const int64_t idx = ix * stride[ax] + j * stride[ay] + k * stride[az];
+        const uint8_t f = g->flags[idx];
+        if ((f & (kFlagOccupied | kFlagCube)) == 0) continue;
+        if ((f & kFlagSurface) != 0 &&
+            cube_certainly_violates(g, static_cast<uint32_t>(idx), a, b, c)) {
+          *hint = static_cast<uint32_t>(idx) + 1u;
+          return 0;
+        }
+        open = true;
+      }
+    if (open) add_span(sp, t0 - widen, t1 + widen);
+  }
+  return sp->n == 0u ? 1 : -1;
+}
+
 // cubes_clear with the same answer: the same halving walk over the same pieces, but a piece is
 // skipped without its own bound when steering (steer) already covers it, and a leaf that is not
 // covered gets leaf_clear (cubes_clear's own leaf test after the block test). Only provably clear
@@ -1304,6 +1445,10 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
   for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
   const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
+  SlabSpans spans;
+  const int slab = slab_walk(g, a, b, len, c, need, hint, &spans);
+  if (slab >= 0) return slab == 1;
+  const bool open_only = slab == -1;  // pieces outside the open spans are proven clear
   double covered = -1.0, stalled = -1.0;
   Piece stack[kStackCap];
   int top = 0;
@@ -1311,7 +1456,7 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   for (uint32_t pieces = 0; top > 0; ++pieces) {
     if (pieces >= kMaxPieces) return cubes_clear(g, a, b, c);
     const Piece pc = stack[--top];
-    if (pc.t1 <= covered) continue;
+    if (pc.t1 <= covered || (open_only && !meets_open(spans, pc))) continue;
     steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
     if (pc.t1 <= covered) continue;
     if (piece_leaf(g, a, b, pc, len, leaf_tol)) {
