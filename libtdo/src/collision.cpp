@@ -1261,6 +1261,8 @@ bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3],
   if (c > kHintMargin) {
     const double m = c - kHintMargin;
     if (far_apart(a, b, lo, hi, m)) return false;
+    // Quick: a point of the segment closer than m (box_certainly_violates' test).
+    if (centre_point_d2(a, b, lo, hi) < m * m) return true;
     return segment_box_d2(a, b, lo, hi, m * m) < m * m;
   }
   if (!(d.res > 4.0 * kHintMargin)) return false;
@@ -1321,6 +1323,8 @@ void steer(const tdo_grid* g, const double a[3], const double b[3], double len, 
 //   and midpoints lie within rounding, far below the margin in `need`, of the segment).
 // - An occupied surface voxel of a slab that cube_certainly_violates proves blocks the whole
 //   segment: cubes_clear fails too (see there); the walk stops with "not clear".
+// - An occupied voxel whose cube grown by `need` the whole segment misses (misses_grown_voxel):
+//   every point of the segment is farther than `need` from it; it changes nothing.
 // - Any other occupied voxel: the slab's parameter span is "open"; spans are merged into at most
 //   kSlabSpans. The answer then comes from cubes_clear_steered's own walk over the pieces that
 //   meet an open span widened by one voxel (far above the rounding of the parameters); every
@@ -1359,6 +1363,34 @@ inline void add_span(SlabSpans* sp, double u0, double u1) {
   ++sp->n;
 }
 
+// True when the whole segment [a, b] misses the box of voxel (i, j, k) (per axis ax, ay, az)
+// grown by r on every side: an empty parameter interval where every coordinate lies within the
+// grown faces. Then every point of the segment is farther than r, less the rounding of the
+// parameters (far below the walk's margin in r), from the voxel's cube.
+bool misses_grown_voxel(const tdo_grid* g, int64_t i, int64_t j, int64_t k, int ax, int ay, int az,
+                        const double a[3], const double b[3], double r) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t v[3];
+  v[ax] = i;
+  v[ay] = j;
+  v[az] = k;
+  double t0 = 0.0, t1 = 1.0;
+  for (int n = 0; n < 3; ++n) {
+    const double lo = o[n] + static_cast<double>(v[n]) * d.res - r;
+    const double hi = o[n] + static_cast<double>(v[n] + 1) * d.res + r;
+    const double dn = b[n] - a[n];
+    if (!(dn < 0.0 || dn > 0.0)) {
+      if (a[n] < lo || a[n] > hi) return true;
+      continue;
+    }
+    const double ta = (lo - a[n]) / dn, tb = (hi - a[n]) / dn;
+    t0 = dmax(t0, dmin(ta, tb));
+    t1 = dmin(t1, dmax(ta, tb));
+  }
+  return t0 > t1;
+}
+
 // True when the piece meets an open span (then the walk must look at it).
 inline bool meets_open(const SlabSpans& sp, const Piece& pc) {
   for (uint32_t k = 0; k < sp.n; ++k)
@@ -1393,36 +1425,44 @@ __attribute__((noinline)) int slab_walk(const tdo_grid* g, const double a[3], co
   const int64_t stride[3] = {1, g->stride_y, g->stride_z};
   const double grow = 2.0 * need;
   const double widen = res / len;  // one voxel, in parameter
+  // The slabs in the order of t: each starts where the last ended (its plane's parameter,
+  // clamped to the segment; the rounding of the parameters and points is far below the margins).
+  const bool up = dv[ax] > 0.0;
+  const double invd = 1.0 / dv[ax];
+  const auto plane_t = [&](int64_t plane) {
+    const double t = (o[ax] + static_cast<double>(plane) * res - a[ax]) * invd;
+    return dmin(1.0, dmax(0.0, t));
+  };
+  int64_t ix = up ? i0 : i1;
+  double t0 = plane_t(up ? ix : ix + 1);
+  double y0 = a[ay] + t0 * dv[ay], z0 = a[az] + t0 * dv[az];
   // Bounded: one iteration per slab (at most kSlabMaxSlabs).
-  for (int64_t s = 0; s <= i1 - i0; ++s) {
-    const int64_t ix = dv[ax] > 0.0 ? i0 + s : i1 - s;
-    const double tl = (o[ax] + static_cast<double>(ix) * res - a[ax]) / dv[ax];
-    const double th = (o[ax] + static_cast<double>(ix + 1) * res - a[ax]) / dv[ax];
-    const double t0 = dmin(1.0, dmax(0.0, dmin(tl, th)));
-    const double t1 = dmin(1.0, dmax(0.0, dmax(tl, th)));
-    double q0[3], q1[3];
-    seg_point(a, b, t0, q0);
-    seg_point(a, b, t1, q1);
-    int64_t j0, j1, k0, k1;
-    if (!axis_range(dmin(q0[ay], q1[ay]) - grow, dmax(q0[ay], q1[ay]) + grow, o[ay], inv, nv[ay],
-                    &j0, &j1) ||
-        !axis_range(dmin(q0[az], q1[az]) - grow, dmax(q0[az], q1[az]) + grow, o[az], inv, nv[az],
-                    &k0, &k1))
-      continue;  // no voxel of the grid near this slab
+  for (int64_t s = 0; s <= i1 - i0; ++s, ix += up ? 1 : -1) {
+    const double t1 = plane_t(up ? ix + 1 : ix);
+    const double y1 = a[ay] + t1 * dv[ay], z1 = a[az] + t1 * dv[az];
+    int64_t j0 = 0, j1 = -1, k0 = 0, k1 = -1;
+    const bool near =
+        axis_range(dmin(y0, y1) - grow, dmax(y0, y1) + grow, o[ay], inv, nv[ay], &j0, &j1) &&
+        axis_range(dmin(z0, z1) - grow, dmax(z0, z1) + grow, o[az], inv, nv[az], &k0, &k1);
     bool open = false;
-    for (int64_t k = k0; k <= k1; ++k)
+    for (int64_t k = k0; near && k <= k1; ++k) {
+      const uint8_t* row = g->flags + ix * stride[ax] + k * stride[az];
       for (int64_t j = j0; j <= j1; ++j) {
-        const int64_t idx = ix * stride[ax] + j * stride[ay] + k * stride[az];
-        const uint8_t f = g->flags[idx];
+        const uint8_t f = row[j * stride[ay]];
         if ((f & (kFlagOccupied | kFlagCube)) == 0) continue;
+        const int64_t idx = ix * stride[ax] + j * stride[ay] + k * stride[az];
         if ((f & kFlagSurface) != 0 &&
             cube_certainly_violates(g, static_cast<uint32_t>(idx), a, b, c)) {
           *hint = static_cast<uint32_t>(idx) + 1u;
           return 0;
         }
-        open = true;
+        if (!misses_grown_voxel(g, ix, j, k, ax, ay, az, a, b, need)) open = true;
       }
+    }
     if (open) add_span(sp, t0 - widen, t1 + widen);
+    t0 = t1;
+    y0 = y1;
+    z0 = z1;
   }
   return sp->n == 0u ? 1 : -1;
 }
