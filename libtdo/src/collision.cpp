@@ -1351,6 +1351,15 @@ inline bool axis_range(double x0, double x1, double o, double inv, int32_t n, in
   return true;
 }
 
+// axis_range in voxel units: the voxels [lo, hi] of [xa, xb] (voxels), clamped to n voxels.
+inline bool voxel_range(double xa, double xb, int32_t n, int64_t* lo, int64_t* hi) {
+  const double top = static_cast<double>(n);
+  if (!(xa <= xb) || xb < 0.0 || xa >= top) return false;
+  *lo = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+  *hi = xb >= top ? n - 1 : static_cast<int64_t>(xb);
+  return true;
+}
+
 // Add the open span [u0, u1] (already widened) to *sp, merging with the last when they meet or
 // when no slot is left.
 inline void add_span(SlabSpans* sp, double u0, double u1) {
@@ -1427,23 +1436,27 @@ __attribute__((noinline)) int slab_walk(const tdo_grid* g, const double a[3], co
   const double widen = res / len;  // one voxel, in parameter
   // The slabs in the order of t: each starts where the last ended (its plane's parameter,
   // clamped to the segment; the rounding of the parameters and points is far below the margins).
+  // From here in voxel units (rounding far below the margins): plane p lies at parameter
+  // tp + p tr, and Y, Z at parameter t at yb + t yd, zb + t zd voxels.
   const bool up = dv[ax] > 0.0;
   const double invd = 1.0 / dv[ax];
+  const double tp = (o[ax] - a[ax]) * invd, tr = res * invd;
+  const double yb = (a[ay] - o[ay]) * inv, yd = dv[ay] * inv;
+  const double zb = (a[az] - o[az]) * inv, zd = dv[az] * inv;
+  const double gv = grow * inv;
   const auto plane_t = [&](int64_t plane) {
-    const double t = (o[ax] + static_cast<double>(plane) * res - a[ax]) * invd;
-    return dmin(1.0, dmax(0.0, t));
+    return dmin(1.0, dmax(0.0, tp + static_cast<double>(plane) * tr));
   };
   int64_t ix = up ? i0 : i1;
   double t0 = plane_t(up ? ix : ix + 1);
-  double y0 = a[ay] + t0 * dv[ay], z0 = a[az] + t0 * dv[az];
+  double y0 = yb + t0 * yd, z0 = zb + t0 * zd;
   // Bounded: one iteration per slab (at most kSlabMaxSlabs).
   for (int64_t s = 0; s <= i1 - i0; ++s, ix += up ? 1 : -1) {
     const double t1 = plane_t(up ? ix + 1 : ix);
-    const double y1 = a[ay] + t1 * dv[ay], z1 = a[az] + t1 * dv[az];
+    const double y1 = yb + t1 * yd, z1 = zb + t1 * zd;
     int64_t j0 = 0, j1 = -1, k0 = 0, k1 = -1;
-    const bool near =
-        axis_range(dmin(y0, y1) - grow, dmax(y0, y1) + grow, o[ay], inv, nv[ay], &j0, &j1) &&
-        axis_range(dmin(z0, z1) - grow, dmax(z0, z1) + grow, o[az], inv, nv[az], &k0, &k1);
+    const bool near = voxel_range(dmin(y0, y1) - gv, dmax(y0, y1) + gv, nv[ay], &j0, &j1) &&
+                      voxel_range(dmin(z0, z1) - gv, dmax(z0, z1) + gv, nv[az], &k0, &k1);
     bool open = false;
     for (int64_t k = k0; near && k <= k1; ++k) {
       const uint8_t* row = g->flags + ix * stride[ax] + k * stride[az];
