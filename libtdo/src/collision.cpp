@@ -575,18 +575,39 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // Lower *bst (m) to the distance of [p0, p1] (span box sb) to the surface cubes of brick c.
 // A cube whose gap to the span box reaches *bst + tol (tol: brick_tol at a limit >= *bst) cannot
 // lower it (box_min's quick test).
+// Only the cubes whose voxels lie within *bst of the span box, plus one voxel, are visited (in the
+// same order): every other one is farther than *bst by a voxel on some axis, so far_apart skips
+// it (*bst only falls during the brick).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
                       const SpanBox& sb, double tol, bool point, double* bst) {
-  for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
-    if (far_apart(p0, p1, lo, hi, *bst)) return true;
-    if (!point) {
-      const double bt = *bst + tol;
-      if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+  uint64_t keep = ~uint64_t{0};
+  const tdo_grid_desc& d = g->desc;
+  if (*bst < 64.0 * d.res) {
+    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+    const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
+    const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
+                             static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
+                             static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = static_cast<int64_t>(floor((sb.mn[a] - *bst - o[a]) / d.res)) - 1 - base[a];
+      hi[a] = static_cast<int64_t>(floor((sb.mx[a] + *bst - o[a]) / d.res)) + 1 - base[a];
     }
-    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
-    if (d2 < *bst * *bst) *bst = sqrt(d2);
-    return *bst > 0.0;
-  });
+    keep = brick_local_mask(lo, hi);
+  }
+  for_each_brick_cube(
+      g, c.brick,
+      [&](const double* lo, const double* hi) {
+        if (far_apart(p0, p1, lo, hi, *bst)) return true;
+        if (!point) {
+          const double bt = *bst + tol;
+          if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+        }
+        const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+        if (d2 < *bst * *bst) *bst = sqrt(d2);
+        return *bst > 0.0;
+      },
+      keep);
 }
 
 // min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
