@@ -38,6 +38,8 @@ inline void load(const tdo_vec3& v, double p[3]) {
   p[2] = v.z;
 }
 
+inline tdo_vec3 vec(const double p[3]) { return tdo_vec3{p[0], p[1], p[2]}; }
+
 inline double dmin(double a, double b) { return b < a ? b : a; }
 inline double dmax(double a, double b) { return b > a ? b : a; }
 
@@ -573,18 +575,39 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // Lower *bst (m) to the distance of [p0, p1] (span box sb) to the surface cubes of brick c.
 // A cube whose gap to the span box reaches *bst + tol (tol: brick_tol at a limit >= *bst) cannot
 // lower it (box_min's quick test).
+// Only the cubes whose voxels lie within *bst of the span box, plus one voxel, are visited (in the
+// same order): every other one is farther than *bst by a voxel on some axis, so far_apart skips
+// it (*bst only falls during the brick).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
                       const SpanBox& sb, double tol, bool point, double* bst) {
-  for_each_brick_cube(g, c.brick, [&](const double* lo, const double* hi) {
-    if (far_apart(p0, p1, lo, hi, *bst)) return true;
-    if (!point) {
-      const double bt = *bst + tol;
-      if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+  uint64_t keep = ~uint64_t{0};
+  const tdo_grid_desc& d = g->desc;
+  if (*bst < 64.0 * d.res) {
+    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+    const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
+    const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
+                             static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
+                             static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
+    int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = static_cast<int64_t>(floor((sb.mn[a] - *bst - o[a]) / d.res)) - 1 - base[a];
+      hi[a] = static_cast<int64_t>(floor((sb.mx[a] + *bst - o[a]) / d.res)) + 1 - base[a];
     }
-    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
-    if (d2 < *bst * *bst) *bst = sqrt(d2);
-    return *bst > 0.0;
-  });
+    keep = brick_local_mask(lo, hi);
+  }
+  for_each_brick_cube(
+      g, c.brick,
+      [&](const double* lo, const double* hi) {
+        if (far_apart(p0, p1, lo, hi, *bst)) return true;
+        if (!point) {
+          const double bt = *bst + tol;
+          if (span_gap2(sb, lo, hi) >= bt * bt) return true;
+        }
+        const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+        if (d2 < *bst * *bst) *bst = sqrt(d2);
+        return *bst > 0.0;
+      },
+      keep);
 }
 
 // min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
@@ -1063,7 +1086,8 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
   for (int i = 0; i < 4; ++i)
     if (!finite3(c[i])) return 0;
   const double tol = dmax(tolerance, kMinTolerance);
-  uint32_t hint = 0;  // box that failed the last chord test (segment_clear_hint)
+  uint32_t hint = 0;       // box that failed the last chord test (segment_clear_steered)
+  uint32_t cube_hint = 0;  // surface cube that failed the last chord test
   Bezier stack[kBezierStackCap];
   int top = 0;
   for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
@@ -1077,7 +1101,10 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
                               point_segment_distance(bz.c[2], bz.c[0], bz.c[3]));
     bool in = true;
     for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
-    if (in && segment_clear_hint(grid, bz.c[0], bz.c[3], clearance + bound, &hint)) continue;
+    // The chord test: segment_clear_steered (the same answer as segment_clear, cheaper).
+    if (in && segment_clear_steered(grid, vec(bz.c[0]), vec(bz.c[3]), clearance + bound, &hint,
+                                    &cube_hint) != 0)
+      continue;
     // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
     // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.
     if (!(bound > 0.5 * tol)) return 0;
@@ -1255,6 +1282,8 @@ bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3],
   if (c > kHintMargin) {
     const double m = c - kHintMargin;
     if (far_apart(a, b, lo, hi, m)) return false;
+    // Quick: a point of the segment closer than m (box_certainly_violates' test).
+    if (centre_point_d2(a, b, lo, hi) < m * m) return true;
     return segment_box_d2(a, b, lo, hi, m * m) < m * m;
   }
   if (!(d.res > 4.0 * kHintMargin)) return false;
@@ -1262,8 +1291,24 @@ bool cube_certainly_violates(const tdo_grid* g, uint32_t idx, const double a[3],
     lo[i] += kHintMargin;
     hi[i] -= kHintMargin;
   }
-  if (far_apart(a, b, lo, hi, 0.0)) return false;
-  return !(segment_box_d2(a, b, lo, hi) > 0.0);
+  // A point of the segment (as seg_point evaluates it) inside the shrunk cube: the middle of the
+  // parameter interval where every coordinate lies strictly between the shrunk faces (no point:
+  // no claim).
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double di = b[i] - a[i];
+    if (!(di < 0.0 || di > 0.0)) {
+      if (!(a[i] > lo[i] && a[i] < hi[i])) return false;
+      continue;
+    }
+    const double ta = (lo[i] - a[i]) / di, tb = (hi[i] - a[i]) / di;
+    t0 = dmax(t0, dmin(ta, tb));
+    t1 = dmin(t1, dmax(ta, tb));
+  }
+  if (!(t0 < t1)) return false;
+  double p[3];
+  seg_point(a, b, 0.5 * (t0 + t1), p);
+  return !(point_box_d2(p, lo, hi) > 0.0);
 }
 
 // Extend *covered (every point of [a, b] up to it is farther than `need` from the cubes) by
@@ -1286,6 +1331,176 @@ void steer(const tdo_grid* g, const double a[3], const double b[3], double len, 
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Slab walk at small clearances (docs/design.md s.2). The segment is walked through the voxel
+// slabs of its dominant axis X (|d_X| >= |d_Y|, |d_Z|), in the order of t. For slab i, with the
+// segment's points q0, q1 on its two X planes (clamped to the segment), every voxel (i, j, k)
+// whose j and k ranges meet the ranges of q0 and q1 grown by 2 need is read: a segment point p
+// with p_X within `need` of the slab lies on the segment between q0 and q1 extended by need in X,
+// which moves Y and Z by need at most (|d_Y| <= |d_X|), so every voxel within `need` of p (per
+// axis, hence in Euclidean distance) is read in the slabs whose extended portion holds p.
+// - A slab whose voxels are all free: its points are farther than `need` from every occupied
+//   voxel, so no leaf of cubes_clear touching only such points can fail (the leaf test's points
+//   and midpoints lie within rounding, far below the margin in `need`, of the segment).
+// - An occupied surface voxel of a slab that cube_certainly_violates proves blocks the whole
+//   segment: cubes_clear fails too (see there); the walk stops with "not clear".
+// - An occupied voxel whose cube grown by `need` the whole segment misses (misses_grown_voxel):
+//   every point of the segment is farther than `need` from it; it changes nothing.
+// - Any other occupied voxel: the slab's parameter span is "open"; spans are merged into at most
+//   kSlabSpans. The answer then comes from cubes_clear_steered's own walk over the pieces that
+//   meet an open span widened by one voxel (far above the rounding of the parameters); every
+//   other piece is proven clear, as the steering's skips are.
+constexpr double kSlabMaxClearance = 0.25;  // of res: above it the slab walk is not used
+constexpr int64_t kSlabMaxSlabs = 4096;     // slabs of one walk at most (longer: not used)
+constexpr uint32_t kSlabSpans = 8;          // open parameter spans kept (more: merged)
+
+struct SlabSpans {
+  double u0[kSlabSpans], u1[kSlabSpans];  // open parameter spans, widened, in order of t
+  uint32_t n;
+};
+
+// Voxel range [lo, hi] of the coordinates [x0, x1] (m) on an axis of origin o and n voxels,
+// clamped to the grid; false when it misses the grid. In voxels the rounding of the product is
+// far below the walk's margin (as block_free).
+inline bool axis_range(double x0, double x1, double o, double inv, int32_t n, int64_t* lo,
+                       int64_t* hi) {
+  const double xa = (x0 - o) * inv, xb = (x1 - o) * inv;
+  const double top = static_cast<double>(n);
+  if (!(xa <= xb) || xb < 0.0 || xa >= top) return false;
+  *lo = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+  *hi = xb >= top ? n - 1 : static_cast<int64_t>(xb);
+  return true;
+}
+
+// axis_range in voxel units: the voxels [lo, hi] of [xa, xb] (voxels), clamped to n voxels.
+inline bool voxel_range(double xa, double xb, int32_t n, int64_t* lo, int64_t* hi) {
+  const double top = static_cast<double>(n);
+  if (!(xa <= xb) || xb < 0.0 || xa >= top) return false;
+  *lo = xa < 0.0 ? 0 : static_cast<int64_t>(xa);  // truncation is floor from 0 on
+  *hi = xb >= top ? n - 1 : static_cast<int64_t>(xb);
+  return true;
+}
+
+// Add the open span [u0, u1] (already widened) to *sp, merging with the last when they meet or
+// when no slot is left.
+inline void add_span(SlabSpans* sp, double u0, double u1) {
+  if (sp->n > 0u && (u0 <= sp->u1[sp->n - 1u] || sp->n == kSlabSpans)) {
+    sp->u1[sp->n - 1u] = dmax(sp->u1[sp->n - 1u], u1);
+    return;
+  }
+  sp->u0[sp->n] = u0;
+  sp->u1[sp->n] = u1;
+  ++sp->n;
+}
+
+// True when the whole segment [a, b] misses the box of voxel (i, j, k) (per axis ax, ay, az)
+// grown by r on every side: an empty parameter interval where every coordinate lies within the
+// grown faces. Then every point of the segment is farther than r, less the rounding of the
+// parameters (far below the walk's margin in r), from the voxel's cube.
+bool misses_grown_voxel(const tdo_grid* g, int64_t i, int64_t j, int64_t k, int ax, int ay, int az,
+                        const double a[3], const double b[3], double r) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t v[3];
+  v[ax] = i;
+  v[ay] = j;
+  v[az] = k;
+  double t0 = 0.0, t1 = 1.0;
+  for (int n = 0; n < 3; ++n) {
+    const double lo = o[n] + static_cast<double>(v[n]) * d.res - r;
+    const double hi = o[n] + static_cast<double>(v[n] + 1) * d.res + r;
+    const double dn = b[n] - a[n];
+    if (!(dn < 0.0 || dn > 0.0)) {
+      if (a[n] < lo || a[n] > hi) return true;
+      continue;
+    }
+    const double ta = (lo - a[n]) / dn, tb = (hi - a[n]) / dn;
+    t0 = dmax(t0, dmin(ta, tb));
+    t1 = dmin(t1, dmax(ta, tb));
+  }
+  return t0 > t1;
+}
+
+// True when the piece meets an open span (then the walk must look at it).
+inline bool meets_open(const SlabSpans& sp, const Piece& pc) {
+  for (uint32_t k = 0; k < sp.n; ++k)
+    if (pc.t1 > sp.u0[k] && pc.t0 < sp.u1[k]) return true;
+  return false;
+}
+
+// The slab walk of [a, b] (length len > 0, inside the bounds) at clearance c (`need` as for
+// steer_from): 1 clear, 0 not clear (*hint: the cube), -1 open spans in *sp, -2 not used.
+__attribute__((noinline)) int slab_walk(const tdo_grid* g, const double a[3], const double b[3],
+                                        double len, double c, double need, uint32_t* hint,
+                                        SlabSpans* sp) {
+  sp->n = 0u;
+  const tdo_grid_desc& d = g->desc;
+  const double res = d.res;
+  if (!(c <= kSlabMaxClearance * res)) return -2;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nv[3] = {d.nx, d.ny, d.nz};
+  double dv[3];
+  int ax = 0;
+  for (int i = 0; i < 3; ++i) {
+    dv[i] = b[i] - a[i];
+    if (fabs(dv[i]) > fabs(dv[ax])) ax = i;
+  }
+  const int ay = (ax + 1) % 3, az = (ax + 2) % 3;
+  const double inv = 1.0 / res;
+  int64_t i0, i1;
+  if (!axis_range(dmin(a[ax], b[ax]) - need, dmax(a[ax], b[ax]) + need, o[ax], inv, nv[ax], &i0,
+                  &i1))
+    return 1;  // no voxel of the grid within reach: no cube
+  if (i1 - i0 + 1 > kSlabMaxSlabs || !(fabs(dv[ax]) > 0.0)) return -2;
+  const int64_t stride[3] = {1, g->stride_y, g->stride_z};
+  const double grow = 2.0 * need;
+  const double widen = res / len;  // one voxel, in parameter
+  // The slabs in the order of t: each starts where the last ended (its plane's parameter,
+  // clamped to the segment; the rounding of the parameters and points is far below the margins).
+  // From here in voxel units (rounding far below the margins): plane p lies at parameter
+  // tp + p tr, and Y, Z at parameter t at yb + t yd, zb + t zd voxels.
+  const bool up = dv[ax] > 0.0;
+  const double invd = 1.0 / dv[ax];
+  const double tp = (o[ax] - a[ax]) * invd, tr = res * invd;
+  const double yb = (a[ay] - o[ay]) * inv, yd = dv[ay] * inv;
+  const double zb = (a[az] - o[az]) * inv, zd = dv[az] * inv;
+  const double gv = grow * inv;
+  const auto plane_t = [&](int64_t plane) {
+    return dmin(1.0, dmax(0.0, tp + static_cast<double>(plane) * tr));
+  };
+  int64_t ix = up ? i0 : i1;
+  double t0 = plane_t(up ? ix : ix + 1);
+  double y0 = yb + t0 * yd, z0 = zb + t0 * zd;
+  // Bounded: one iteration per slab (at most kSlabMaxSlabs).
+  for (int64_t s = 0; s <= i1 - i0; ++s, ix += up ? 1 : -1) {
+    const double t1 = plane_t(up ? ix + 1 : ix);
+    const double y1 = yb + t1 * yd, z1 = zb + t1 * zd;
+    int64_t j0 = 0, j1 = -1, k0 = 0, k1 = -1;
+    const bool near = voxel_range(dmin(y0, y1) - gv, dmax(y0, y1) + gv, nv[ay], &j0, &j1) &&
+                      voxel_range(dmin(z0, z1) - gv, dmax(z0, z1) + gv, nv[az], &k0, &k1);
+    bool open = false;
+    for (int64_t k = k0; near && k <= k1; ++k) {
+      const uint8_t* row = g->flags + ix * stride[ax] + k * stride[az];
+      for (int64_t j = j0; j <= j1; ++j) {
+        const uint8_t f = row[j * stride[ay]];
+        if ((f & (kFlagOccupied | kFlagCube)) == 0) continue;
+        const int64_t idx = ix * stride[ax] + j * stride[ay] + k * stride[az];
+        if ((f & kFlagSurface) != 0 &&
+            cube_certainly_violates(g, static_cast<uint32_t>(idx), a, b, c)) {
+          *hint = static_cast<uint32_t>(idx) + 1u;
+          return 0;
+        }
+        if (!misses_grown_voxel(g, ix, j, k, ax, ay, az, a, b, need)) open = true;
+      }
+    }
+    if (open) add_span(sp, t0 - widen, t1 + widen);
+    t0 = t1;
+    y0 = y1;
+    z0 = z1;
+  }
+  return sp->n == 0u ? 1 : -1;
+}
+
 // cubes_clear with the same answer: the same halving walk over the same pieces, but a piece is
 // skipped without its own bound when steering (steer) already covers it, and a leaf that is not
 // covered gets leaf_clear (cubes_clear's own leaf test after the block test). Only provably clear
@@ -1304,6 +1519,10 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
   for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
   const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
+  SlabSpans spans;
+  const int slab = slab_walk(g, a, b, len, c, need, hint, &spans);
+  if (slab >= 0) return slab == 1;
+  const bool open_only = slab == -1;  // pieces outside the open spans are proven clear
   double covered = -1.0, stalled = -1.0;
   Piece stack[kStackCap];
   int top = 0;
@@ -1311,7 +1530,7 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   for (uint32_t pieces = 0; top > 0; ++pieces) {
     if (pieces >= kMaxPieces) return cubes_clear(g, a, b, c);
     const Piece pc = stack[--top];
-    if (pc.t1 <= covered) continue;
+    if (pc.t1 <= covered || (open_only && !meets_open(spans, pc))) continue;
     steer(g, a, b, len, need, pc.t0, pc.t1, &covered, &stalled);
     if (pc.t1 <= covered) continue;
     if (piece_leaf(g, a, b, pc, len, leaf_tol)) {

@@ -111,16 +111,32 @@ bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[
 uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const double p1[3], double r,
                                double lim, BrickCand* cand);
 
-// Call f(lo, hi) with the bounds (m) of every surface cube of brick `brick`, in bit order;
-// stop when f returns false (then return false).
+// The bits of a brick's mask whose local voxel (bit x + 4 (y + 4 z)) lies in [lo[a], hi[a]] on
+// every axis a (local voxels, clamped to 0 .. 3; an empty range gives 0).
+inline uint64_t brick_local_mask(const int64_t lo[3], const int64_t hi[3]) {
+  int64_t l[3], h[3];
+  for (int a = 0; a < 3; ++a) {
+    l[a] = lo[a] < 0 ? 0 : lo[a];
+    h[a] = hi[a] > kBrickVoxels - 1 ? kBrickVoxels - 1 : hi[a];
+    if (l[a] > h[a]) return 0u;
+  }
+  const uint64_t row = ((uint64_t{1} << (h[0] - l[0] + 1)) - 1u) << l[0];
+  uint64_t m = 0u;
+  for (int64_t z = l[2]; z <= h[2]; ++z)
+    for (int64_t y = l[1]; y <= h[1]; ++y) m |= row << (4 * (y + 4 * z));
+  return m;
+}
+
+// Call f(lo, hi) with the bounds (m) of every surface cube of brick `brick` whose bit is also in
+// `keep`, in bit order; stop when f returns false (then return false).
 template <class F>
-bool for_each_brick_cube(const tdo_grid* g, uint32_t brick, F&& f) {
+bool for_each_brick_cube(const tdo_grid* g, uint32_t brick, F&& f, uint64_t keep = ~uint64_t{0}) {
   const tdo_grid_desc& d = g->desc;
   const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
   const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
   const uint32_t by = rest % static_cast<uint32_t>(g->nby);
   const uint32_t bz = rest / static_cast<uint32_t>(g->nby);
-  uint64_t m = g->brick_mask[brick];
+  uint64_t m = g->brick_mask[brick] & keep;
   while (m != 0u) {
     const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
     m &= m - 1u;

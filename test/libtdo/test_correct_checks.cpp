@@ -385,4 +385,94 @@ TEST(CorrectChecks, FineResolutionOffsetGrid) {
   }
 }
 
+// The slab walk (collision.cpp, clearances up to res / 4) on cluttered voxel maps, on the
+// segments where rounding decides: lattice point to lattice point (along voxel faces and edges,
+// through voxel corners), voxel centre to voxel centre (diagonals through edges and corners),
+// pure diagonals, axis-parallel segments on voxel planes, and random ones; clearances 0, a hair,
+// res / 10, res / 4 (the walk's limit) and res / 3 (beyond it). The steered query, without and
+// with hints, must answer as the exact one, always.
+TEST(CorrectChecks, LatticeSegmentsThroughVoxelCornersAtSmallClearances) {
+  struct Grid {
+    tdo_grid_desc desc;
+    double density;
+  };
+  const Grid grids[3] = {{tdo_grid_desc{18, 15, 11, 1.0, tdo_vec3{-0.5, -0.5, -0.5}}, 0.12},
+                         {tdo_grid_desc{16, 16, 12, 0.25, tdo_vec3{0.0, 0.0, 0.0}}, 0.08},
+                         {tdo_grid_desc{17, 13, 10, 0.15, tdo_vec3{-3.3, 1.7, 0.05}}, 0.2}};
+  Rng rng(2026);
+  int compared = 0, clear = 0, blocked = 0;
+  for (const Grid& gd : grids) {
+    MapFile m;
+    m.desc = gd.desc;
+    for (int32_t k = 0; k < m.desc.nz; ++k)
+      for (int32_t j = 0; j < m.desc.ny; ++j)
+        for (int32_t i = 0; i < m.desc.nx; ++i)
+          if (rng.uniform() < gd.density) m.cubes.push_back(tdo_voxel{i, j, k});
+    MapGrid mg(m);
+    ASSERT_EQ(mg.load(0.0), TDO_OK);
+    const tdo_grid_desc& d = m.desc;
+    const double r = d.res;
+    // Lattice point (i, j, k) plus f voxels on every axis (f = 0: a voxel corner, 0.5: a centre).
+    const auto at = [&](int32_t i, int32_t j, int32_t k, double f) {
+      return tdo_vec3{d.origin.x + (i + f) * r, d.origin.y + (j + f) * r, d.origin.z + (k + f) * r};
+    };
+    const auto inside = [&](const tdo_vec3& p) {
+      return p.x >= d.origin.x && p.y >= d.origin.y && p.z >= d.origin.z &&
+             p.x <= d.origin.x + d.nx * r && p.y <= d.origin.y + d.ny * r &&
+             p.z <= d.origin.z + d.nz * r;
+    };
+    for (double c : {0.0, 1e-9, 0.1 * r, 0.25 * r, r / 3.0}) {
+      uint32_t hint = 0u, cube_hint = 0u;
+      for (int n = 0; n < 6000; ++n) {
+        const int32_t i = rng.range(0, d.nx), j = rng.range(0, d.ny), k = rng.range(0, d.nz);
+        const int32_t di = rng.range(-6, 6), dj = rng.range(-6, 6), dk = rng.range(-4, 4);
+        tdo_vec3 a, b;
+        switch (n % 6) {
+          case 0:  // lattice point to lattice point
+            a = at(i, j, k, 0.0);
+            b = at(i + di, j + dj, k + dk, 0.0);
+            break;
+          case 1:  // voxel centre to voxel centre
+            a = at(i, j, k, 0.5);
+            b = at(i + di, j + dj, k + dk, 0.5);
+            break;
+          case 2: {  // pure diagonal from a corner or a centre
+            const double f = rng.below(2) == 0u ? 0.0 : 0.5;
+            a = at(i, j, k, f);
+            b = at(i + di, j + (rng.below(2) == 0u ? di : -di), k + (rng.below(2) == 0u ? di : 0),
+                   f);
+            break;
+          }
+          case 3:  // axis-parallel on a voxel face or edge
+            a = at(i, j, k, 0.0);
+            b = a;
+            b.x += di * r;
+            if (rng.below(2) == 0u) a.y += 0.5 * r, b.y += 0.5 * r;
+            break;
+          case 4:  // centre to lattice point
+            a = at(i, j, k, 0.5);
+            b = at(i + di, j + dj, k + dk, 0.0);
+            break;
+          default:  // random
+            a = at(i, j, k, rng.uniform());
+            b = at(i + di, j + dj, k + dk, rng.uniform());
+            break;
+        }
+        if (!inside(a) || !inside(b)) continue;
+        const int exact = tdo_collision_segment_clear(mg.grid(), a, b, c);
+        ASSERT_EQ(tdo_internal::segment_clear_steered(mg.grid(), a, b, c, nullptr, nullptr), exact)
+            << "c " << c << " kind " << n % 6 << " a (" << a.x << ", " << a.y << ", " << a.z
+            << ") b (" << b.x << ", " << b.y << ", " << b.z << ")";
+        ASSERT_EQ(tdo_internal::segment_clear_steered(mg.grid(), a, b, c, &hint, &cube_hint), exact)
+            << "hinted, c " << c << " kind " << n % 6;
+        ++compared;
+        (exact == 1 ? clear : blocked) += 1;
+      }
+    }
+  }
+  EXPECT_GT(compared, 40000);
+  EXPECT_GT(clear, 6000);
+  EXPECT_GT(blocked, 20000);
+}
+
 }  // namespace

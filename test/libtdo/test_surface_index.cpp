@@ -261,4 +261,25 @@ TEST(SurfaceIndexUpdate, GivenCubesSetAndCleared_WhenUpdated_ThenTheIndexEqualsA
   }
 }
 
+TEST(SurfaceIndexMask, GivenLocalVoxelRanges_WhenMasked_ThenExactlyTheBitsInside) {
+  // Ranges reaching past the brick on either side, empty ones, single voxels.
+  for (int64_t lx = -2; lx <= 4; ++lx)
+    for (int64_t hx = lx - 1; hx <= 5; ++hx)
+      for (int64_t ly = -1; ly <= 3; ly += 2)
+        for (int64_t hy = ly; hy <= 4; hy += 2)
+          for (int64_t lz = -1; lz <= 4; lz += 3)
+            for (int64_t hz = lz - 1; hz <= 4; hz += 2) {
+              const int64_t lo[3] = {lx, ly, lz}, hi[3] = {hx, hy, hz};
+              uint64_t want = 0u;
+              for (uint32_t b = 0; b < 64u; ++b) {
+                const int64_t v[3] = {b & 3u, (b >> 2) & 3u, b >> 4};
+                bool in = true;
+                for (int a = 0; a < 3; ++a) in = in && v[a] >= lo[a] && v[a] <= hi[a];
+                if (in) want |= uint64_t{1} << b;
+              }
+              ASSERT_EQ(tdo_internal::brick_local_mask(lo, hi), want)
+                  << lx << " " << hx << " " << ly << " " << hy << " " << lz << " " << hz;
+            }
+}
+
 }  // namespace
