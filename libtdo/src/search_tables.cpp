@@ -38,7 +38,11 @@ struct DjQueue {
   uint32_t queued;
   double inv_width;  // 1/m
 
-  uint64_t bucket(double d) const { return static_cast<uint64_t>(d * inv_width); }
+  // (through int64_t: the keys stay far below 2^63 buckets, and the signed conversion is one
+  // instruction where the unsigned one tests the range first)
+  uint64_t bucket(double d) const {
+    return static_cast<uint64_t>(static_cast<int64_t>(d * inv_width));
+  }
   void insert(uint32_t v, uint64_t b) {
     uint32_t& h = head[b & (kDjRing - 1u)];
     next[v] = h;
@@ -107,6 +111,38 @@ __attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double
   return cells;
 }
 #endif
+
+// The cells of row k of u's block (its middle cell at r) whose cost test passes, by the SSE2 pairs.
+inline uint32_t row_cells(__m128d vdu, const double* r, const RowLengths& lens, int k) {
+  const int lo =
+      _mm_movemask_pd(_mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
+  const int hi =
+      _mm_movemask_pd(_mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
+  return static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
+}
+
+// The direction mask of each row of three of a block.
+constexpr uint32_t row_dirs(int k) { return dirs_of_cells(7u << (3 * k)); }
+constexpr uint32_t kRowDirs[9] = {row_dirs(0), row_dirs(1), row_dirs(2), row_dirs(3), row_dirs(4),
+                                  row_dirs(5), row_dirs(6), row_dirs(7), row_dirs(8)};
+
+// The cells of the block of a voxel near an end of the table (part of its block lies outside
+// [0, nvox)): a row without legal steps is skipped, a row read inside the table is tested as in
+// the inner loop, and the cells of a row that reaches outside it all pass here (step() tests them).
+uint32_t edge_cells(const double* dist, uint32_t u, uint32_t nvox, const int64_t* rows,
+                    const RowLengths& lens, double du, uint32_t moves) {
+  const __m128d vdu = _mm_set1_pd(du);
+  uint32_t cells = 0;
+  for (int k = 0; k < 9; ++k) {
+    if ((moves & kRowDirs[k]) == 0u) continue;
+    const int64_t r = static_cast<int64_t>(u) + rows[k];
+    if (r >= 1 && r + 2 <= static_cast<int64_t>(nvox))
+      cells |= row_cells(vdu, dist + r, lens, k);
+    else
+      cells |= 7u << (3 * k);
+  }
+  return cells;
+}
 #endif
 
 }  // namespace
@@ -180,13 +216,15 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         if (!(nd < dist[w])) return;
         const uint32_t pw = qu.prev[w];
         if (pw == kDjSettled) return;
+        const uint64_t b = qu.bucket(nd);
         if (pw != kNil) {
           const uint64_t bw = qu.bucket(dist[w]);
           if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
+          dist[w] = nd;
+          if (b == bw) return;  // lowered within its bucket: its place in the queue stays
           qu.unlink(w, bw);
         }
         dist[w] = nd;
-        const uint64_t b = qu.bucket(nd);
         qu.insert(w, b > cur ? b : cur + 1u);
       };
       const uint32_t moves = g->moves[u];
@@ -202,23 +240,21 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
 #endif
         const __m128d vdu = _mm_set1_pd(du);
 #pragma GCC unroll 9
-        for (int k = 0; k < 9 && !avx2; ++k) {
-          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
-          const int lo = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
-          const int hi = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
-          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
-        }
+        for (int k = 0; k < 9 && !avx2; ++k)
+          cells |= row_cells(vdu, dist + (static_cast<int64_t>(u) + rows[k]), lens, k);
         for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
-      } else
-#endif
-          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+      } else if (moves != 0u) {
+        const uint32_t cells = edge_cells(dist, u, nvox, rows, lens, du, moves);
+        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+      }
+#else
+      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
 #pragma GCC unroll 26
         for (int e = 0; e < kNumDirs; ++e) step(e);
       } else {
         for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
+#endif
       // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
       // a path's summed cost. No later test changes (a settled key fails every cost test).
       dist[u] = du * (1.0 - 1e-12);
