@@ -96,10 +96,8 @@ RowLengths row_lengths(const tdo_search* ctx) {
 // The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
 // time (the row's three and the next voxel, whose length is +inf). The same additions and
 // comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
-__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
-                                                                    const int64_t* rows,
-                                                                    const RowLengths& lens,
-                                                                    double du) {
+__attribute__((target("avx2"))) uint32_t lower_cells_avx2(const double* at_u, const int64_t* rows,
+                                                          const RowLengths& lens, double du) {
   const __m256d vdu = _mm256_set1_pd(du);
   uint32_t cells = 0;
 #pragma GCC unroll 9
@@ -145,15 +143,9 @@ uint32_t edge_cells(const double* dist, uint32_t u, uint32_t nvox, const int64_t
 }
 #endif
 
-}  // namespace
-
-// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
-// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
-// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
-// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
-// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
-// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
-bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+// exact_lower_bounds's Dijkstra; kAvx2: the block tests by lower_cells_avx2 (flood_avx2 only).
+template <bool kAvx2>
+bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   double* dist = ctx->dj_dist;
   const uint32_t nvox = g->nvox;
   DjQueue qu;
@@ -175,11 +167,6 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   const uint32_t inner_lo = static_cast<uint32_t>(reach);
   // (reach + 1: the AVX2 test reads one voxel past the block)
   const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
-#if defined(TDO_DJ_AVX2)
-  const bool avx2 = __builtin_cpu_supports("avx2");
-#else
-  const bool avx2 = false;  // no AVX2 path in this build (clang, other targets): the SSE2 loop
-#endif
   int64_t rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
 #endif
@@ -236,11 +223,11 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         // step order: a step changes the key of its own voxel alone, so the tests stay true.
         uint32_t cells = 0;
 #if defined(TDO_DJ_AVX2)
-        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
+        if constexpr (kAvx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
 #endif
         const __m128d vdu = _mm_set1_pd(du);
 #pragma GCC unroll 9
-        for (int k = 0; k < 9 && !avx2; ++k)
+        for (int k = 0; k < 9 && !kAvx2; ++k)
           cells |= row_cells(vdu, dist + (static_cast<int64_t>(u) + rows[k]), lens, k);
         for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       } else if (moves != 0u) {
@@ -273,6 +260,32 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   for (uint32_t v = 0; v < nvox; ++v)
     if (qu.prev[v] != kDjSettled) dist[v] = rest;
   return true;
+}
+
+#if defined(TDO_DJ_AVX2)
+// The Dijkstra compiled for AVX2, lower_cells_avx2 inlined into its loop (flatten: the template
+// itself is compiled for the baseline target). The same additions and comparisons, so the same
+// keys.
+__attribute__((target("avx2"), noinline, flatten)) bool flood_avx2(tdo_search* ctx,
+                                                                   const tdo_grid* g, uint32_t root,
+                                                                   uint32_t other) {
+  return flood<true>(ctx, g, root, other);
+}
+#endif
+
+}  // namespace
+
+// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
+// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
+// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
+// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
+// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
+// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
+bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+#if defined(TDO_DJ_AVX2)
+  if (__builtin_cpu_supports("avx2")) return flood_avx2(ctx, g, root, other);
+#endif
+  return flood<false>(ctx, g, root, other);  // no AVX2 (processor, or clang and other targets)
 }
 
 namespace {
