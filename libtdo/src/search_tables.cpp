@@ -173,22 +173,27 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   double limit = HUGE_VAL;
   bool reached = false;
   uint64_t cur = 0;  // current bucket
+  // The smallest key beyond the limit (the voxels of the bucket where the Dijkstra stops that lie
+  // beyond it: so does every later one); +inf while none is.
+  double rest = HUGE_VAL;
   while (qu.queued > 0) {
     uint32_t u = qu.head[cur & (kDjRing - 1u)];
     if (u == kNil) {
       ++cur;
       continue;
     }
-    bool over = false;  // a voxel of this bucket is beyond the limit: so is every later one
+    // The bucket's list is taken out of the queue whole and walked: no step joins or leaves it
+    // (see DjQueue), so its voxels need no unlinking one by one.
+    qu.head[cur & (kDjRing - 1u)] = kNil;
     while (u != kNil) {
       const uint32_t after = qu.next[u];
       const double du = dist[u];
+      --qu.queued;
       if (du > limit) {
-        over = true;
+        rest = du < rest ? du : rest;
         u = after;
         continue;
       }
-      qu.unlink(u, cur);
       qu.prev[u] = kDjSettled;
       if (u == other) {
         reached = true;
@@ -196,17 +201,17 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
       }
       // The cost test comes first: a settled neighbour fails it too (its key lies at most one
       // bucket, under res, above du, and a step adds at least res), so most steps end after one
-      // load; the settled test after it only guards the list being walked.
+      // load; the bucket test after it only guards the list being walked and the settled voxels
+      // (their keys lie in buckets up to the current one).
       const auto step = [&](int e) {
         const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
         const double nd = du + ctx->step_len[e];
         if (!(nd < dist[w])) return;
         const uint32_t pw = qu.prev[w];
-        if (pw == kDjSettled) return;
         const uint64_t b = qu.bucket(nd);
         if (pw != kNil) {
           const uint64_t bw = qu.bucket(dist[w]);
-          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
+          if (bw <= cur) return;  // cannot happen (see DjQueue)
           dist[w] = nd;
           if (b == bw) return;  // lowered within its bucket: its place in the queue stays
           qu.unlink(w, bw);
@@ -247,14 +252,13 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
       dist[u] = du * (1.0 - 1e-12);
       u = after;
     }
-    if (over) break;
+    if (rest < HUGE_VAL) break;
     ++cur;
   }
   if (!reached) return false;
   // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
   // the queue ran empty they are not connected to the root and keep HUGE_VAL.
-  if (qu.queued == 0) return true;
-  double rest = HUGE_VAL;
+  if (!(rest < HUGE_VAL)) return true;
   for (uint32_t k = 0; k < kDjRing; ++k)
     for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
   for (uint32_t v = 0; v < nvox; ++v)
