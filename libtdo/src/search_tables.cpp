@@ -35,7 +35,6 @@ struct DjQueue {
   uint32_t* next;
   uint32_t* prev;
   uint32_t head[kDjRing];
-  uint32_t queued;
   double inv_width;  // 1/m
 
   // (through int64_t: the keys stay far below 2^63 buckets, and the signed conversion is one
@@ -49,7 +48,6 @@ struct DjQueue {
     prev[v] = kDjHead;
     if (h != kNil) prev[h] = v;
     h = v;
-    ++queued;
   }
   void unlink(uint32_t v, uint64_t b) {
     if (prev[v] == kDjHead)
@@ -57,7 +55,6 @@ struct DjQueue {
     else
       next[prev[v]] = next[v];
     if (next[v] != kNil) prev[next[v]] = prev[v];
-    --queued;
   }
 };
 
@@ -161,7 +158,6 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   qu.next = ctx->dj_heap;
   qu.prev = ctx->dj_pos;
   for (uint32_t k = 0; k < kDjRing; ++k) qu.head[k] = kNil;
-  qu.queued = 0;
   qu.inv_width = 1.0 / (kDjWidth * g->desc.res);
   for (uint32_t v = 0; v < nvox; ++v) {
     dist[v] = HUGE_VAL;
@@ -185,19 +181,23 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   // The smallest key beyond the limit (the voxels of the bucket where the Dijkstra stops that lie
   // beyond it: so does every later one); +inf while none is.
   double rest = HUGE_VAL;
-  while (qu.queued > 0) {
+  // Every queued voxel lies in a bucket of the ring: kDjRing empty buckets in a row, and the queue
+  // is empty.
+  uint32_t empty = 0;
+  while (empty < kDjRing) {
     uint32_t u = qu.head[cur & (kDjRing - 1u)];
     if (u == kNil) {
+      ++empty;
       ++cur;
       continue;
     }
+    empty = 0;
     // The bucket's list is taken out of the queue whole and walked: no step joins or leaves it
     // (see DjQueue), so its voxels need no unlinking one by one.
     qu.head[cur & (kDjRing - 1u)] = kNil;
     while (u != kNil) {
       const uint32_t after = qu.next[u];
       const double du = dist[u];
-      --qu.queued;
       if (du > limit) {
         rest = du < rest ? du : rest;
         u = after;
