@@ -90,16 +90,15 @@ RowLengths row_lengths(const tdo_search* ctx) {
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define TDO_DJ_AVX2 1
-// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
-// time (the row's three and the next voxel, whose length is +inf). The same additions and
+// The steps of the block around u whose cost test passes (bit d: direction d), four cells of a row
+// at a time (the row's three and the next voxel, whose length is +inf). The same additions and
 // comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
 // The rows start from three pointers, one per layer, a row stride apart (sy, sz: the grid's
 // strides), so the loop keeps strides in registers instead of nine row offsets.
-__attribute__((target("avx2"))) uint32_t lower_cells_avx2(const double* at_u, int64_t sy,
-                                                          int64_t sz, const RowLengths& lens,
-                                                          double du) {
+__attribute__((target("avx2"))) uint32_t lower_dirs_avx2(const double* at_u, int64_t sy, int64_t sz,
+                                                         const RowLengths& lens, double du) {
   const __m256d vdu = _mm256_set1_pd(du);
-  uint32_t cells = 0;
+  uint32_t dirs = 0;
   const double* layer = at_u - 1 - sz - sy;  // the first cell of row 0
 #pragma GCC unroll 3
   for (int z = 0; z < 3; ++z) {
@@ -107,12 +106,15 @@ __attribute__((target("avx2"))) uint32_t lower_cells_avx2(const double* at_u, in
     for (int y = 0; y < 3; ++y) {
       const int k = 3 * z + y;
       const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
-      const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(layer + y * sy), _CMP_LT_OQ);
-      cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
+      __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(layer + y * sy), _CMP_LT_OQ);
+      // The middle row's cells -1 and +1 side by side (its centre never passes): the mask comes
+      // out by direction, rows after it one bit lower than by cell.
+      if (k == 4) lt = _mm256_permute4x64_pd(lt, 0xD8);  // lanes 0, 2, 1, 3
+      dirs |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (k > 4 ? 3 * k - 1 : 3 * k);
     }
     layer += sz;
   }
-  return cells;
+  return dirs;  // (lane 3 is never set)
 }
 #endif
 
@@ -149,7 +151,7 @@ uint32_t edge_cells(const double* dist, uint32_t u, uint32_t nvox, const int64_t
 }
 #endif
 
-// exact_lower_bounds's Dijkstra; kAvx2: the block tests by lower_cells_avx2 (flood_avx2 only).
+// exact_lower_bounds's Dijkstra; kAvx2: the block tests by lower_dirs_avx2 (flood_avx2 only).
 template <bool kAvx2>
 bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   double* dist = ctx->dj_dist;
@@ -235,15 +237,19 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
         // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
         // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
         // step order: a step changes the key of its own voxel alone, so the tests stay true.
-        uint32_t cells = 0;
+        uint32_t dirs = 0;
 #if defined(TDO_DJ_AVX2)
-        if constexpr (kAvx2) cells = lower_cells_avx2(dist + u, g->stride_y, g->stride_z, lens, du);
+        if constexpr (kAvx2) dirs = lower_dirs_avx2(dist + u, g->stride_y, g->stride_z, lens, du);
 #endif
-        const __m128d vdu = _mm_set1_pd(du);
+        if constexpr (!kAvx2) {
+          uint32_t cells = 0;
+          const __m128d vdu = _mm_set1_pd(du);
 #pragma GCC unroll 9
-        for (int k = 0; k < 9 && !kAvx2; ++k)
-          cells |= row_cells(vdu, dist + (static_cast<int64_t>(u) + rows[k]), lens, k);
-        for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+          for (int k = 0; k < 9; ++k)
+            cells |= row_cells(vdu, dist + (static_cast<int64_t>(u) + rows[k]), lens, k);
+          dirs = dirs_of_cells(cells);
+        }
+        for (uint32_t m = dirs & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       } else if (moves != 0u) {
         const uint32_t cells = edge_cells(dist, u, nvox, rows, lens, du, moves);
         for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
@@ -276,7 +282,7 @@ bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
 }
 
 #if defined(TDO_DJ_AVX2)
-// The Dijkstra compiled for AVX2, lower_cells_avx2 inlined into its loop (flatten: the template
+// The Dijkstra compiled for AVX2, lower_dirs_avx2 inlined into its loop (flatten: the template
 // itself is compiled for the baseline target). The same additions and comparisons, so the same
 // keys.
 __attribute__((target("avx2"), noinline, flatten)) bool flood_avx2(tdo_search* ctx,
