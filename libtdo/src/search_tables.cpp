@@ -35,17 +35,19 @@ struct DjQueue {
   uint32_t* next;
   uint32_t* prev;
   uint32_t head[kDjRing];
-  uint32_t queued;
   double inv_width;  // 1/m
 
-  uint64_t bucket(double d) const { return static_cast<uint64_t>(d * inv_width); }
+  // (through int64_t: the keys stay far below 2^63 buckets, and the signed conversion is one
+  // instruction where the unsigned one tests the range first)
+  uint64_t bucket(double d) const {
+    return static_cast<uint64_t>(static_cast<int64_t>(d * inv_width));
+  }
   void insert(uint32_t v, uint64_t b) {
     uint32_t& h = head[b & (kDjRing - 1u)];
     next[v] = h;
     prev[v] = kDjHead;
     if (h != kNil) prev[h] = v;
     h = v;
-    ++queued;
   }
   void unlink(uint32_t v, uint64_t b) {
     if (prev[v] == kDjHead)
@@ -53,7 +55,6 @@ struct DjQueue {
     else
       next[prev[v]] = next[v];
     if (next[v] != kNil) prev[next[v]] = prev[v];
-    --queued;
   }
 };
 
@@ -89,42 +90,76 @@ RowLengths row_lengths(const tdo_search* ctx) {
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define TDO_DJ_AVX2 1
-// The cells of the block around u whose cost test passes (bit c: cell c), four cells of a row at a
-// time (the row's three and the next voxel, whose length is +inf). The same additions and
+// The steps of the block around u whose cost test passes (bit d: direction d), four cells of a row
+// at a time (the row's three and the next voxel, whose length is +inf). The same additions and
 // comparisons as the SSE2 path, so the same bits; used when the processor has AVX2.
-__attribute__((target("avx2"), noinline)) uint32_t lower_cells_avx2(const double* at_u,
-                                                                    const int64_t* rows,
-                                                                    const RowLengths& lens,
-                                                                    double du) {
+// The rows start from three pointers, one per layer, a row stride apart (sy, sz: the grid's
+// strides), so the loop keeps strides in registers instead of nine row offsets.
+__attribute__((target("avx2"))) uint32_t lower_dirs_avx2(const double* at_u, int64_t sy, int64_t sz,
+                                                         const RowLengths& lens, double du) {
   const __m256d vdu = _mm256_set1_pd(du);
+  uint32_t dirs = 0;
+  const double* layer = at_u - 1 - sz - sy;  // the first cell of row 0
+#pragma GCC unroll 3
+  for (int z = 0; z < 3; ++z) {
+#pragma GCC unroll 3
+    for (int y = 0; y < 3; ++y) {
+      const int k = 3 * z + y;
+      const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
+      __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(layer + y * sy), _CMP_LT_OQ);
+      // The middle row's cells -1 and +1 side by side (its centre never passes): the mask comes
+      // out by direction, rows after it one bit lower than by cell.
+      if (k == 4) lt = _mm256_permute4x64_pd(lt, 0xD8);  // lanes 0, 2, 1, 3
+      dirs |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (k > 4 ? 3 * k - 1 : 3 * k);
+    }
+    layer += sz;
+  }
+  return dirs;  // (lane 3 is never set)
+}
+#endif
+
+// The cells of row k of u's block (its middle cell at r) whose cost test passes, by the SSE2 pairs.
+inline uint32_t row_cells(__m128d vdu, const double* r, const RowLengths& lens, int k) {
+  const int lo =
+      _mm_movemask_pd(_mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
+  const int hi =
+      _mm_movemask_pd(_mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
+  return static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
+}
+
+// The direction mask of each row of three of a block.
+constexpr uint32_t row_dirs(int k) { return dirs_of_cells(7u << (3 * k)); }
+constexpr uint32_t kRowDirs[9] = {row_dirs(0), row_dirs(1), row_dirs(2), row_dirs(3), row_dirs(4),
+                                  row_dirs(5), row_dirs(6), row_dirs(7), row_dirs(8)};
+
+// The cells of the block of a voxel near an end of the table (part of its block lies outside
+// [0, nvox)): a row without legal steps is skipped, a row read inside the table is tested as in
+// the inner loop, and the cells of a row that reaches outside it all pass here (step() tests them).
+uint32_t edge_cells(const double* dist, uint32_t u, uint32_t nvox, const int64_t* rows,
+                    const RowLengths& lens, double du, uint32_t moves) {
+  const __m128d vdu = _mm_set1_pd(du);
   uint32_t cells = 0;
-#pragma GCC unroll 9
   for (int k = 0; k < 9; ++k) {
-    const __m256d sum = _mm256_add_pd(vdu, _mm256_load_pd(lens.quad[k]));
-    const __m256d lt = _mm256_cmp_pd(sum, _mm256_loadu_pd(at_u + rows[k] - 1), _CMP_LT_OQ);
-    cells |= static_cast<uint32_t>(_mm256_movemask_pd(lt)) << (3 * k);  // lane 3 is never set
+    if ((moves & kRowDirs[k]) == 0u) continue;
+    const int64_t r = static_cast<int64_t>(u) + rows[k];
+    if (r >= 1 && r + 2 <= static_cast<int64_t>(nvox))
+      cells |= row_cells(vdu, dist + r, lens, k);
+    else
+      cells |= 7u << (3 * k);
   }
   return cells;
 }
 #endif
-#endif
 
-}  // namespace
-
-// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
-// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
-// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
-// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
-// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
-// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
-bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+// exact_lower_bounds's Dijkstra; kAvx2: the block tests by lower_dirs_avx2 (flood_avx2 only).
+template <bool kAvx2>
+bool flood(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
   double* dist = ctx->dj_dist;
   const uint32_t nvox = g->nvox;
   DjQueue qu;
   qu.next = ctx->dj_heap;
   qu.prev = ctx->dj_pos;
   for (uint32_t k = 0; k < kDjRing; ++k) qu.head[k] = kNil;
-  qu.queued = 0;
   qu.inv_width = 1.0 / (kDjWidth * g->desc.res);
   for (uint32_t v = 0; v < nvox; ++v) {
     dist[v] = HUGE_VAL;
@@ -139,33 +174,37 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
   const uint32_t inner_lo = static_cast<uint32_t>(reach);
   // (reach + 1: the AVX2 test reads one voxel past the block)
   const uint32_t inner_hi = static_cast<int64_t>(nvox) > reach + 1 ? nvox - inner_lo - 1u : 0u;
-#if defined(TDO_DJ_AVX2)
-  const bool avx2 = __builtin_cpu_supports("avx2");
-#else
-  const bool avx2 = false;  // no AVX2 path in this build (clang, other targets): the SSE2 loop
-#endif
   int64_t rows[9];
   for (int k = 0; k < 9; ++k) rows[k] = ctx->block_row[k];
 #endif
   double limit = HUGE_VAL;
   bool reached = false;
   uint64_t cur = 0;  // current bucket
-  while (qu.queued > 0) {
+  // The smallest key beyond the limit (the voxels of the bucket where the Dijkstra stops that lie
+  // beyond it: so does every later one); +inf while none is.
+  double rest = HUGE_VAL;
+  // Every queued voxel lies in a bucket of the ring: kDjRing empty buckets in a row, and the queue
+  // is empty.
+  uint32_t empty = 0;
+  while (empty < kDjRing) {
     uint32_t u = qu.head[cur & (kDjRing - 1u)];
     if (u == kNil) {
+      ++empty;
       ++cur;
       continue;
     }
-    bool over = false;  // a voxel of this bucket is beyond the limit: so is every later one
+    empty = 0;
+    // The bucket's list is taken out of the queue whole and walked: no step joins or leaves it
+    // (see DjQueue), so its voxels need no unlinking one by one.
+    qu.head[cur & (kDjRing - 1u)] = kNil;
     while (u != kNil) {
       const uint32_t after = qu.next[u];
       const double du = dist[u];
       if (du > limit) {
-        over = true;
+        rest = du < rest ? du : rest;
         u = after;
         continue;
       }
-      qu.unlink(u, cur);
       qu.prev[u] = kDjSettled;
       if (u == other) {
         reached = true;
@@ -173,20 +212,22 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
       }
       // The cost test comes first: a settled neighbour fails it too (its key lies at most one
       // bucket, under res, above du, and a step adds at least res), so most steps end after one
-      // load; the settled test after it only guards the list being walked.
+      // load; the bucket test after it only guards the list being walked and the settled voxels
+      // (their keys lie in buckets up to the current one).
       const auto step = [&](int e) {
         const uint32_t w = static_cast<uint32_t>(static_cast<int64_t>(u) + ctx->offset[e]);
         const double nd = du + ctx->step_len[e];
         if (!(nd < dist[w])) return;
         const uint32_t pw = qu.prev[w];
-        if (pw == kDjSettled) return;
+        const uint64_t b = qu.bucket(nd);
         if (pw != kNil) {
           const uint64_t bw = qu.bucket(dist[w]);
-          if (bw <= cur) return;  // cannot happen (see DjQueue); keeps the list being walked
+          if (bw <= cur) return;  // cannot happen (see DjQueue)
+          dist[w] = nd;
+          if (b == bw) return;  // lowered within its bucket: its place in the queue stays
           qu.unlink(w, bw);
         }
         dist[w] = nd;
-        const uint64_t b = qu.bucket(nd);
         qu.insert(w, b > cur ? b : cur + 1u);
       };
       const uint32_t moves = g->moves[u];
@@ -196,47 +237,74 @@ bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint3
         // contiguous (a voxel on a face of the grid reads voxels of other rows there, inside the
         // table, whose steps `moves` drops). Only the legal steps that lower a key are taken, in
         // step order: a step changes the key of its own voxel alone, so the tests stay true.
-        uint32_t cells = 0;
+        uint32_t dirs = 0;
 #if defined(TDO_DJ_AVX2)
-        if (avx2) cells = lower_cells_avx2(dist + u, rows, lens, du);
+        if constexpr (kAvx2) dirs = lower_dirs_avx2(dist + u, g->stride_y, g->stride_z, lens, du);
 #endif
-        const __m128d vdu = _mm_set1_pd(du);
+        if constexpr (!kAvx2) {
+          uint32_t cells = 0;
+          const __m128d vdu = _mm_set1_pd(du);
 #pragma GCC unroll 9
-        for (int k = 0; k < 9 && !avx2; ++k) {
-          const double* r = dist + (static_cast<int64_t>(u) + rows[k]);
-          const int lo = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.lo[k])), _mm_loadu_pd(r - 1)));
-          const int hi = _mm_movemask_pd(
-              _mm_cmplt_pd(_mm_add_pd(vdu, _mm_load_pd(lens.hi[k])), _mm_loadu_pd(r)));
-          cells |= static_cast<uint32_t>(lo | (hi << 1)) << (3 * k);  // hi: bit 1 alone
+          for (int k = 0; k < 9; ++k)
+            cells |= row_cells(vdu, dist + (static_cast<int64_t>(u) + rows[k]), lens, k);
+          dirs = dirs_of_cells(cells);
         }
+        for (uint32_t m = dirs & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
+      } else if (moves != 0u) {
+        const uint32_t cells = edge_cells(dist, u, nvox, rows, lens, du, moves);
         for (uint32_t m = dirs_of_cells(cells) & moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
-      } else
-#endif
-          if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
+      }
+#else
+      if (moves == kAllMoves) {  // open space: the steps in the same order, without the mask
 #pragma GCC unroll 26
         for (int e = 0; e < kNumDirs; ++e) step(e);
       } else {
         for (uint32_t m = moves; m != 0; m &= m - 1u) step(__builtin_ctz(m));
       }
+#endif
       // Settled: its bound loses 1e-12 relative so that rounding of the sums never lifts it above
       // a path's summed cost. No later test changes (a settled key fails every cost test).
       dist[u] = du * (1.0 - 1e-12);
       u = after;
     }
-    if (over) break;
+    if (rest < HUGE_VAL) break;
     ++cur;
   }
   if (!reached) return false;
   // Unsettled voxels: the smallest key left in the queue bounds their distance from below. When
   // the queue ran empty they are not connected to the root and keep HUGE_VAL.
-  if (qu.queued == 0) return true;
-  double rest = HUGE_VAL;
+  if (!(rest < HUGE_VAL)) return true;
   for (uint32_t k = 0; k < kDjRing; ++k)
     for (uint32_t v = qu.head[k]; v != kNil; v = qu.next[v]) rest = dist[v] < rest ? dist[v] : rest;
   for (uint32_t v = 0; v < nvox; ++v)
     if (qu.prev[v] != kDjSettled) dist[v] = rest;
   return true;
+}
+
+#if defined(TDO_DJ_AVX2)
+// The Dijkstra compiled for AVX2, lower_dirs_avx2 inlined into its loop (flatten: the template
+// itself is compiled for the baseline target). The same additions and comparisons, so the same
+// keys.
+__attribute__((target("avx2"), noinline, flatten)) bool flood_avx2(tdo_search* ctx,
+                                                                   const tdo_grid* g, uint32_t root,
+                                                                   uint32_t other) {
+  return flood<true>(ctx, g, root, other);
+}
+#endif
+
+}  // namespace
+
+// Lower bounds of the grid distance (m) from every voxel to voxel `root` in dist[]: exact for the
+// voxels the Dijkstra settled (26-connected legal moves, the search's step lengths), the key it
+// stopped at for the others. Moves are symmetric (a step is legal when the box of its two voxels
+// is free), so distances from the root are distances to it. Bounded: each voxel is settled once,
+// and between two settled voxels the current bucket passes fewer than kDjRing empty ones.
+// @return false when the Dijkstra ran out without reaching voxel `other` (no path).
+bool exact_lower_bounds(tdo_search* ctx, const tdo_grid* g, uint32_t root, uint32_t other) {
+#if defined(TDO_DJ_AVX2)
+  if (__builtin_cpu_supports("avx2")) return flood_avx2(ctx, g, root, other);
+#endif
+  return flood<false>(ctx, g, root, other);  // no AVX2 (processor, or clang and other targets)
 }
 
 namespace {

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <queue>
+#include <utility>
 #include <vector>
 
 #include "../../libtdo/src/search_tables.h"
@@ -1527,4 +1530,100 @@ TEST(SearchTables, GivenDistanceKeys_WhenStoredAsFloats_ThenEachIsTheLargestFloa
     }
     EXPECT_EQ(table[n], -1.0f);
   }
+}
+
+// The retry's grid distances (search_tables.cpp, exact_lower_bounds: a bucketed Dijkstra, walked
+// by blocks of 3x3x3 voxels, rows of them near the table's ends) against a binary-heap Dijkstra
+// over the independent legal steps: the same sums in the same precision, so bit for bit the same
+// keys. Settled (distance at most twice the other end's): the distance less 1e-12 relative; the
+// rest, when the Dijkstra stopped at that radius, the smallest distance beyond it; +inf where it
+// ran out. Random grids, thin ones (every voxel near an end of the table) and open ones (the
+// radius cuts the flood), both ends at random, the same voxel too.
+std::vector<double> reference_grid_distances(const VoxelMap& m, const tdo_voxel& root) {
+  std::vector<double> dist(m.size(), kInfty);
+  using Item = std::pair<double, size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  dist[m.idx(root)] = 0.0;
+  open.push(Item{0.0, m.idx(root)});
+  while (!open.empty()) {
+    const Item top = open.top();
+    open.pop();
+    if (top.first > dist[top.second]) continue;
+    const tdo_voxel u = m.voxel(top.second);
+    for (int32_t dz = -1; dz <= 1; ++dz)
+      for (int32_t dy = -1; dy <= 1; ++dy)
+        for (int32_t dx = -1; dx <= 1; ++dx) {
+          const tdo_voxel w{u.i + dx, u.j + dy, u.k + dz};
+          if (!tdo_test::legal_step(m, u, w)) continue;
+          const double nd = top.first + tdo_test::step_length(m.res, u, w);
+          if (nd < dist[m.idx(w)]) {
+            dist[m.idx(w)] = nd;
+            open.push(Item{nd, m.idx(w)});
+          }
+        }
+  }
+  return dist;
+}
+
+TEST(SearchTables, GivenRandomGrids_WhenComputingGridDistances_ThenTheKeysOfAReferenceDijkstra) {
+  const uint32_t n = 20u * 20u * 8u;
+  tdo_capacity cap = make_cap(n, 27u * n, n + 1u);
+#if defined(TDO_SEARCH_INDEX16)
+  cap.max_nodes = 0x7FFFu;
+#endif
+  cap.exact_heuristic = 1u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  Rng rng(20261207u);
+  const double resolutions[] = {1.0, 0.5, 0.3, 2.0};
+  int cut = 0, ran_out = 0, unreachable = 0;
+  for (int round = 0; round < 300; ++round) {
+    const int shape = round % 3;  // 0: small, 1: thin (one to three layers or rows), 2: open
+    const int32_t nx = shape == 2 ? rng.range(8, 20) : rng.range(1, 12);
+    const int32_t ny = shape == 2   ? rng.range(8, 20)
+                       : shape == 1 ? rng.range(1, 3)
+                                    : rng.range(1, 9);
+    const int32_t nz = shape == 2 ? rng.range(3, 8) : rng.range(1, 3);
+    const double density = shape == 2 ? rng.uniform(0.0, 0.15) : rng.uniform(0.0, 0.4);
+    const VoxelMap m =
+        tdo_test::random_voxel_map(rng, nx, ny, nz, resolutions[rng.below(4)], density);
+    std::vector<size_t> free;
+    for (size_t v = 0; v < m.size(); ++v)
+      if (!m.blocked[v]) free.push_back(v);
+    if (free.size() < 2) continue;
+    const size_t root = free[rng.below(static_cast<uint32_t>(free.size()))];
+    size_t other = free[rng.below(static_cast<uint32_t>(free.size()))];
+    if (round % 10 == 0) other = root;
+    ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m), TDO_OK);
+    // A search sets up the context's step tables for this grid (and builds its legal steps).
+    size_t far = root;
+    while (far == root) far = free[rng.below(static_cast<uint32_t>(free.size()))];
+    tdo_search_input in = make_input(pl.grid(), m.center(m.voxel(root)), m.center(m.voxel(far)),
+                                     TDO_SEARCH_BIDIR, 50.0, 20.0);
+    run(pl.search(), in);
+    SCOPED_TRACE(::testing::Message() << "round " << round << " grid " << nx << "x" << ny << "x"
+                                      << nz << " root " << root << " other " << other);
+    const std::vector<double> want = reference_grid_distances(m, m.voxel(root));
+    tdo_search* ctx = pl.search();
+    const bool reached = tdo_internal::exact_lower_bounds(
+        ctx, pl.grid(), static_cast<uint32_t>(root), static_cast<uint32_t>(other));
+    ASSERT_EQ(reached, want[other] < kInfty);
+    if (!reached) {
+      ++unreachable;
+      continue;
+    }
+    const double limit = 2.0 * want[other];
+    double rest = kInfty;  // the smallest distance beyond the radius
+    for (double d : want)
+      if (d > limit && d < rest) rest = d;
+    (rest < kInfty ? cut : ran_out)++;
+    for (size_t v = 0; v < m.size(); ++v) {
+      const double expect = want[v] <= limit ? want[v] * (1.0 - 1e-12) : rest;
+      ASSERT_EQ(bits(ctx->dj_dist[v]), bits(expect))
+          << "voxel " << v << " got " << ctx->dj_dist[v] << " want " << expect;
+    }
+  }
+  EXPECT_GT(cut, 20);
+  EXPECT_GT(ran_out, 20);
+  EXPECT_GT(unreachable, 5);
 }
