@@ -136,7 +136,7 @@ struct Plateau {
   uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
   // Pieces mode only (rigorous_curvature): proven bounds of kappa (1/m) and |dkappa/ds| (1/m^2).
-  double rkappa, rdk;
+  double rkappa, rdk_up, rdk_down;
   // Filled per profile build:
   double level;  // m/s, speed ceiling
   double peak;   // m/s, on the first plateau of a move: the move's peak speed
@@ -163,6 +163,11 @@ struct Boundary {
 };
 
 struct Junction;  // a delta of the trajectory (pieces mode)
+/** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
+struct RigorPart {
+  double s0;           // m
+  double k, up, down;  // 1/m, 1/m^2, 1/m^2 (as Plateau's kappa, dk_up, dk_down)
+};
 
 /** One constant-jerk piece of the profile. */
 struct Phase {
@@ -187,8 +192,9 @@ struct tdo_traj {
   uint8_t* hit;                       // plateau_cap: plateau flagged by a violation
   tdo_internal::Phase* phases;        // max_profile
   tdo_internal::Junction* junctions;  // pieces mode: plateau_cap + max_profile + 2, else nullptr
-  int rigor_ready;       // pieces mode: the plateaus' rkappa / rdk are set for this run
-  uint32_t plateau_cap;  // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
+  int rigor_ready;                 // pieces mode: the plateaus' rkappa / rdk are set for this run
+  tdo_internal::RigorPart* parts;  // pieces mode: kRigorParts per plateau (plateau_cap of them)
+  uint32_t plateau_cap;            // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
   uint32_t n_plateaus;
   uint32_t n_phases;
   double total;  // m, path length
@@ -1634,8 +1640,10 @@ constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's in
 // m: the path's distance must keep clearance - this (half the slack: the samples lie on the path
 // up to rounding)
 constexpr double kPieceClearSlack = 0.5 * kClearanceSlack;
-constexpr uint32_t kRigorParts = 8;     // parameter parts per plateau of a Bezier (bezier_bounds)
-constexpr double kRigorSlackU = 1e-9;   // widening of a plateau's parameter range (inversion)
+constexpr uint32_t kRigorParts = 16;  // parameter parts per plateau of a Bezier (bezier_bounds)
+constexpr double kRigorSlackU = 1e-9;
+constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
+                                       // plateau's parameter range (inversion)
 constexpr uint32_t kEnergyPanels = 16;  // Gauss-Legendre panels per Bezier length, at most
 constexpr double kGl5X[3] = {0.0, 0.5384693101056831, 0.9061798459386640};
 constexpr double kGl5W[3] = {0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
@@ -1663,40 +1671,107 @@ struct Junction {
   uint32_t seg;  // segment joint: the segment that begins here (energy splits); else UINT32_MAX
 };
 
-/** Rigorous bounds of kappa and |kappa_s| of a cubic Bezier over the parameters [ua, ub]: with
- *  B' = h0 + u h1 + u^2 h2, C = B' x B'' (a quadratic), kappa = |C| / |B'|^3 and
- *  |kappa_s| <= |C'| / |B'|^4 + 3 |C| |B''| / |B'|^5; |C| and |B'| bounded by the control points of
- *  their restrictions to [ua, ub] (convex hull; |B'| from below along B' at the middle), |C'| and
- *  |B''| (linear) at the ends. False when |B'| is not bounded away from 0 there. */
-bool bezier_bounds(const BezierCursor& c, double ua, double ub, double* kappa, double* dkappa) {
-  const auto d1 = [&c](double u) { return add(c.h[0], mul(add(c.h[1], mul(c.h[2], u)), u)); };
-  const auto d2 = [&c](double u) { return add(c.h[1], mul(c.h[2], 2.0 * u)); };
-  const tdo_vec3 c01 = cross(c.h[0], c.h[1]), c02 = cross(c.h[0], c.h[2]),
-                 c12 = cross(c.h[1], c.h[2]);
-  const auto cr = [&](double u) { return add(c01, mul(add(mul(c02, 2.0), mul(c12, u)), u)); };
-  const auto dcr = [&](double u) { return mul(add(c02, mul(c12, u)), 2.0); };
+/** [lo, hi] of an interval product. */
+inline void iv_mul(double a0, double a1, double b0, double b1, double* lo, double* hi) {
+  const double p[4] = {a0 * b0, a0 * b1, a1 * b0, a1 * b1};
+  *lo = dmin(dmin(p[0], p[1]), dmin(p[2], p[3]));
+  *hi = dmax(dmax(p[0], p[1]), dmax(p[2], p[3]));
+}
+
+/** Range of the cubic r0 + r1 u + r2 u^2 + r3 u^3 over [ua, ub] (Bernstein coefficients). */
+void cubic_range(const double r[4], double ua, double ub, double* lo, double* hi) {
+  const double du = ub - ua;
+  const double v0 = r[0] + ua * (r[1] + ua * (r[2] + ua * r[3]));
+  const double d1 = (r[1] + ua * (2.0 * r[2] + 3.0 * ua * r[3])) * du;
+  const double d2 = (r[2] + 3.0 * ua * r[3]) * du * du;
+  const double d3 = r[3] * du * du * du;
+  const double b[4] = {v0, v0 + d1 / 3.0, v0 + 2.0 * d1 / 3.0 + d2 / 3.0, v0 + d1 + d2 + d3};
+  *lo = dmin(dmin(b[0], b[1]), dmin(b[2], b[3]));
+  *hi = dmax(dmax(b[0], b[1]), dmax(b[2], b[3]));
+}
+
+/** Rigorous bounds of a planar cubic Bezier over the parameters [ua, ub] (plane normal n): kappa
+ *  and the range [klo, khi] of d|kappa|/ds. With B' = h0 + u h1 + u^2 h2, the signed curvature is
+ *  c / |B'|^3, c = (B' x B'').n a quadratic, and its derivative along s is
+ *  (c' / |B'|^3 - 3 c r / |B'|^5) / |B'| with r = B'.B'' a cubic: interval arithmetic on the
+ *  polynomials' ranges (Bernstein coefficients on [ua, ub]) and on |B'| in [m, M] (its
+ * restriction's control points: m along B' at the middle, M their largest norm). Where c keeps a
+ * sign, |kappa|'s derivative is that sign times it; elsewhere symmetric. False when |B'| may vanish
+ * there. */
+bool bezier_bounds(const BezierCursor& cb, const tdo_vec3& n, double ua, double ub, double* kappa,
+                   double* klo, double* khi) {
+  const tdo_vec3 h0 = cb.h[0], h1 = cb.h[1], h2 = cb.h[2];
+  const auto d1 = [&](double u) { return add(h0, mul(add(h1, mul(h2, u)), u)); };
+  const auto d2 = [&](double u) { return add(h1, mul(h2, 2.0 * u)); };
   const double du = ub - ua;
   const tdo_vec3 q0 = d1(ua), q2 = d1(ub), q1 = add(q0, mul(d2(ua), 0.5 * du));
   const tdo_vec3 mid = d1(0.5 * (ua + ub));
   const double nm = norm(mid);
   if (!(nm > 0.0)) return false;
-  const tdo_vec3 n = mul(mid, 1.0 / nm);
-  const double m = dmin(dot(n, q0), dmin(dot(n, q1), dot(n, q2))) * (1.0 - 1e-12);
+  const tdo_vec3 t = mul(mid, 1.0 / nm);
+  const double m = dmin(dot(t, q0), dmin(dot(t, q1), dot(t, q2))) * (1.0 - 1e-9);
+  const double big = dmax(norm(q0), dmax(norm(q1), norm(q2))) * (1.0 + 1e-9);
   if (!(m > 0.0)) return false;
-  const tdo_vec3 k0 = cr(ua), k2 = cr(ub), k1 = add(k0, mul(dcr(ua), 0.5 * du));
-  const double cmax = dmax(norm(k0), dmax(norm(k1), norm(k2))) * (1.0 + 1e-12);
-  const double dcmax = dmax(norm(dcr(ua)), norm(dcr(ub))) * (1.0 + 1e-12);
-  const double bmax2 = dmax(norm(d2(ua)), norm(d2(ub))) * (1.0 + 1e-12);
-  const double m3 = m * m * m;
-  *kappa = cmax / m3;
-  *dkappa = dcmax / (m3 * m) + 3.0 * cmax * bmax2 / (m3 * m * m);
+  // c(u) = c0 + c1 u + c2 u^2 (B' x B'' = h0 x h1 + 2u h0 x h2 + u^2 h1 x h2).
+  const double c0 = dot(cross(h0, h1), n), c1 = 2.0 * dot(cross(h0, h2), n),
+               c2 = dot(cross(h1, h2), n);
+  const double ca = c0 + ua * (c1 + ua * c2), cbv = c0 + ub * (c1 + ub * c2);
+  const double cm = ca + 0.5 * du * (c1 + 2.0 * c2 * ua);
+  const double slack = 1e-9 * (fabs(c0) + fabs(c1) + fabs(c2)) + 1e-300;
+  const double c_lo = dmin(ca, dmin(cm, cbv)) - slack, c_hi = dmax(ca, dmax(cm, cbv)) + slack;
+  const double dc_a = c1 + 2.0 * c2 * ua, dc_b = c1 + 2.0 * c2 * ub;
+  const double dc_lo = dmin(dc_a, dc_b) - slack, dc_hi = dmax(dc_a, dc_b) + slack;
+  // r(u) = B'.B'' = h0.h1 + u (2 h0.h2 + h1.h1) + u^2 3 h1.h2 + u^3 2 h2.h2.
+  const double r[4] = {dot(h0, h1), 2.0 * dot(h0, h2) + dot(h1, h1), 3.0 * dot(h1, h2),
+                       2.0 * dot(h2, h2)};
+  double r_lo, r_hi;
+  cubic_range(r, ua, ub, &r_lo, &r_hi);
+  const double rs = 1e-9 * (fabs(r[0]) + fabs(r[1]) + fabs(r[2]) + fabs(r[3])) + 1e-300;
+  r_lo -= rs;
+  r_hi += rs;
+  const double m3 = m * m * m, b3 = big * big * big;
+  *kappa = dmax(fabs(c_lo), fabs(c_hi)) / m3 * (1.0 + 1e-9);
+  double t1_lo, t1_hi, cr_lo, cr_hi, t2_lo, t2_hi;
+  iv_mul(dc_lo, dc_hi, 1.0 / b3, 1.0 / m3, &t1_lo, &t1_hi);
+  iv_mul(c_lo, c_hi, r_lo, r_hi, &cr_lo, &cr_hi);
+  iv_mul(cr_lo, cr_hi, 3.0 / (b3 * big * big), 3.0 / (m3 * m * m), &t2_lo, &t2_hi);
+  double lo = t1_lo - t2_hi, hi = t1_hi - t2_lo;  // d(signed kappa)/du
+  iv_mul(lo, hi, 1.0 / big, 1.0 / m, &lo, &hi);   // per unit s
+  lo -= 1e-9 * fabs(lo);
+  hi += 1e-9 * fabs(hi);
+  if (c_lo > 0.0) {
+    *klo = lo;
+    *khi = hi;
+  } else if (c_hi < 0.0) {
+    *klo = -hi;
+    *khi = -lo;
+  } else {
+    *khi = dmax(fabs(lo), fabs(hi));
+    *klo = -*khi;
+  }
   return true;
 }
 
-/** Pieces mode: the rigorous curvature bounds of every plateau (rkappa, rdk), once per run. Lines
- *  and arcs: the summary's (exact up to its margin: kappa constant); planar Beziers: bezier_bounds
- *  over kRigorParts parts of the plateau's parameter range; a non-planar Bezier (torsion, which the
- *  jerk bound leaves out) gets infinite bounds, and so a fallback. */
+/** Unit normal of the plane of a Bezier's control points (the largest of their cross products);
+ *  false when they are not coplanar (torsion, which the jerk bound leaves out). */
+bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
+  const tdo_vec3 a = sub(seg.p[1], seg.p[0]), b = sub(seg.p[2], seg.p[0]),
+                 e = sub(seg.p[3], seg.p[0]);
+  const tdo_vec3 cands[3] = {cross(a, b), cross(a, e), cross(b, e)};
+  tdo_vec3 best = cands[0];
+  for (int i = 1; i < 3; ++i)
+    if (norm(cands[i]) > norm(best)) best = cands[i];
+  const double scale = norm(a) * norm(b) * norm(e);
+  if (!(fabs(dot(cross(a, b), e)) <= 1e-12 * scale)) return false;
+  const double bn = norm(best);
+  *n = bn > 0.0 ? mul(best, 1.0 / bn) : tdo_vec3{0.0, 0.0, 1.0};  // a straight one: c = 0
+  return true;
+}
+
+/** Pieces mode: the rigorous curvature bounds of every plateau (rkappa, rdk_up, rdk_down), once
+ *  per run. Lines and arcs: the summary's (kappa constant, within its margin); planar Beziers:
+ *  bezier_bounds over kRigorParts parts of the plateau's parameter range; a non-planar Bezier
+ *  gets infinite bounds, and so a fallback. */
 void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
   BezierCursor cur;
   memset(&cur, 0, sizeof(cur));
@@ -1705,32 +1780,40 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     Plateau& p = ctx->plateaus[q];
     const tdo_path_segment& seg = path.seg[p.seg];
     p.rkappa = p.kappa;
-    p.rdk = dkappa_bound(p);
+    p.rdk_up = p.dk_up;
+    p.rdk_down = p.dk_down;
+    RigorPart* part = ctx->parts + static_cast<size_t>(q) * kRigorParts;
+    for (uint32_t i = 0; i < kRigorParts; ++i)
+      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
     if (seg.kind != TDO_SEGMENT_BEZIER) continue;
-    p.rkappa = HUGE_VAL;
-    p.rdk = HUGE_VAL;
-    const tdo_vec3 a = sub(seg.p[1], seg.p[0]), b = sub(seg.p[2], seg.p[0]),
-                   e = sub(seg.p[3], seg.p[0]);
-    const double scale = norm(a) * norm(b) * norm(e);
-    if (!(fabs(dot(cross(a, b), e)) <= 1e-12 * scale)) continue;  // not planar
+    p.rkappa = p.rdk_up = p.rdk_down = HUGE_VAL;
+    for (uint32_t i = 0; i < kRigorParts; ++i)
+      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    tdo_vec3 n;
+    if (!bezier_plane(seg, &n)) continue;
     if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
     cursor_seek(&cur, p.off);
     const double u0 = dmax(0.0, cur.u - kRigorSlackU);
     cursor_seek(&cur, p.off + p.len);
     const double u1 = dmin(1.0, cur.u + kRigorSlackU);
-    double km = 0.0, dm = 0.0;
+    double km = 0.0, up = -HUGE_VAL, down = -HUGE_VAL;
     bool ok = true;
     for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
       const double ua = u0 + (u1 - u0) * i / kRigorParts;
       const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
-      double k = HUGE_VAL, d = HUGE_VAL;
-      ok = bezier_bounds(cur, ua, ub, &k, &d);
+      double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
+      ok = bezier_bounds(cur, n, ua, ub, &k, &lo, &hi);
       km = dmax(km, k);
-      dm = dmax(dm, d);
+      up = dmax(up, hi);
+      down = dmax(down, -lo);
+      // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
+      const double s_at = i == 0u ? p.s0 : p.s0 - p.off + bez_arclen(cur, 0.0, ua) - kRigorSlackS;
+      part[i] = RigorPart{s_at, k, hi, -lo};
     }
     if (!ok) continue;
     p.rkappa = km;
-    p.rdk = dm;
+    p.rdk_up = up;
+    p.rdk_down = down;
   }
 }
 
@@ -1750,15 +1833,25 @@ uint32_t plateau_of(const tdo_traj* ctx, double s) {
 }
 
 Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
-  Curv c{0.0, 0.0, 0.0};
-  bool first = true;
-  for (uint32_t q = plateau_of(ctx, sa); q < ctx->n_plateaus; ++q) {
+  Curv c{0.0, -HUGE_VAL, -HUGE_VAL};
+  for (uint32_t q = plateau_of(ctx, sa); q < ctx->n_plateaus; ++q) {  // bounded by n_plateaus
     const Plateau& p = ctx->plateaus[q];
-    if (!first && p.s0 > sb) break;
-    c.k = dmax(c.k, p.rkappa);
-    c.up = dmax(c.up, p.rdk);  // |kappa_s| <= rdk: both directions
-    c.down = dmax(c.down, p.rdk);
-    first = false;
+    // A plateau that begins at the interval's end (within kRigorSlackS: rounding of the anchors)
+    // holds none of it: the third derivative differs there on a time set of ~1e-9 m / s', which
+    // the kernels' integrals do not see (the joint's own deltas are the junctions').
+    if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
+    // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
+    const RigorPart* part = ctx->parts + static_cast<size_t>(q) * kRigorParts;
+    for (uint32_t i = 0; i < kRigorParts; ++i) {
+      if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
+      const double end = i + 1u < kRigorParts && part[i + 1u].s0 < HUGE_VAL
+                             ? part[i + 1u].s0 + 2.0 * kRigorSlackS
+                             : HUGE_VAL;
+      if (end < sa && i + 1u < kRigorParts) continue;
+      c.k = dmax(c.k, part[i].k);
+      c.up = dmax(c.up, part[i].up);
+      c.down = dmax(c.down, part[i].down);
+    }
   }
   return c;
 }
@@ -2246,10 +2339,12 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
     return 0;
   const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = plateau_capacity(cfg);
-  const size_t nj =
-      cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES ? nseg + cfg->max_profile + 2u : 0u;
+  const bool pieces = cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES;
+  const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
+  const size_t np = pieces ? nseg * kRigorParts : 0u;
   return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(nj * sizeof(Junction)) +
-         tdo_arena_round(ns * sizeof(tdo_sample)) + tdo_arena_round(ns * sizeof(uint32_t)) +
+         tdo_arena_round(np * sizeof(RigorPart)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+         tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
          tdo_arena_round(nseg) +
@@ -2288,7 +2383,9 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
   if (cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES) {
     const size_t nj = nseg + cfg->max_profile + 2u;
     ctx->junctions = static_cast<Junction*>(tdo_arena_alloc(arena, nj * sizeof(Junction)));
-    if (ctx->junctions == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->parts =
+        static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
+    if (ctx->junctions == nullptr || ctx->parts == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
   }
   *out = ctx;
   return TDO_OK;
