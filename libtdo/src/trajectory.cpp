@@ -135,8 +135,6 @@ struct Plateau {
   int near_jump;  // 1 when a boundary of it has a curvature jump (smaller jerk budget)
   uint32_t next;  // on the first plateau of a move: the first plateau after the move
   double scale;   // refinement factor, 1 at first
-  // Pieces mode only (rigorous_curvature): proven bounds of kappa (1/m) and |dkappa/ds| (1/m^2).
-  double rkappa, rdk_up, rdk_down;
   // Filled per profile build:
   double level;  // m/s, speed ceiling
   double peak;   // m/s, on the first plateau of a move: the move's peak speed
@@ -157,12 +155,25 @@ struct Boundary {
   double cap;    // m/s, geometric cap: 0 at ends, stops and kinks; jump and kink limits
   double v;      // m/s, speed of the profile (filled per build)
   double saved;  // m/s, v before a trial change of the moves (sweep_moves)
-  // At a segment joint (else 0): |T2 - T1| of the tangents and |kn2 - kn1| (1/m) of the curvature
-  // vectors on either side, the deltas the finite differences see there (pieces mode).
-  double tjump, kjump;
+};
+
+/** Pieces mode, per boundary: at a segment joint (else 0) |T2 - T1| of the tangents and
+ *  |kn2 - kn1| (1/m) of the curvature vectors on either side, the deltas the finite differences
+ *  see there. */
+struct JointJump {
+  double t, k;
 };
 
 struct Junction;  // a delta of the trajectory (pieces mode)
+struct RigorPart;
+
+/** Pieces mode's arrays (arena). */
+struct PiecesState {
+  Junction* junctions;  // plateau_cap + max_profile + 2
+  JointJump* jumps;     // plateau_cap + 1
+  RigorPart* parts;     // kRigorParts per plateau (plateau_cap of them)
+  int rigor_ready;      // `parts` is set for this run
+};
 /** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
 struct RigorPart {
   double s0;           // m
@@ -191,15 +202,13 @@ struct tdo_traj {
   tdo_internal::Boundary* bounds;     // plateau_cap + 1
   uint8_t* hit;                       // plateau_cap: plateau flagged by a violation
   tdo_internal::Phase* phases;        // max_profile
-  tdo_internal::Junction* junctions;  // pieces mode: plateau_cap + max_profile + 2, else nullptr
-  int rigor_ready;                 // pieces mode: the plateaus' rkappa / rdk are set for this run
-  tdo_internal::RigorPart* parts;  // pieces mode: kRigorParts per plateau (plateau_cap of them)
-  uint32_t plateau_cap;            // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
+  tdo_internal::PiecesState* pieces;  // pieces mode, else nullptr
+  uint32_t plateau_cap;               // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
   uint32_t n_plateaus;
   uint32_t n_phases;
-  double total;  // m, path length
   // Moving start of the current run (tdo_traj_input.start non-zero): the state and its entry.
   int moving;
+  double total;  // m, path length
   tdo_vec3 start_p;
   tdo_start_state start;
   tdo_traj_entry entry;
@@ -619,7 +628,7 @@ uint32_t curve_parts(const tdo_traj* ctx, const tdo_path& path) {
 /** The boundary cap between the previous plateau's segment `prev` and segment `seg`, and whether
  *  the curvature jumps there; TDO_ERR_INVALID_ARGUMENT for a gap. */
 tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, const Limits& lim,
-                     int stop, double* cap, int* jump_out, Boundary* joint) {
+                     int stop, double* cap, int* jump_out, JointJump* joint) {
   tdo_segment_state e, f;
   tdo_segment_eval(&prev, prev.length, &e);
   tdo_segment_eval(&seg, 0.0, &f);
@@ -635,8 +644,7 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
   // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
   // with a kernel whose peak is 0.75 / dt.
   const double jump = norm(sub(e.kn, f.kn));
-  joint->tjump = norm(sub(f.t, e.t));
-  joint->kjump = jump;
+  if (joint != nullptr) *joint = JointJump{norm(sub(f.t, e.t)), jump};
   *jump_out = 0;
   if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
     b = dmin(b, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
@@ -679,15 +687,15 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       }
       Boundary& b = ctx->bounds[n];
       b.cap = HUGE_VAL;  // inside a segment: no kink, no curvature jump
-      b.tjump = 0.0;
-      b.kjump = 0.0;
+      JointJump* jj = ctx->pieces != nullptr ? &ctx->pieces->jumps[n] : nullptr;
+      if (jj != nullptr) *jj = JointJump{0.0, 0.0};
       if (n == 0) {
         b.cap = ctx->moving ? ctx->entry.speed : 0.0;  // start at rest, or at the entry's speed
       } else if (j == 0) {
         const tdo_path_segment& prev = path.seg[ctx->plateaus[n - 1].seg];
         int jump = 0;
         const tdo_status st =
-            joint_cap(prev, seg, lim, prev.stop_at_end || stop_pending, &b.cap, &jump, &b);
+            joint_cap(prev, seg, lim, prev.stop_at_end || stop_pending, &b.cap, &jump, jj);
         if (st != TDO_OK) return st;
         if (jump) {
           ctx->plateaus[n - 1].near_jump = 1;
@@ -1768,7 +1776,7 @@ bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
   return true;
 }
 
-/** Pieces mode: the rigorous curvature bounds of every plateau (rkappa, rdk_up, rdk_down), once
+/** Pieces mode: the rigorous curvature bounds of every plateau (its kRigorParts parts), once
  *  per run. Lines and arcs: the summary's (kappa constant, within its margin); planar Beziers:
  *  bezier_bounds over kRigorParts parts of the plateau's parameter range; a non-planar Bezier
  *  gets infinite bounds, and so a fallback. */
@@ -1779,14 +1787,10 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
   for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
     Plateau& p = ctx->plateaus[q];
     const tdo_path_segment& seg = path.seg[p.seg];
-    p.rkappa = p.kappa;
-    p.rdk_up = p.dk_up;
-    p.rdk_down = p.dk_down;
-    RigorPart* part = ctx->parts + static_cast<size_t>(q) * kRigorParts;
+    RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
     for (uint32_t i = 0; i < kRigorParts; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
     if (seg.kind != TDO_SEGMENT_BEZIER) continue;
-    p.rkappa = p.rdk_up = p.rdk_down = HUGE_VAL;
     for (uint32_t i = 0; i < kRigorParts; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
     tdo_vec3 n;
@@ -1796,24 +1800,16 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     const double u0 = dmax(0.0, cur.u - kRigorSlackU);
     cursor_seek(&cur, p.off + p.len);
     const double u1 = dmin(1.0, cur.u + kRigorSlackU);
-    double km = 0.0, up = -HUGE_VAL, down = -HUGE_VAL;
-    bool ok = true;
+    bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
     for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
       const double ua = u0 + (u1 - u0) * i / kRigorParts;
       const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
       double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
       ok = bezier_bounds(cur, n, ua, ub, &k, &lo, &hi);
-      km = dmax(km, k);
-      up = dmax(up, hi);
-      down = dmax(down, -lo);
       // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
       const double s_at = i == 0u ? p.s0 : p.s0 - p.off + bez_arclen(cur, 0.0, ua) - kRigorSlackS;
       part[i] = RigorPart{s_at, k, hi, -lo};
     }
-    if (!ok) continue;
-    p.rkappa = km;
-    p.rdk_up = up;
-    p.rdk_down = down;
   }
 }
 
@@ -1841,7 +1837,7 @@ Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
     // the kernels' integrals do not see (the joint's own deltas are the junctions').
     if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
     // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
-    const RigorPart* part = ctx->parts + static_cast<size_t>(q) * kRigorParts;
+    const RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
     for (uint32_t i = 0; i < kRigorParts; ++i) {
       if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
       const double end = i + 1u < kRigorParts && part[i + 1u].s0 < HUGE_VAL
@@ -1946,7 +1942,7 @@ bool profile_jump(const tdo_traj* ctx, const Phase& e, const Phase& f, Junction*
  *  (the piece's start, or bisection inside it) and its deltas from s', s'' there. */
 Junction joint_at(const tdo_traj* ctx, uint32_t k, uint32_t q) {
   const Phase& f = ctx->phases[k];
-  const Boundary& b = ctx->bounds[q];
+  const JointJump& b = ctx->pieces->jumps[q];
   const double sj = ctx->plateaus[q].s0;
   double t, v, a;
   if (!(ph_s(f, 0.0) < sj)) {  // at the piece's start: both sides of it
@@ -1971,15 +1967,15 @@ Junction joint_at(const tdo_traj* ctx, uint32_t k, uint32_t q) {
     a = dmax(fabs(ph_a(f, lo)), fabs(ph_a(f, hi)));
     t = f.t0 + lo;
   }
-  return Junction{t, 0.0, v * b.tjump, a * b.tjump + v * v * b.kjump, ctx->plateaus[q].seg};
+  return Junction{t, 0.0, v * b.t, a * b.t + v * v * b.k, ctx->plateaus[q].seg};
 }
 
-/** The deltas of the trajectory in time order into ctx->junctions; their number. */
+/** The deltas of the trajectory in time order into ctx->pieces->junctions; their number. */
 uint32_t junctions(tdo_traj* ctx, uint32_t n, double dt) {
   const Phase* ph = ctx->phases;
   const Plateau* pl = ctx->plateaus;
   const uint32_t np = ctx->n_phases, npl = ctx->n_plateaus;
-  Junction* out = ctx->junctions;
+  Junction* out = ctx->pieces->junctions;
   uint32_t m = 0, q = 1;
   for (uint32_t k = 0; k < np; ++k) {
     if (k > 0u && profile_jump(ctx, ph[k - 1u], ph[k], &out[m])) ++m;
@@ -2029,7 +2025,7 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   }
   const uint32_t m = junctions(ctx, n, dt);
   *m_out = m;
-  const Junction* jn = ctx->junctions;
+  const Junction* jn = ctx->pieces->junctions;
   const double w = 3.0 * dt;
   for (uint32_t i = 0, lo = 0; i < m; ++i) {
     while (jn[lo].t < jn[i].t - w) ++lo;  // bounded by i
@@ -2102,7 +2098,7 @@ double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
   BezierCursor cur;
   memset(&cur, 0, sizeof(cur));
   cur.seg = UINT32_MAX;
-  const Junction* jn = ctx->junctions;
+  const Junction* jn = ctx->pieces->junctions;
   double total = 0.0;
   uint32_t r = 0;
   for (uint32_t k = 0; k < ctx->n_phases; ++k) {
@@ -2144,8 +2140,8 @@ double pieces_clearance(const tdo_traj_input* in, double cap) {
 bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
                    tdo_feasibility* rep, double* energy) {
   if (ctx->moving) return false;  // the entry ramp lies off the path: the samples check it
-  if (!ctx->rigor_ready) rigorous_curvature(ctx, in->path);
-  ctx->rigor_ready = 1;
+  if (!ctx->pieces->rigor_ready) rigorous_curvature(ctx, in->path);
+  ctx->pieces->rigor_ready = 1;
   Bound3 worst;
   uint32_t m = 0;
   if (!pieces_dynamic(ctx, in, lim, n, &worst, &m)) return false;
@@ -2161,7 +2157,7 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
   rep->max_acc = worst.a;
   rep->max_jerk = worst.j;
   double k = 0.0;
-  for (uint32_t q = 0; q < ctx->n_plateaus; ++q) k = dmax(k, ctx->plateaus[q].rkappa);
+  for (uint32_t i = 0; i < ctx->n_plateaus * kRigorParts; ++i) k = dmax(k, ctx->pieces->parts[i].k);
   rep->min_turn_radius = k > 0.0 ? 1.0 / k : HUGE_VAL;
   rep->min_clearance = clear;
   *energy = pieces_energy(ctx, in->path, m);
@@ -2341,9 +2337,10 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = plateau_capacity(cfg);
   const bool pieces = cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES;
   const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
-  const size_t np = pieces ? nseg * kRigorParts : 0u;
-  return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(nj * sizeof(Junction)) +
-         tdo_arena_round(np * sizeof(RigorPart)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+  const size_t np = pieces ? nseg * kRigorParts : 0u, nb = pieces ? nseg + 1u : 0u;
+  return tdo_arena_round(sizeof(tdo_traj)) + (pieces ? tdo_arena_round(sizeof(PiecesState)) : 0u) +
+         tdo_arena_round(nj * sizeof(Junction)) + tdo_arena_round(np * sizeof(RigorPart)) +
+         tdo_arena_round(nb * sizeof(JointJump)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
          tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
@@ -2381,11 +2378,17 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
       ctx->hit == nullptr || ctx->phases == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   if (cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES) {
+    PiecesState* ps = static_cast<PiecesState*>(tdo_arena_alloc(arena, sizeof(PiecesState)));
+    if (ps == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     const size_t nj = nseg + cfg->max_profile + 2u;
-    ctx->junctions = static_cast<Junction*>(tdo_arena_alloc(arena, nj * sizeof(Junction)));
-    ctx->parts =
+    ps->junctions = static_cast<Junction*>(tdo_arena_alloc(arena, nj * sizeof(Junction)));
+    ps->parts =
         static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
-    if (ctx->junctions == nullptr || ctx->parts == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
+    ps->rigor_ready = 0;
+    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr)
+      return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->pieces = ps;
   }
   *out = ctx;
   return TDO_OK;
@@ -2399,7 +2402,7 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
   out->report.violations = ctx->violations;
   ctx->n_last = 0;
   ctx->moving = 0;
-  ctx->rigor_ready = 0;
+  if (ctx->pieces != nullptr) ctx->pieces->rigor_ready = 0;
   tdo_status st = validate(ctx, in);
   if (st == TDO_OK) st = validate_start(ctx, in);
   if (st != TDO_OK) return st;
