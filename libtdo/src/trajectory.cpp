@@ -1798,6 +1798,7 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
     cursor_seek(&cur, p.off);
     const double u0 = dmax(0.0, cur.u - kRigorSlackU);
+    double u_at = cur.u, s_local = cur.s;  // the cursor's arclength, carried part to part
     cursor_seek(&cur, p.off + p.len);
     const double u1 = dmin(1.0, cur.u + kRigorSlackU);
     bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
@@ -1807,7 +1808,11 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
       double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
       ok = bezier_bounds(cur, n, ua, ub, &k, &lo, &hi);
       // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
-      const double s_at = i == 0u ? p.s0 : p.s0 - p.off + bez_arclen(cur, 0.0, ua) - kRigorSlackS;
+      if (i > 0u) {
+        s_local += bez_arclen(cur, u_at, ua);
+        u_at = ua;
+      }
+      const double s_at = i == 0u ? p.s0 : p.s0 - p.off + s_local - kRigorSlackS;
       part[i] = RigorPart{s_at, k, hi, -lo};
     }
   }
