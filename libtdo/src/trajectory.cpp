@@ -1629,16 +1629,18 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 // profile's own jumps between pieces (rounding at S-curve ends and move anchors) and at the last
 // sample. With x' = s' T, x'' = s'' T + s'^2 kappa N and, corners being planar,
 // x''' = (s''' - kappa^2 s'^3) T + (3 kappa s' s'' + kappa_s s'^3) N, each is bounded on an
-// interval from the exact range of the piece's s' (quadratic) and s'' (linear) and the plateaus'
-// bounds of kappa and kappa_s (summarise_curve, as plateau_limits uses them); rounding of the
+// interval from the exact range of the piece's s' (quadratic) and s'' (linear) and proven bounds
+// of kappa and kappa_s over it (rigorous_curvature: lines 0, arcs 1/r, Beziers by interval
+// arithmetic per sixteenth of a plateau; not the profile's station summary, which can miss a
+// peak between its stations: test peaked_path); rounding of the
 // positions (e_P) adds 2 e_P/dt, 4 e_P/dt^2, 8 e_P/dt^3. A stencil without a delta lies in pieces
 // whose bounds cover it; one with deltas lies within 3 dt of its first one, whose window (the
 // pieces' bounds over it and every delta in it) covers it. Turn radius: verify() flags radius
 // * 1.01 < v^2 / a_max with radius = v^2 / |a_perp|, i.e. |a_perp| > 1.01 a_max, and |a_perp| <=
 // |a_i|: the acceleration bound (<= 1.01 a_max) rules it out. The bounds must keep half the 1 %
-// tolerance (kPieceReserve): the rest is a reserve for the curvature summary, whose stations bound
-// kappa and kappa_s only up to their margins. Any bound that misses: the round falls back to the
-// streamed verification.
+// tolerance (kPieceReserve), a reserve for what the argument leaves out (the rounding of the
+// bounds' own arithmetic, a plateau's first 1e-9 m: curv_over). Any bound that misses: the round
+// falls back to the streamed verification.
 
 constexpr double kPieceReserve = 0.5;  // of kTolerance: the closed form keeps limit * 1.005
 constexpr uint32_t kPieceSplits = 6;   // halvings of an interval whose bound misses (64 parts)
