@@ -1654,7 +1654,7 @@ constexpr uint32_t kRigorParts = 16;  // parameter parts per plateau of a Bezier
 constexpr double kRigorSlackU = 1e-9;
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
                                        // plateau's parameter range (inversion)
-constexpr uint32_t kEnergyPanels = 16;  // Gauss-Legendre panels per Bezier length, at most
+constexpr uint32_t kEnergyPanels = 8;  // Gauss-Legendre panels per Bezier length, at most
 constexpr double kGl5X[3] = {0.0, 0.5384693101056831, 0.9061798459386640};
 constexpr double kGl5W[3] = {0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
 
