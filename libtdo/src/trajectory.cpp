@@ -1650,7 +1650,8 @@ constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's in
 // m: the path's distance must keep clearance - this (half the slack: the samples lie on the path
 // up to rounding)
 constexpr double kPieceClearSlack = 0.5 * kClearanceSlack;
-constexpr uint32_t kRigorParts = 16;  // parameter parts per plateau of a Bezier (bezier_bounds)
+constexpr double kPieceClearHint = 0.05;  // m above the clearance: pieces_clearance's hint
+constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Bezier (bezier_bounds)
 constexpr double kRigorSlackU = 1e-9;
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
                                        // plateau's parameter range (inversion)
@@ -2137,6 +2138,9 @@ double pieces_clearance(const tdo_traj_input* in, double cap) {
   mi.path = &path;
   mi.grid = in->grid;
   mi.clearance_cap = cap;
+  // The paths keep the clearance and most touch it (the geometric stages hold them there): a
+  // hint just above it caps the queries tightly; the result is the same whatever the hint.
+  mi.clearance_hint = in->clearance + kPieceClearHint;
   tdo_metrics mt;
   if (tdo_metrics_compute(&mi, &mt) != TDO_OK) return -HUGE_VAL;
   return mt.min_clearance_m;
