@@ -95,9 +95,9 @@ typedef struct tdo_traj_config {
                                  tdo_traj_run: each profile piece is verified in closed form
                                  (docs/design.md s.5, "Pieces"), falling back to the streamed
                                  verification of the samples for a round whose closed-form check
-                                 fails (tdo_traj_output.sample_passes); 24 bytes per plateau and
-                                 profile piece more. max_samples still bounds their number
-                                 (TDO_ERR_SAMPLE_CAPACITY) */
+                                 fails (tdo_traj_output.sample_passes); its state takes 568 bytes
+                                 per plateau and 40 per profile piece (no sample storage).
+                               max_samples  still bounds their number (TDO_ERR_SAMPLE_CAPACITY) */
 } tdo_traj_config;
 
 /** tdo_traj_config.stream_samples. */
