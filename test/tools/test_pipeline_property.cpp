@@ -919,9 +919,10 @@ TEST(PipelineStreaming, GivenPiecesWhenPlannedThenPlanSamplesAndMetricsAreTheSto
       EXPECT_EQ(a.refinements, b.refinements) << what;
       EXPECT_EQ(a.feasibility.ok, b.feasibility.ok) << what;
       ASSERT_EQ(a.n_waypoints, b.n_waypoints) << what;
-      if (a.n_waypoints > 0u)  // no waypoints (a failed search): nothing to compare
+      if (a.n_waypoints > 0u) {  // no waypoints (a failed search): nothing to compare
         EXPECT_EQ(std::memcmp(a.waypoints, b.waypoints, a.n_waypoints * sizeof(tdo_vec3)), 0)
             << what;
+      }
       ASSERT_EQ(a.path.n, b.path.n) << what;
       for (uint32_t i = 0; i < a.path.n; ++i) {
         const tdo_path_segment& x = a.path.seg[i];
