@@ -499,6 +499,7 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
     out->status = tdo_traj_run(pl->traj, &ti, &to);
     out->feasibility = to.report;
     out->refinements += to.refinements;
+    out->sample_passes += to.sample_passes;
     out->samples = to.samples;
     out->n_samples = to.n_samples;
     out->reached = TDO_PLAN_TRAJECTORY;

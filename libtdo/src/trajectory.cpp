@@ -45,6 +45,7 @@
 #include "sample_energy.h"
 #include "scalar.h"
 #include "tdo/collision.h"
+#include "tdo/metrics.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -156,6 +157,29 @@ struct Boundary {
   double saved;  // m/s, v before a trial change of the moves (sweep_moves)
 };
 
+/** Pieces mode, per boundary: at a segment joint (else 0) |T2 - T1| of the tangents and
+ *  |kn2 - kn1| (1/m) of the curvature vectors on either side, the deltas the finite differences
+ *  see there. */
+struct JointJump {
+  double t, k;
+};
+
+struct Junction;  // a delta of the trajectory (pieces mode)
+struct RigorPart;
+
+/** Pieces mode's arrays (arena). */
+struct PiecesState {
+  Junction* junctions;  // plateau_cap + max_profile + 2
+  JointJump* jumps;     // plateau_cap + 1
+  RigorPart* parts;     // kRigorParts per plateau (plateau_cap of them)
+  int rigor_ready;      // `parts` is set for this run
+};
+/** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
+struct RigorPart {
+  double s0;           // m
+  double k, up, down;  // 1/m, 1/m^2, 1/m^2 (as Plateau's kappa, dk_up, dk_down)
+};
+
 /** One constant-jerk piece of the profile. */
 struct Phase {
   double t0;   // s, start time
@@ -171,19 +195,20 @@ struct Phase {
 
 struct tdo_traj {
   tdo_traj_config cfg;
-  tdo_sample* samples;              // max_samples; nullptr with stream_samples
-  uint32_t* owner;                  // max_samples: plateau of each sample; nullptr when streamed
-  tdo_violation* violations;        // max_violations
-  tdo_internal::Plateau* plateaus;  // plateau_cap
-  tdo_internal::Boundary* bounds;   // plateau_cap + 1
-  uint8_t* hit;                     // plateau_cap: plateau flagged by a violation
-  tdo_internal::Phase* phases;      // max_profile
-  uint32_t plateau_cap;             // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
+  tdo_sample* samples;                // max_samples; nullptr with stream_samples
+  uint32_t* owner;                    // max_samples: plateau of each sample; nullptr when streamed
+  tdo_violation* violations;          // max_violations
+  tdo_internal::Plateau* plateaus;    // plateau_cap
+  tdo_internal::Boundary* bounds;     // plateau_cap + 1
+  uint8_t* hit;                       // plateau_cap: plateau flagged by a violation
+  tdo_internal::Phase* phases;        // max_profile
+  tdo_internal::PiecesState* pieces;  // pieces mode, else nullptr
+  uint32_t plateau_cap;               // max(max_segments, (max_profile - 1) / kPiecesPerPlateau)
   uint32_t n_plateaus;
   uint32_t n_phases;
-  double total;  // m, path length
   // Moving start of the current run (tdo_traj_input.start non-zero): the state and its entry.
   int moving;
+  double total;  // m, path length
   tdo_vec3 start_p;
   tdo_start_state start;
   tdo_traj_entry entry;
@@ -603,7 +628,7 @@ uint32_t curve_parts(const tdo_traj* ctx, const tdo_path& path) {
 /** The boundary cap between the previous plateau's segment `prev` and segment `seg`, and whether
  *  the curvature jumps there; TDO_ERR_INVALID_ARGUMENT for a gap. */
 tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, const Limits& lim,
-                     int stop, double* cap, int* jump_out) {
+                     int stop, double* cap, int* jump_out, JointJump* joint) {
   tdo_segment_state e, f;
   tdo_segment_eval(&prev, prev.length, &e);
   tdo_segment_eval(&seg, 0.0, &f);
@@ -619,6 +644,7 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
   // Curvature jump: acceleration jumps by v^2 dkappa; the third difference spreads that delta
   // with a kernel whose peak is 0.75 / dt.
   const double jump = norm(sub(e.kn, f.kn));
+  if (joint != nullptr) *joint = JointJump{norm(sub(f.t, e.t)), jump};
   *jump_out = 0;
   if (0.75 * lim.v_max * lim.v_max * jump / lim.dt > (1.0 - kLineShare) * lim.j_max) {
     b = dmin(b, sqrt(kJumpShare * lim.j_max * lim.dt / jump));
@@ -661,13 +687,15 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       }
       Boundary& b = ctx->bounds[n];
       b.cap = HUGE_VAL;  // inside a segment: no kink, no curvature jump
+      JointJump* jj = ctx->pieces != nullptr ? &ctx->pieces->jumps[n] : nullptr;
+      if (jj != nullptr) *jj = JointJump{0.0, 0.0};
       if (n == 0) {
         b.cap = ctx->moving ? ctx->entry.speed : 0.0;  // start at rest, or at the entry's speed
       } else if (j == 0) {
         const tdo_path_segment& prev = path.seg[ctx->plateaus[n - 1].seg];
         int jump = 0;
         const tdo_status st =
-            joint_cap(prev, seg, lim, prev.stop_at_end || stop_pending, &b.cap, &jump);
+            joint_cap(prev, seg, lim, prev.stop_at_end || stop_pending, &b.cap, &jump, jj);
         if (st != TDO_OK) return st;
         if (jump) {
           ctx->plateaus[n - 1].near_jump = 1;
@@ -1586,6 +1614,567 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
   return r.dynamic;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Pieces mode (TDO_TRAJ_SAMPLES_PIECES): verify()'s finite-difference checks bounded in closed
+// form per profile piece, without generating a sample.
+//
+// The sampled positions are P_i = x(i dt) of the trajectory x(t) = path(s(t)). Between the deltas
+// listed below x is C^2 with a bounded x''', and the finite differences are kernel averages:
+// v_i = box (width dt, height 1/dt) * x', a_i = hat (width 2 dt, peak 1/dt, slopes 1/dt^2) * x'',
+// j_i = quadratic B-spline (width 3 dt, peak 0.75/dt, slopes <= 1/dt^2, second derivative in
+// {1, -2, 1}/dt^3) * x'''. So |v_i|, |a_i|, |j_i| are at most the largest |x'|, |x''|, |x'''| over
+// the stencil plus, for every delta inside it, a jump of x by Ds: Ds/dt, Ds/dt^2, 2 Ds/dt^3; of x'
+// by Dv: -, Dv/dt, Dv/dt^2; of x'' by Da: -, -, 0.75 Da/dt. The deltas: tangent kinks
+// (Dv = s'|dT|, Da = s''|dT|) and curvature jumps (Da = s'^2 |dkn|) at segment joints, and the
+// profile's own jumps between pieces (rounding at S-curve ends and move anchors) and at the last
+// sample. With x' = s' T, x'' = s'' T + s'^2 kappa N and, corners being planar,
+// x''' = (s''' - kappa^2 s'^3) T + (3 kappa s' s'' + kappa_s s'^3) N, each is bounded on an
+// interval from the exact range of the piece's s' (quadratic) and s'' (linear) and proven bounds
+// of kappa and kappa_s over it (rigorous_curvature: lines 0, arcs 1/r, Beziers by interval
+// arithmetic per sixteenth of a plateau; not the profile's station summary, which can miss a
+// peak between its stations: test peaked_path); rounding of the
+// positions (e_P) adds 2 e_P/dt, 4 e_P/dt^2, 8 e_P/dt^3. A stencil without a delta lies in pieces
+// whose bounds cover it; one with deltas lies within 3 dt of its first one, whose window (the
+// pieces' bounds over it and every delta in it) covers it. Turn radius: verify() flags radius
+// * 1.01 < v^2 / a_max with radius = v^2 / |a_perp|, i.e. |a_perp| > 1.01 a_max, and |a_perp| <=
+// |a_i|: the acceleration bound (<= 1.01 a_max) rules it out. The bounds must keep half the 1 %
+// tolerance (kPieceReserve), a reserve for what the argument leaves out (the rounding of the
+// bounds' own arithmetic, a plateau's first 1e-9 m: curv_over). Any bound that misses: the round
+// falls back to the streamed verification.
+
+constexpr double kPieceReserve = 0.5;  // of kTolerance: the closed form keeps limit * 1.005
+constexpr uint32_t kPieceSplits = 6;   // halvings of an interval whose bound misses (64 parts)
+constexpr int kCrossBisections = 64;   // the time a piece crosses a segment joint
+constexpr double kPositionNoise = 64.0 * 2.220446049250313e-16;  // rounding, relative to |P|
+constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's inversion tolerance
+// m: the path's distance must keep clearance - this (half the slack: the samples lie on the path
+// up to rounding)
+constexpr double kPieceClearSlack = 0.5 * kClearanceSlack;
+constexpr double kPieceClearHint = 0.05;  // m above the clearance: pieces_clearance's hint
+constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Bezier (bezier_bounds)
+constexpr double kRigorSlackU = 1e-9;
+constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
+                                       // plateau's parameter range (inversion)
+constexpr uint32_t kEnergyPanels = 8;  // Gauss-Legendre panels per Bezier length, at most
+constexpr double kGl5X[3] = {0.0, 0.5384693101056831, 0.9061798459386640};
+constexpr double kGl5W[3] = {0.5688888888888889, 0.4786286704993665, 0.2369268850561891};
+
+/** Upper bounds of the finite-difference speed, acceleration and jerk. */
+struct Bound3 {
+  double v, a, j;
+};
+inline Bound3 bmax(const Bound3& x, const Bound3& y) {
+  return Bound3{dmax(x.v, y.v), dmax(x.a, y.a), dmax(x.j, y.j)};
+}
+inline Bound3 bmin(const Bound3& x, const Bound3& y) {
+  return Bound3{dmin(x.v, y.v), dmin(x.a, y.a), dmin(x.j, y.j)};
+}
+inline bool fits(const Bound3& b, const Bound3& lim) {
+  return b.v <= lim.v && b.a <= lim.a && b.j <= lim.j;
+}
+
+/** A delta of the trajectory (pieces mode): a jump of x by ds, of x' by dv, of x'' by da. */
+struct Junction {
+  double t;      // s
+  double ds;     // m
+  double dv;     // m/s
+  double da;     // m/s^2
+  uint32_t seg;  // segment joint: the segment that begins here (energy splits); else UINT32_MAX
+};
+
+/** [lo, hi] of an interval product. */
+inline void iv_mul(double a0, double a1, double b0, double b1, double* lo, double* hi) {
+  const double p[4] = {a0 * b0, a0 * b1, a1 * b0, a1 * b1};
+  *lo = dmin(dmin(p[0], p[1]), dmin(p[2], p[3]));
+  *hi = dmax(dmax(p[0], p[1]), dmax(p[2], p[3]));
+}
+
+/** Range of the cubic r0 + r1 u + r2 u^2 + r3 u^3 over [ua, ub] (Bernstein coefficients). */
+void cubic_range(const double r[4], double ua, double ub, double* lo, double* hi) {
+  const double du = ub - ua;
+  const double v0 = r[0] + ua * (r[1] + ua * (r[2] + ua * r[3]));
+  const double d1 = (r[1] + ua * (2.0 * r[2] + 3.0 * ua * r[3])) * du;
+  const double d2 = (r[2] + 3.0 * ua * r[3]) * du * du;
+  const double d3 = r[3] * du * du * du;
+  const double b[4] = {v0, v0 + d1 / 3.0, v0 + 2.0 * d1 / 3.0 + d2 / 3.0, v0 + d1 + d2 + d3};
+  *lo = dmin(dmin(b[0], b[1]), dmin(b[2], b[3]));
+  *hi = dmax(dmax(b[0], b[1]), dmax(b[2], b[3]));
+}
+
+/** Rigorous bounds of a planar cubic Bezier over the parameters [ua, ub] (plane normal n): kappa
+ *  and the range [klo, khi] of d|kappa|/ds. With B' = h0 + u h1 + u^2 h2, the signed curvature is
+ *  c / |B'|^3, c = (B' x B'').n a quadratic, and its derivative along s is
+ *  (c' / |B'|^3 - 3 c r / |B'|^5) / |B'| with r = B'.B'' a cubic: interval arithmetic on the
+ *  polynomials' ranges (Bernstein coefficients on [ua, ub]) and on |B'| in [m, M] (its
+ * restriction's control points: m along B' at the middle, M their largest norm). Where c keeps a
+ * sign, |kappa|'s derivative is that sign times it; elsewhere symmetric. False when |B'| may vanish
+ * there. */
+bool bezier_bounds(const BezierCursor& cb, const tdo_vec3& n, double ua, double ub, double* kappa,
+                   double* klo, double* khi) {
+  const tdo_vec3 h0 = cb.h[0], h1 = cb.h[1], h2 = cb.h[2];
+  const auto d1 = [&](double u) { return add(h0, mul(add(h1, mul(h2, u)), u)); };
+  const auto d2 = [&](double u) { return add(h1, mul(h2, 2.0 * u)); };
+  const double du = ub - ua;
+  const tdo_vec3 q0 = d1(ua), q2 = d1(ub), q1 = add(q0, mul(d2(ua), 0.5 * du));
+  const tdo_vec3 mid = d1(0.5 * (ua + ub));
+  const double nm = norm(mid);
+  if (!(nm > 0.0)) return false;
+  const tdo_vec3 t = mul(mid, 1.0 / nm);
+  const double m = dmin(dot(t, q0), dmin(dot(t, q1), dot(t, q2))) * (1.0 - 1e-9);
+  const double big = dmax(norm(q0), dmax(norm(q1), norm(q2))) * (1.0 + 1e-9);
+  if (!(m > 0.0)) return false;
+  // c(u) = c0 + c1 u + c2 u^2 (B' x B'' = h0 x h1 + 2u h0 x h2 + u^2 h1 x h2).
+  const double c0 = dot(cross(h0, h1), n), c1 = 2.0 * dot(cross(h0, h2), n),
+               c2 = dot(cross(h1, h2), n);
+  const double ca = c0 + ua * (c1 + ua * c2), cbv = c0 + ub * (c1 + ub * c2);
+  const double cm = ca + 0.5 * du * (c1 + 2.0 * c2 * ua);
+  const double slack = 1e-9 * (fabs(c0) + fabs(c1) + fabs(c2)) + 1e-300;
+  const double c_lo = dmin(ca, dmin(cm, cbv)) - slack, c_hi = dmax(ca, dmax(cm, cbv)) + slack;
+  const double dc_a = c1 + 2.0 * c2 * ua, dc_b = c1 + 2.0 * c2 * ub;
+  const double dc_lo = dmin(dc_a, dc_b) - slack, dc_hi = dmax(dc_a, dc_b) + slack;
+  // r(u) = B'.B'' = h0.h1 + u (2 h0.h2 + h1.h1) + u^2 3 h1.h2 + u^3 2 h2.h2.
+  const double r[4] = {dot(h0, h1), 2.0 * dot(h0, h2) + dot(h1, h1), 3.0 * dot(h1, h2),
+                       2.0 * dot(h2, h2)};
+  double r_lo, r_hi;
+  cubic_range(r, ua, ub, &r_lo, &r_hi);
+  const double rs = 1e-9 * (fabs(r[0]) + fabs(r[1]) + fabs(r[2]) + fabs(r[3])) + 1e-300;
+  r_lo -= rs;
+  r_hi += rs;
+  const double m3 = m * m * m, b3 = big * big * big;
+  *kappa = dmax(fabs(c_lo), fabs(c_hi)) / m3 * (1.0 + 1e-9);
+  double t1_lo, t1_hi, cr_lo, cr_hi, t2_lo, t2_hi;
+  iv_mul(dc_lo, dc_hi, 1.0 / b3, 1.0 / m3, &t1_lo, &t1_hi);
+  iv_mul(c_lo, c_hi, r_lo, r_hi, &cr_lo, &cr_hi);
+  iv_mul(cr_lo, cr_hi, 3.0 / (b3 * big * big), 3.0 / (m3 * m * m), &t2_lo, &t2_hi);
+  double lo = t1_lo - t2_hi, hi = t1_hi - t2_lo;  // d(signed kappa)/du
+  iv_mul(lo, hi, 1.0 / big, 1.0 / m, &lo, &hi);   // per unit s
+  lo -= 1e-9 * fabs(lo);
+  hi += 1e-9 * fabs(hi);
+  if (c_lo > 0.0) {
+    *klo = lo;
+    *khi = hi;
+  } else if (c_hi < 0.0) {
+    *klo = -hi;
+    *khi = -lo;
+  } else {
+    *khi = dmax(fabs(lo), fabs(hi));
+    *klo = -*khi;
+  }
+  return true;
+}
+
+/** Unit normal of the plane of a Bezier's control points (the largest of their cross products);
+ *  false when they are not coplanar (torsion, which the jerk bound leaves out). */
+bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
+  const tdo_vec3 a = sub(seg.p[1], seg.p[0]), b = sub(seg.p[2], seg.p[0]),
+                 e = sub(seg.p[3], seg.p[0]);
+  const tdo_vec3 cands[3] = {cross(a, b), cross(a, e), cross(b, e)};
+  tdo_vec3 best = cands[0];
+  for (int i = 1; i < 3; ++i)
+    if (norm(cands[i]) > norm(best)) best = cands[i];
+  const double scale = norm(a) * norm(b) * norm(e);
+  if (!(fabs(dot(cross(a, b), e)) <= 1e-12 * scale)) return false;
+  const double bn = norm(best);
+  *n = bn > 0.0 ? mul(best, 1.0 / bn) : tdo_vec3{0.0, 0.0, 1.0};  // a straight one: c = 0
+  return true;
+}
+
+/** Pieces mode: the rigorous curvature bounds of every plateau (its kRigorParts parts), once
+ *  per run. Lines and arcs: the summary's (kappa constant, within its margin); planar Beziers:
+ *  bezier_bounds over kRigorParts parts of the plateau's parameter range; a non-planar Bezier
+ *  gets infinite bounds, and so a fallback. */
+void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
+  BezierCursor cur;
+  memset(&cur, 0, sizeof(cur));
+  cur.seg = UINT32_MAX;
+  for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
+    Plateau& p = ctx->plateaus[q];
+    const tdo_path_segment& seg = path.seg[p.seg];
+    RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
+    for (uint32_t i = 0; i < kRigorParts; ++i)
+      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
+    if (seg.kind != TDO_SEGMENT_BEZIER) continue;
+    for (uint32_t i = 0; i < kRigorParts; ++i)
+      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    tdo_vec3 n;
+    if (!bezier_plane(seg, &n)) continue;
+    if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
+    cursor_seek(&cur, p.off);
+    const double u0 = dmax(0.0, cur.u - kRigorSlackU);
+    double u_at = cur.u, s_local = cur.s;  // the cursor's arclength, carried part to part
+    cursor_seek(&cur, p.off + p.len);
+    const double u1 = dmin(1.0, cur.u + kRigorSlackU);
+    bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
+    for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
+      const double ua = u0 + (u1 - u0) * i / kRigorParts;
+      const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
+      double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
+      ok = bezier_bounds(cur, n, ua, ub, &k, &lo, &hi);
+      // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
+      if (i > 0u) {
+        s_local += bez_arclen(cur, u_at, ua);
+        u_at = ua;
+      }
+      const double s_at = i == 0u ? p.s0 : p.s0 - p.off + s_local - kRigorSlackS;
+      part[i] = RigorPart{s_at, k, hi, -lo};
+    }
+  }
+}
+
+/** Curvature bounds of the plateaus that overlap [sa, sb]. */
+struct Curv {
+  double k, up, down;  // 1/m, 1/m^2, 1/m^2 (as Plateau)
+};
+
+/** Last plateau whose start is at or before s (the first when none). */
+uint32_t plateau_of(const tdo_traj* ctx, double s) {
+  uint32_t lo = 0, hi = ctx->n_plateaus;
+  while (hi - lo > 1u) {  // bisection: bounded by log2(n_plateaus)
+    const uint32_t mid = lo + (hi - lo) / 2u;
+    (ctx->plateaus[mid].s0 <= s ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
+  Curv c{0.0, -HUGE_VAL, -HUGE_VAL};
+  for (uint32_t q = plateau_of(ctx, sa); q < ctx->n_plateaus; ++q) {  // bounded by n_plateaus
+    const Plateau& p = ctx->plateaus[q];
+    // A plateau that begins at the interval's end (within kRigorSlackS: rounding of the anchors)
+    // holds none of it: the third derivative differs there on a time set of ~1e-9 m / s', which
+    // the kernels' integrals do not see (the joint's own deltas are the junctions').
+    if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
+    // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
+    const RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
+    for (uint32_t i = 0; i < kRigorParts; ++i) {
+      if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
+      const double end = i + 1u < kRigorParts && part[i + 1u].s0 < HUGE_VAL
+                             ? part[i + 1u].s0 + 2.0 * kRigorSlackS
+                             : HUGE_VAL;
+      if (end < sa && i + 1u < kRigorParts) continue;
+      c.k = dmax(c.k, part[i].k);
+      c.up = dmax(c.up, part[i].up);
+      c.down = dmax(c.down, part[i].down);
+    }
+  }
+  return c;
+}
+
+/** Path speed, acceleration and arclength of piece f at tau, as the sampler evaluates them. */
+inline double ph_v(const Phase& f, double t) { return f.v0 + t * (f.a0 + 0.5 * t * f.j); }
+inline double ph_a(const Phase& f, double t) { return f.a0 + t * f.j; }
+inline double ph_s(const Phase& f, double t) {
+  return f.s0 + t * (f.v0 + t * (0.5 * f.a0 + t * f.j / 6.0));
+}
+
+/** Range [lo, hi] of s' over [ta, tb] of piece f (a quadratic: its ends and its vertex). */
+void speed_range(const Phase& f, double ta, double tb, double* lo, double* hi) {
+  *hi = dmax(ph_v(f, ta), ph_v(f, tb));
+  *lo = dmin(ph_v(f, ta), ph_v(f, tb));
+  if (fabs(f.j) > 0.0) {
+    const double tv = -f.a0 / f.j;
+    if (tv > ta && tv < tb) {
+      *hi = dmax(*hi, ph_v(f, tv));
+      *lo = dmin(*lo, ph_v(f, tv));
+    }
+  }
+}
+
+/** Bounds of |x'|, |x''|, |x'''| over [ta, tb] of piece f. */
+Bound3 sub_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb) {
+  double v_lo, v_hi;
+  speed_range(f, ta, tb, &v_lo, &v_hi);
+  const double v = dmax(fabs(v_hi), fabs(v_lo)), v_pos = dmax(v_lo, 0.0);
+  const double a_hi = dmax(ph_a(f, ta), ph_a(f, tb)), a_lo = dmin(ph_a(f, ta), ph_a(f, tb));
+  const double a = dmax(fabs(a_hi), fabs(a_lo));
+  const double sa = ph_s(f, ta), sb = ph_s(f, tb);
+  const Curv c = curv_over(ctx, dmin(sa, sb), dmax(sa, sb));
+  const double k = c.k, v2 = v * v, v3 = v2 * v, vp3 = v_pos * v_pos * v_pos;
+  Bound3 b;
+  b.v = v;
+  b.a = sqrt(a * a + k * k * v2 * v2);
+  // Tangential: s''' - kappa^2 s'^3 with kappa^2 s'^3 in [0, kappa^2 v^3].
+  const double jt = dmax(fabs(f.j), fabs(f.j - k * k * v3));
+  // Normal: 3 kappa s' s'' + kappa_s s'^3 with kappa_s in [-down, up].
+  const double up = 3.0 * k * v * dmax(a_hi, 0.0) + (c.up >= 0.0 ? c.up * v3 : c.up * vp3);
+  const double dn = 3.0 * k * v * dmin(a_lo, 0.0) - (c.down >= 0.0 ? c.down * v3 : c.down * vp3);
+  const double jn = dmax(fabs(up), fabs(dn));
+  b.j = sqrt(jt * jt + jn * jn);
+  return b;
+}
+
+/** sub_bound over [ta, tb], in 2, 4, ..., 2^kPieceSplits parts while it misses `allowed` (each a
+ *  bound: the least of them per quantity is one). */
+Bound3 span_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb,
+                  const Bound3& allowed) {
+  Bound3 b = sub_bound(ctx, f, ta, tb);
+  for (uint32_t d = 1; d <= kPieceSplits && !fits(b, allowed); ++d) {
+    const uint32_t parts = 1u << d;
+    const double h = (tb - ta) / parts;
+    Bound3 m{0.0, 0.0, 0.0};
+    for (uint32_t i = 0; i < parts; ++i)
+      m = bmax(m, sub_bound(ctx, f, ta + h * i, i + 1u == parts ? tb : ta + h * (i + 1u)));
+    b = bmin(b, m);
+  }
+  return b;
+}
+
+/** Index of the first piece that ends after t (the last when none). */
+uint32_t piece_after(const tdo_traj* ctx, double t) {
+  uint32_t lo = 0, hi = ctx->n_phases;  // answer in [lo, hi)
+  while (hi - lo > 1u) {                // bisection: bounded by log2(n_phases)
+    const uint32_t mid = lo + (hi - lo) / 2u;
+    const Phase& f = ctx->phases[mid - 1u];
+    (f.t0 + f.dur <= t ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/** The jump of the profile from the end of piece e to the start of piece f, as deltas of x. */
+bool profile_jump(const tdo_traj* ctx, const Phase& e, const Phase& f, Junction* out) {
+  const double es = ph_s(e, e.dur), ev = ph_v(e, e.dur), ea = ph_a(e, e.dur);
+  const double ds = fabs(f.s0 - es), dv = fabs(f.v0 - ev), da = fabs(f.a0 - ea);
+  if (!(ds > 0.0 || dv > 0.0 || da > 0.0)) return false;
+  const Curv c = curv_over(ctx, dmin(es, f.s0), dmax(es, f.s0));
+  const double v = dmax(fabs(ev), fabs(f.v0)), a = dmax(fabs(ea), fabs(f.a0));
+  const double ks = dmax(fabs(c.up), fabs(c.down)) + c.k * c.k;  // |d(kappa N)/ds|
+  // x' = s' T: |dT| <= kappa ds; x'' = s'' T + s'^2 kappa N.
+  *out =
+      Junction{f.t0, ds, dv + v * c.k * ds,
+               da + a * c.k * ds + c.k * (2.0 * v * dv + dv * dv) + (v + dv) * (v + dv) * ks * ds,
+               UINT32_MAX};
+  return true;
+}
+
+/** The joint at the start of plateau q, crossed by piece k (s0 of q at most its end): its time
+ *  (the piece's start, or bisection inside it) and its deltas from s', s'' there. */
+Junction joint_at(const tdo_traj* ctx, uint32_t k, uint32_t q) {
+  const Phase& f = ctx->phases[k];
+  const JointJump& b = ctx->pieces->jumps[q];
+  const double sj = ctx->plateaus[q].s0;
+  double t, v, a;
+  if (!(ph_s(f, 0.0) < sj)) {  // at the piece's start: both sides of it
+    t = f.t0;
+    v = fabs(f.v0);
+    a = fabs(f.a0);
+    if (k > 0u) {
+      const Phase& e = ctx->phases[k - 1u];
+      v = dmax(v, fabs(ph_v(e, e.dur)));
+      a = dmax(a, fabs(ph_a(e, e.dur)));
+    }
+  } else {
+    double lo = 0.0, hi = f.dur;  // s(lo) < sj <= s(hi) (or the piece's end)
+    for (int it = 0; it < kCrossBisections && hi - lo > 0.0; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (!(mid > lo && mid < hi)) break;
+      (ph_s(f, mid) < sj ? lo : hi) = mid;
+    }
+    double v_lo, v_hi;
+    speed_range(f, lo, hi, &v_lo, &v_hi);
+    v = dmax(fabs(v_lo), fabs(v_hi));
+    a = dmax(fabs(ph_a(f, lo)), fabs(ph_a(f, hi)));
+    t = f.t0 + lo;
+  }
+  return Junction{t, 0.0, v * b.t, a * b.t + v * v * b.k, ctx->plateaus[q].seg};
+}
+
+/** The deltas of the trajectory in time order into ctx->pieces->junctions; their number. */
+uint32_t junctions(tdo_traj* ctx, uint32_t n, double dt) {
+  const Phase* ph = ctx->phases;
+  const Plateau* pl = ctx->plateaus;
+  const uint32_t np = ctx->n_phases, npl = ctx->n_plateaus;
+  Junction* out = ctx->pieces->junctions;
+  uint32_t m = 0, q = 1;
+  for (uint32_t k = 0; k < np; ++k) {
+    if (k > 0u && profile_jump(ctx, ph[k - 1u], ph[k], &out[m])) ++m;
+    const double end = ph_s(ph[k], ph[k].dur);
+    for (; q < npl && (pl[q].s0 <= end || k + 1u == np); ++q) {  // bounded by npl
+      if (pl[q].seg == pl[q - 1u].seg) continue;                 // inside a curved segment: smooth
+      out[m++] = joint_at(ctx, k, q);
+    }
+  }
+  // The end: the last piece's state held until the last sample, which is exactly the goal.
+  const Phase& e = ph[np - 1u];
+  const double es = ph_s(e, e.dur), ev = ph_v(e, e.dur), ea = ph_a(e, e.dur);
+  const Curv c = curv_over(ctx, es, ctx->total);
+  out[m++] = Junction{e.t0 + e.dur, 0.0, fabs(ev), fabs(ea) + ev * ev * c.k, UINT32_MAX};
+  out[m++] = Junction{dt * (n - 1u), fabs(ctx->total - es), 0.0, 0.0, UINT32_MAX};
+  return m;
+}
+
+/** m, e_P: rounding of the sampled positions (relative to their size) and the Beziers' inversion.
+ */
+double position_noise(const tdo_path& path) {
+  double p_max = 0.0, l_max = 1.0;
+  for (uint32_t i = 0; i < path.n; ++i) {
+    const tdo_path_segment& s = path.seg[i];
+    double r = 0.0;
+    for (int c = 0; c < 4; ++c) r = dmax(r, norm(s.p[c]));
+    if (s.kind == TDO_SEGMENT_ARC) r += norm(sub(s.p[0], s.p[2]));
+    p_max = dmax(p_max, r);
+    if (s.kind == TDO_SEGMENT_BEZIER) l_max = dmax(l_max, s.length);
+  }
+  return kPositionNoise * (p_max + 1.0) + kInversionNoise * l_max;
+}
+
+/** The closed-form dynamic check; its bounds into *worst. False when a bound misses. */
+bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
+                    Bound3* worst, uint32_t* m_out) {
+  const double dt = lim.dt, e = position_noise(in->path);
+  const double f = 1.0 + kTolerance * kPieceReserve;
+  const Bound3 noise{2.0 * e / dt, 4.0 * e / (dt * dt), 8.0 * e / (dt * dt * dt)};
+  const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
+  Bound3 top{0.0, 0.0, 0.0};
+  for (uint32_t k = 0; k < ctx->n_phases; ++k) {
+    const Phase& ph = ctx->phases[k];
+    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed);
+    if (!fits(b, allowed)) return false;
+    top = bmax(top, b);
+  }
+  const uint32_t m = junctions(ctx, n, dt);
+  *m_out = m;
+  const Junction* jn = ctx->pieces->junctions;
+  const double w = 3.0 * dt;
+  for (uint32_t i = 0, lo = 0; i < m; ++i) {
+    while (jn[lo].t < jn[i].t - w) ++lo;  // bounded by i
+    double ds = 0.0, dv = 0.0, da = 0.0;
+    for (uint32_t r = lo; r < m && jn[r].t <= jn[i].t + w; ++r) {
+      ds += jn[r].ds;
+      dv += jn[r].dv;
+      da += jn[r].da;
+    }
+    if (!(ds > 0.0 || dv > 0.0 || da > 0.0)) continue;
+    const Bound3 delta{ds / dt, dv / dt + ds / (dt * dt),
+                       0.75 * da / dt + dv / (dt * dt) + 2.0 * ds / (dt * dt * dt)};
+    const Bound3 left{allowed.v - delta.v, allowed.a - delta.a, allowed.j - delta.j};
+    Bound3 smooth{0.0, 0.0, 0.0};
+    const double ta = jn[i].t - w, tb = jn[i].t + w;
+    for (uint32_t k = piece_after(ctx, ta); k < ctx->n_phases; ++k) {
+      const Phase& ph = ctx->phases[k];
+      if (ph.t0 >= tb) break;
+      smooth =
+          bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0), left));
+    }
+    if (!fits(smooth, left)) return false;
+    top = bmax(top, Bound3{smooth.v + delta.v, smooth.a + delta.a, smooth.j + delta.j});
+  }
+  *worst = Bound3{top.v + noise.v, top.a + noise.a, top.j + noise.j};
+  return true;
+}
+
+/** m^2/s^3, integral of |x''|^2 = s''^2 + s'^4 kappa^2 over [ta, tb] of piece f on segment `seg`
+ *  (s''^2 exactly; kappa^2 s'^4 exactly on arcs by 5-point Gauss-Legendre, on Beziers by it in
+ *  panels of at most 1/kEnergyPanels of the segment's length: a corner's curvature peaks). */
+double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment& seg,
+                   uint32_t index, double seg_s0, BezierCursor* cur) {
+  const double h = tb - ta, a = ph_a(f, ta);
+  const double e = h * (a * a + h * f.j * (a + f.j * h / 3.0));
+  if (seg.kind == TDO_SEGMENT_LINE || !(h > 0.0)) return e;
+  uint32_t panels = 1u;
+  if (seg.kind == TDO_SEGMENT_BEZIER && seg.length > 0.0) {
+    const double share = ceil(kEnergyPanels * fabs(ph_s(f, tb) - ph_s(f, ta)) / seg.length);
+    panels =
+        share >= kEnergyPanels ? kEnergyPanels : (share > 1.0 ? static_cast<uint32_t>(share) : 1u);
+  }
+  const double kr = 1.0 / norm(sub(seg.p[0], seg.p[2]));  // arcs: constant curvature
+  const double w = h / panels;
+  double sum = 0.0;
+  for (uint32_t pn = 0; pn < panels; ++pn) {
+    double part = 0.0;
+    for (int i = -2; i <= 2; ++i) {
+      const int g = i < 0 ? -i : i;
+      const double x = i < 0 ? -kGl5X[g] : kGl5X[g];
+      const double t = ta + w * (pn + 0.5 * (1.0 + x));
+      const double v = ph_v(f, t), v2 = v * v;
+      double k = kr;
+      if (seg.kind == TDO_SEGMENT_BEZIER) {
+        if (cur->seg != index) cursor_reset(cur, seg, index);
+        tdo_segment_state st;
+        cursor_seek(cur, dmin(seg.length, dmax(0.0, ph_s(f, t) - seg_s0)));
+        cursor_curvature(*cur, &st);
+        k = st.kappa;
+      }
+      part += kGl5W[g] * k * k * v2 * v2;
+    }
+    sum += 0.5 * w * part;
+  }
+  return e + sum;
+}
+
+/** The energy of the profile: every piece split at the segment joints it crosses. */
+double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
+  BezierCursor cur;
+  memset(&cur, 0, sizeof(cur));
+  cur.seg = UINT32_MAX;
+  const Junction* jn = ctx->pieces->junctions;
+  double total = 0.0;
+  uint32_t r = 0;
+  for (uint32_t k = 0; k < ctx->n_phases; ++k) {
+    const Phase& f = ctx->phases[k];
+    double ta = 0.0;
+    for (uint32_t step = 0; step <= m; ++step) {  // each step but the last consumes a junction
+      while (r < m && (jn[r].seg == UINT32_MAX || jn[r].t - f.t0 <= ta)) ++r;
+      const double tb = r < m && jn[r].t - f.t0 < f.dur ? jn[r].t - f.t0 : f.dur;
+      const uint32_t q = plateau_of(ctx, ph_s(f, 0.5 * (ta + tb)));
+      const Plateau& p = ctx->plateaus[q];
+      total += span_energy(f, ta, tb, path.seg[p.seg], p.seg, p.s0 - p.off, &cur);
+      if (!(tb < f.dur)) break;
+      ta = tb;
+    }
+  }
+  return total;
+}
+
+/** m, the path's distance to the obstacles as tdo_metrics_compute measures it (lines exact, curves
+ *  a chord lower bound), capped at `cap`. */
+double pieces_clearance(const tdo_traj_input* in, double cap) {
+  const tdo_path& path = in->path;
+  const tdo_path_segment& last = path.seg[path.n - 1u];
+  const tdo_vec3 ends[2] = {path.seg[0].p[0], tdo_segment_point(&last, last.length)};
+  tdo_metrics_input mi;
+  memset(&mi, 0, sizeof(mi));
+  mi.waypoints = ends;
+  mi.n_waypoints = 2u;
+  mi.path = &path;
+  mi.grid = in->grid;
+  mi.clearance_cap = cap;
+  // The paths keep the clearance and most touch it (the geometric stages hold them there): a
+  // hint just above it caps the queries tightly; the result is the same whatever the hint.
+  mi.clearance_hint = in->clearance + kPieceClearHint;
+  tdo_metrics mt;
+  if (tdo_metrics_compute(&mi, &mt) != TDO_OK) return -HUGE_VAL;
+  return mt.min_clearance_m;
+}
+
+/** Pieces mode: the closed-form checks of the current profile; true when every one holds (the
+ *  report and the energy filled), false to fall back to the samples. */
+bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
+                   tdo_feasibility* rep, double* energy) {
+  if (ctx->moving) return false;  // the entry ramp lies off the path: the samples check it
+  if (!ctx->pieces->rigor_ready) rigorous_curvature(ctx, in->path);
+  ctx->pieces->rigor_ready = 1;
+  Bound3 worst;
+  uint32_t m = 0;
+  if (!pieces_dynamic(ctx, in, lim, n, &worst, &m)) return false;
+  double clear = HUGE_VAL;
+  if (in->grid != nullptr) {
+    clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
+    if (!(clear >= in->clearance - kPieceClearSlack)) return false;
+  }
+  memset(rep, 0, sizeof(*rep));
+  rep->ok = 1;
+  rep->violations = ctx->violations;
+  rep->max_speed = worst.v;
+  rep->max_acc = worst.a;
+  rep->max_jerk = worst.j;
+  double k = 0.0;
+  for (uint32_t i = 0; i < ctx->n_plateaus * kRigorParts; ++i) k = dmax(k, ctx->pieces->parts[i].k);
+  rep->min_turn_radius = k > 0.0 ? 1.0 / k : HUGE_VAL;
+  rep->min_clearance = clear;
+  *energy = pieces_energy(ctx, in->path, m);
+  return true;
+}
+
 }  // namespace
 }  // namespace tdo_internal
 
@@ -1757,7 +2346,12 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   if (cfg == nullptr || cfg->max_samples < 2u || cfg->max_segments == 0u || cfg->max_profile == 0u)
     return 0;
   const size_t ns = cfg->stream_samples ? 0u : cfg->max_samples, nseg = plateau_capacity(cfg);
-  return tdo_arena_round(sizeof(tdo_traj)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+  const bool pieces = cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES;
+  const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
+  const size_t np = pieces ? nseg * kRigorParts : 0u, nb = pieces ? nseg + 1u : 0u;
+  return tdo_arena_round(sizeof(tdo_traj)) + (pieces ? tdo_arena_round(sizeof(PiecesState)) : 0u) +
+         tdo_arena_round(nj * sizeof(Junction)) + tdo_arena_round(np * sizeof(RigorPart)) +
+         tdo_arena_round(nb * sizeof(JointJump)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
          tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
@@ -1770,7 +2364,7 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
     return TDO_ERR_INVALID_ARGUMENT;
   *out = nullptr;
   if (cfg->max_segments >= 0xFFFFFFFFu || cfg->max_samples > 0x7FFFFFFFu ||
-      cfg->stream_samples > 1u)
+      cfg->stream_samples > TDO_TRAJ_SAMPLES_PIECES)
     return TDO_ERR_INVALID_ARGUMENT;
   tdo_traj* ctx = static_cast<tdo_traj*>(tdo_arena_alloc(arena, sizeof(tdo_traj)));
   if (ctx == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
@@ -1794,6 +2388,19 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
   if (ctx->violations == nullptr || ctx->plateaus == nullptr || ctx->bounds == nullptr ||
       ctx->hit == nullptr || ctx->phases == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
+  if (cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES) {
+    PiecesState* ps = static_cast<PiecesState*>(tdo_arena_alloc(arena, sizeof(PiecesState)));
+    if (ps == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
+    const size_t nj = nseg + cfg->max_profile + 2u;
+    ps->junctions = static_cast<Junction*>(tdo_arena_alloc(arena, nj * sizeof(Junction)));
+    ps->parts =
+        static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
+    ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
+    ps->rigor_ready = 0;
+    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr)
+      return TDO_ERR_ARENA_TOO_SMALL;
+    ctx->pieces = ps;
+  }
   *out = ctx;
   return TDO_OK;
 }
@@ -1806,6 +2413,7 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
   out->report.violations = ctx->violations;
   ctx->n_last = 0;
   ctx->moving = 0;
+  if (ctx->pieces != nullptr) ctx->pieces->rigor_ready = 0;
   tdo_status st = validate(ctx, in);
   if (st == TDO_OK) st = validate_start(ctx, in);
   if (st != TDO_OK) return st;
@@ -1821,7 +2429,13 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
     st = sample_count(ctx, lim.dt, &n);
     if (st != TDO_OK) return st;
     uint32_t dynamic;
-    if (ctx->cfg.stream_samples) {
+    if (ctx->cfg.stream_samples == TDO_TRAJ_SAMPLES_PIECES &&
+        pieces_verify(ctx, in, lim, n, &out->report, &out->energy)) {
+      dynamic = 0u;
+      out->samples = nullptr;
+      out->duration = lim.dt * (n - 1u);  // as the streamed samples' last t
+    } else if (ctx->cfg.stream_samples) {
+      ++out->sample_passes;
       StreamedSamples src;
       src.ctx = ctx;
       src.segs = in->path.seg;
@@ -1831,6 +2445,7 @@ extern "C" tdo_status tdo_traj_run(tdo_traj* ctx, const tdo_traj_input* in, tdo_
       out->samples = nullptr;
       out->duration = lim.dt * (n - 1u);  // the last sample's t, as the generator computes it
     } else {
+      ++out->sample_passes;
       sample(ctx, in, lim, n);
       StoredSamples src{ctx->samples, ctx->owner};
       dynamic = verify(ctx, in, lim, n, src, &out->report, &out->energy);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -601,7 +602,7 @@ TEST(Trajectory, GivenStreamedSamplesThenMaxSamplesStillBoundsThemWithSampleCapa
                 small.ctx(), [](void*, uint32_t, const tdo_sample*) {}, nullptr),
             TDO_ERR_INVALID_ARGUMENT);
   tdo_traj_config bad = default_config();
-  bad.stream_samples = 2;
+  bad.stream_samples = 3;  // 0 stored, 1 streamed, 2 pieces: nothing else
   Traj b(bad);
   EXPECT_EQ(b.status(), TDO_ERR_INVALID_ARGUMENT);
 }
@@ -949,6 +950,169 @@ TEST_F(TrajectoryClearance, GivenStreamedSamplesThenReportEnergyAndSamplesAreThe
       EXPECT_EQ(std::memcmp(sb_v.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pieces mode (TDO_TRAJ_SAMPLES_PIECES): the closed-form verification against stored samples.
+
+std::vector<tdo_traj_piece> pieces_of(const tdo_traj* ctx) {
+  std::vector<tdo_traj_piece> v;
+  tdo_traj_profile_info info{};
+  EXPECT_EQ(tdo_traj_profile(ctx, &info), TDO_OK);
+  for (uint32_t i = 0; i < info.n_pieces; ++i) {
+    tdo_traj_piece p{};
+    EXPECT_EQ(tdo_traj_piece_at(ctx, i, &p), TDO_OK);
+    v.push_back(p);
+  }
+  return v;
+}
+
+/** The same profile (piece by piece, bit for bit), sample count, duration and samples. */
+::testing::AssertionResult same_trajectory(const tdo_traj* stored, const tdo_traj_output& a,
+                                           const tdo_traj* other, const tdo_traj_output& b) {
+  if (a.n_samples != b.n_samples) return ::testing::AssertionFailure() << "n_samples";
+  if (std::memcmp(&a.duration, &b.duration, sizeof(double)) != 0)
+    return ::testing::AssertionFailure() << "duration";
+  if (a.refinements != b.refinements) return ::testing::AssertionFailure() << "refinements";
+  const std::vector<tdo_traj_piece> pa = pieces_of(stored), pb = pieces_of(other);
+  if (pa.size() != pb.size()) return ::testing::AssertionFailure() << "piece count";
+  for (size_t i = 0; i < pa.size(); ++i)
+    for (const auto f : {&tdo_traj_piece::t0, &tdo_traj_piece::dur, &tdo_traj_piece::s0,
+                         &tdo_traj_piece::v0, &tdo_traj_piece::a0, &tdo_traj_piece::j})
+      if (std::memcmp(&(pa[i].*f), &(pb[i].*f), sizeof(double)) != 0)
+        return ::testing::AssertionFailure() << "piece " << i;
+  const std::vector<tdo_sample> sb = each_sample(other);
+  if (sb.size() != a.n_samples ||
+      std::memcmp(sb.data(), a.samples, a.n_samples * sizeof(tdo_sample)) != 0)
+    return ::testing::AssertionFailure() << "regenerated samples differ";
+  return ::testing::AssertionSuccess();
+}
+
+TEST(TrajectoryPieces, GivenModes_WhenInitialised_ThenPiecesIsValidAndThreeIsNot) {
+  tdo_traj_config cfg = default_config();
+  cfg.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+  Traj p(cfg);
+  EXPECT_EQ(p.status(), TDO_OK);
+  tdo_traj_config stored = default_config();
+  EXPECT_LT(tdo_traj_footprint(&cfg), tdo_traj_footprint(&stored));
+  cfg.stream_samples = 3;
+  Traj bad(cfg);
+  EXPECT_EQ(bad.status(), TDO_ERR_INVALID_ARGUMENT);
+}
+
+TEST(TrajectoryPieces,
+     GivenRandomPathsAndLimits_WhenVerifiedByPieces_ThenTheSameTrajectoryAndBoundsAboveTheSamples) {
+  // GIVEN the random paths and limits of the stored-samples property test, and more
+  tdo_traj_config cfg = default_config();
+  Traj stored(cfg);
+  cfg.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+  Traj pieces(cfg);
+  uint32_t closed = 0, fell_back = 0, runs = 0;
+  for (uint64_t seed = 1; seed <= 400; ++seed) {
+    tdo_test::Rng rng(seed);
+    const auto segs = random_path(rng);
+    const tdo_path path = make_path(segs);
+    const tdo_traj_input in =
+        make_input(path, rng.uniform(0.5, 5.0), rng.uniform(0.5, 6.0), rng.uniform(1.0, 30.0),
+                   rng.uniform(0.3, 6.0), rng.uniform() < 0.5 ? 0.01 : rng.uniform(0.005, 0.05));
+    tdo_traj_output a{}, b{};
+    // WHEN both run
+    const tdo_status sa = tdo_traj_run(stored.ctx(), &in, &a);
+    ASSERT_EQ(tdo_traj_run(pieces.ctx(), &in, &b), sa) << "seed " << seed;
+    if (sa != TDO_OK && sa != TDO_ERR_INFEASIBLE) continue;
+    ++runs;
+    // THEN the profile, the sample count, the duration and the regenerated samples are the same
+    ASSERT_TRUE(same_trajectory(stored.ctx(), a, pieces.ctx(), b)) << "seed " << seed;
+    EXPECT_EQ(a.sample_passes, a.refinements + 1u);
+    EXPECT_LE(b.sample_passes, b.refinements + 1u);
+    if (b.sample_passes == b.refinements + 1u) {
+      ++fell_back;  // every round on the samples: the stored run's numbers
+      expect_same_run(a, b);
+      continue;
+    }
+    // AND a round the closed form accepted is one the finite differences accept: the last one
+    ASSERT_EQ(sa, TDO_OK) << "seed " << seed;
+    ++closed;
+    EXPECT_EQ(a.report.ok, 1);
+    EXPECT_EQ(a.report.n_violations_total, 0u);
+    ASSERT_TRUE(within_limits(a, in)) << "seed " << seed;
+    // AND its bounds are at or above the samples' finite differences (this test's own)
+    const Fd f = finite_differences(a, in.dt, in.a_max);
+    EXPECT_GE(b.report.max_speed, f.max_v) << "seed " << seed;
+    EXPECT_GE(b.report.max_acc, f.max_a) << "seed " << seed;
+    EXPECT_GE(b.report.max_jerk, f.max_j) << "seed " << seed;
+    EXPECT_GE(b.report.max_speed, a.report.max_speed) << "seed " << seed;
+    EXPECT_GE(b.report.max_acc, a.report.max_acc) << "seed " << seed;
+    EXPECT_GE(b.report.max_jerk, a.report.max_jerk) << "seed " << seed;
+    EXPECT_LE(b.report.max_speed, 1.01 * in.v_max);
+    EXPECT_LE(b.report.max_acc, 1.01 * in.a_max);
+    EXPECT_LE(b.report.max_jerk, 1.01 * in.j_max);
+    // AND the energy integral is near the trapezoid of the samples (relative 1e-2: the
+    // trapezoid's error at dt up to 0.05 s over jerk switches and curvature kinks)
+    EXPECT_NEAR(b.energy, a.energy, 1e-2 * a.energy + 1e-9) << "seed " << seed;
+  }
+  std::printf("pieces: %u runs, %u closed form, %u fell back\n", runs, closed, fell_back);
+  // The closed form is meant to hold for most profiles: a majority, not every one
+  EXPECT_GT(closed, runs / 2u);
+}
+
+TEST(TrajectoryPieces, GivenAProfileTheClosedFormRejects_WhenRun_ThenItFallsBackToTheSamples) {
+  // GIVEN the peaked corner: its first profile violates the jerk limit at the samples
+  const auto segs = peaked_path();
+  const tdo_path path = make_path(segs);
+  const tdo_traj_input in = make_input(path);
+  for (uint32_t refinements : {0u, 8u}) {
+    tdo_traj_config cfg = default_config();
+    cfg.max_refinements = refinements;
+    cfg.stream_samples = TDO_TRAJ_SAMPLES_STREAMED;
+    Traj streamed(cfg);
+    cfg.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+    Traj pieces(cfg);
+    tdo_traj_output a{}, b{};
+    // WHEN it runs in pieces mode and streamed
+    const tdo_status sa = tdo_traj_run(streamed.ctx(), &in, &a);
+    ASSERT_EQ(tdo_traj_run(pieces.ctx(), &in, &b), sa);
+    // THEN the first round fell back to the samples, with the streamed run's violations
+    EXPECT_GE(b.sample_passes, 1u);
+    EXPECT_EQ(a.refinements, b.refinements);
+    if (refinements == 0u) {
+      ASSERT_EQ(sa, TDO_ERR_INFEASIBLE);
+      EXPECT_EQ(b.sample_passes, 1u);
+      expect_same_run(a, b);
+    } else {
+      ASSERT_EQ(sa, TDO_OK);
+    }
+  }
+}
+
+TEST_F(TrajectoryClearance, GivenPiecesMode_WhenThePathPassesABox_ThenThePathsExactDistance) {
+  // GIVEN a straight path 1.2 m from a box, then one 0.3 m from it at a clearance of 0.5 m
+  load_box(1.2, 0.5);
+  tdo_traj_config cfg = default_config();
+  Traj stored(cfg);
+  cfg.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+  Traj pieces(cfg);
+  const std::vector<tdo_path_segment> segs{line({1, 0, 2}, {15, 0, 2})};
+  const tdo_path path = make_path(segs);
+  tdo_traj_input in = input_on_grid(path);
+  tdo_traj_output a{}, b{};
+  ASSERT_EQ(tdo_traj_run(stored.ctx(), &in, &a), TDO_OK);
+  ASSERT_EQ(tdo_traj_run(pieces.ctx(), &in, &b), TDO_OK);
+  // THEN the closed form accepts it, its minimum is the line's exact distance, at most the samples'
+  EXPECT_EQ(b.sample_passes, 0u);
+  EXPECT_NEAR(b.report.min_clearance, 1.2, 1e-9);
+  EXPECT_LE(b.report.min_clearance, a.report.min_clearance + 1e-12);
+  // WHEN the box is 0.3 m from the path
+  load_box(0.3, 0.0);
+  // THEN not ok: the clearance violations, as the samples give them, and no refinement
+  ASSERT_EQ(tdo_traj_run(pieces.ctx(), &in, &b), TDO_ERR_INFEASIBLE);
+  EXPECT_EQ(b.report.ok, 0);
+  EXPECT_EQ(b.refinements, 0u);
+  EXPECT_EQ(b.sample_passes, 1u);
+  ASSERT_GT(b.report.n_violations, 0u);
+  for (uint32_t i = 0; i < b.report.n_violations; ++i)
+    EXPECT_EQ(b.report.violations[i].what, TDO_QUANTITY_CLEARANCE);
+  EXPECT_NEAR(b.report.min_clearance, 0.3, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -889,6 +889,69 @@ TEST(PipelineStreaming,
   EXPECT_GE(compared, 4);  // at least the four maps' own queries
 }
 
+// tdo_capacity.stream_samples TDO_TRAJ_SAMPLES_PIECES: the same plans (waypoints, path, samples bit
+// for bit) and metrics as with stored samples, but for the energy, which is the integral of |a|^2
+// instead of the trapezoid over the samples: relative 1e-3 (the trapezoid's error at dt = 0.01 s,
+// dt^2 / 12 |f''| with |f''| / f up to ~(j_max / a_max)^2 ~ 11 1/s^2, plus its kinks at the jerk
+// switches: well below 1e-3 of the integral on these flights of tens of seconds).
+TEST(PipelineStreaming, GivenPiecesWhenPlannedThenPlanSamplesAndMetricsAreTheStoredOnes) {
+  int compared = 0, closed = 0;
+  for (int n : {1, 2, 3, 5}) {
+    const std::string name = "map" + std::to_string(n);
+    const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
+    TestPlanner stored = map_planner(map, 0.5, 0u);
+    TestPlanner pieces = map_planner(map, 0.5, 0u, TDO_TRAJ_SAMPLES_PIECES);
+    ASSERT_EQ(stored.status(), TDO_OK) << name;
+    ASSERT_EQ(pieces.status(), TDO_OK) << name;
+    TestRng rng(300u + static_cast<uint64_t>(n));
+    for (int q = 0; q < 4; ++q) {
+      tdo_plan_request req{};
+      req.start = q == 0 ? map.start : random_point(rng, map.desc);
+      req.goal = q == 0 ? map.goal : random_point(rng, map.desc);
+      tdo_plan_params_default(&req.params);
+      tdo_plan_result a{}, b{};
+      const tdo_status sa = tdo_planner_plan(stored.planner(), &req, &a);
+      const tdo_status sb = tdo_planner_plan(pieces.planner(), &req, &b);
+      const std::string what = name + " query " + std::to_string(q);
+      ASSERT_EQ(sa, sb) << what;
+      EXPECT_EQ(b.samples, nullptr) << what;
+      EXPECT_EQ(a.n_samples, b.n_samples) << what;
+      EXPECT_EQ(a.refinements, b.refinements) << what;
+      EXPECT_EQ(a.feasibility.ok, b.feasibility.ok) << what;
+      ASSERT_EQ(a.n_waypoints, b.n_waypoints) << what;
+      if (a.n_waypoints > 0u) {  // no waypoints (a failed search): nothing to compare
+        EXPECT_EQ(std::memcmp(a.waypoints, b.waypoints, a.n_waypoints * sizeof(tdo_vec3)), 0)
+            << what;
+      }
+      ASSERT_EQ(a.path.n, b.path.n) << what;
+      for (uint32_t i = 0; i < a.path.n; ++i) {
+        const tdo_path_segment& x = a.path.seg[i];
+        const tdo_path_segment& y = b.path.seg[i];
+        EXPECT_EQ(x.kind, y.kind) << what;
+        EXPECT_EQ(std::memcmp(x.p, y.p, sizeof(x.p)), 0) << what;
+        EXPECT_EQ(std::memcmp(&x.length, &y.length, sizeof(double)), 0) << what;
+      }
+      const tdo_metrics& ma = a.metrics;
+      const tdo_metrics& mb = b.metrics;
+      EXPECT_EQ(ma.turns, mb.turns) << what;
+      EXPECT_EQ(ma.curvature_continuous, mb.curvature_continuous) << what;
+      for (const auto field :
+           {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
+            &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
+        EXPECT_EQ(std::memcmp(&(ma.*field), &(mb.*field), sizeof(double)), 0) << what;
+      if (sa != TDO_OK || a.n_samples == 0u) continue;
+      ++compared;
+      if (b.sample_passes == 0u) ++closed;
+      EXPECT_NEAR(mb.energy, ma.energy, 1e-3 * ma.energy) << what;
+      const std::vector<tdo_sample> via_b = collect_samples(pieces.planner());
+      ASSERT_EQ(via_b.size(), a.n_samples) << what;
+      EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+    }
+  }
+  EXPECT_GE(compared, 4);  // at least the four maps' own queries
+  EXPECT_GE(closed, 1);    // and the closed form accepted some of them
+}
+
 // geb079 voxelized at 0.2 m, clearance 0.3 m: the checked pairs G1-G5 of maps/octomap/README.md
 // (the corridor, a room off it, and north room to south room). The octile-guided turn-penalised
 // search floods the building on G4 and G5 (2.3-2.7 million expansions); they are here for its

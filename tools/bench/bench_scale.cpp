@@ -40,14 +40,22 @@ struct Options {
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
   std::string guide = "on";            // tdo's coarse guide on grids of 2^19 voxels or more
+  std::string samples = "stored";      // tdo's trajectory samples: stored | streamed | pieces
+  uint64_t trajectories = 0;           // timed tdo plans that reached the trajectory stage
+  uint64_t sampled = 0;                // of them: verified a round over the samples
 };
+
+uint32_t samples_mode(const std::string& s) {
+  return s == "pieces" ? TDO_TRAJ_SAMPLES_PIECES
+                       : (s == "streamed" ? TDO_TRAJ_SAMPLES_STREAMED : TDO_TRAJ_SAMPLES_STORED);
+}
 
 void usage(FILE* f) {
   std::fprintf(
       f,
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
       "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
-      "                       [--guide on|off]\n"
+      "                       [--guide on|off] [--samples stored|streamed|pieces]\n"
       "                       [--maps-dir DIR] [--load]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
@@ -62,6 +70,9 @@ void usage(FILE* f) {
       "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
       "  --guide on|off   tdo's coarse guide on grids of 2^19 voxels or more (design s.1;\n"
       "                   default on, as tdo-plan)\n"
+      "  --samples M      tdo's trajectory samples (tdo_capacity.stream_samples): stored (the\n"
+      "                   default), streamed, or pieces (closed-form check per profile piece;\n"
+      "                   the header counts the plans that fell back to the samples)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"
       "                   .3dmap map against the OctoMap library's read / the .3dmap parse\n"
@@ -86,7 +97,8 @@ int parse_args(int argc, char** argv, Options* o) {
     }
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
                              a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
-                             a == "--max-nodes" || a == "--states" || a == "--guide";
+                             a == "--max-nodes" || a == "--states" || a == "--guide" ||
+                             a == "--samples";
     int rc = 0;
     const char* v =
         tdo_bench::option_value("tdo-bench-scale", argc, argv, &i, takes_value, usage, &rc);
@@ -103,6 +115,9 @@ int parse_args(int argc, char** argv, Options* o) {
     } else if (a == "--guide") {
       o->guide = v;
       ok = o->guide == "on" || o->guide == "off";
+    } else if (a == "--samples") {
+      o->samples = v;
+      ok = o->samples == "stored" || o->samples == "streamed" || o->samples == "pieces";
     } else if (a == "--states") {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";
@@ -129,7 +144,7 @@ int parse_args(int argc, char** argv, Options* o) {
 
 // One map of a workload: load it, set the planners up, warm up, then every query on every planner
 // in a rotating order. Returns 0, or 2 after a message.
-int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::ScaleMap& sm,
+int run_map(Options& o, const tdo_bench::Workload& w, const tdo_bench::ScaleMap& sm,
             tdo_bench::WorkloadRecord* rec) {
   tdo_io::Map map;
   std::string err;
@@ -148,9 +163,10 @@ int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::Sca
     }
     queries.push_back(tdo_bench::ScaleQuery{map.start, map.goal, "map"});
   }
-  std::unique_ptr<tdo_bench::ScaleMapRun> run = tdo_bench::ScaleMapRun::create(
-      map, sm.clearance, static_cast<uint32_t>(o.max_nodes),
-      o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING, o.guide == "on", w.rrt, &err);
+  std::unique_ptr<tdo_bench::ScaleMapRun> run =
+      tdo_bench::ScaleMapRun::create(map, sm.clearance, static_cast<uint32_t>(o.max_nodes),
+                                     o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING,
+                                     o.guide == "on", w.rrt, samples_mode(o.samples), &err);
   if (!run) {
     std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
     return 2;
@@ -165,6 +181,7 @@ int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::Sca
   for (uint64_t i = 0; i < o.warmup && i < queries.size(); ++i)
     for (int p = 0; p < kScalePlanners; ++p)
       if (run->has(p)) (void)run->run(p, queries[i], o.seed + base + i, 1);
+  const uint64_t traj0 = run->tdo_trajectories(), sampled0 = run->tdo_sampled();
   for (size_t qi = 0; qi < queries.size(); ++qi) {
     tdo_bench::ScaleOutcome oc[kScalePlanners];
     for (int k = 0; k < kScalePlanners; ++k) {
@@ -177,6 +194,8 @@ int run_map(const Options& o, const tdo_bench::Workload& w, const tdo_bench::Sca
       std::fprintf(stderr, "tdo-bench-scale: %s: %zu of %zu queries\n", sm.file.c_str(), qi + 1,
                    queries.size());
   }
+  o.trajectories += run->tdo_trajectories() - traj0;
+  o.sampled += run->tdo_sampled() - sampled0;
   return 0;
 }
 
@@ -224,10 +243,11 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu, states "
-      "%s, guide %s%s\n",
+      "%s, guide %s, samples %s (%llu of %llu tdo trajectories verified over the samples)%s\n",
       static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
       static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
-      o.states.c_str(), o.guide.c_str(),
+      o.states.c_str(), o.guide.c_str(), o.samples.c_str(),
+      static_cast<unsigned long long>(o.sampled), static_cast<unsigned long long>(o.trajectories),
       o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);

@@ -96,7 +96,7 @@ ScaleMapRun::~ScaleMapRun() = default;
 
 std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double clearance,
                                                  uint32_t node_cap, int states, bool guide,
-                                                 bool rrt, std::string* error) {
+                                                 bool rrt, uint32_t samples, std::string* error) {
   std::unique_ptr<ScaleMapRun> r(new ScaleMapRun());
   r->clearance_ = clearance;
   r->states_ = states;
@@ -111,6 +111,7 @@ std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double 
   // states included); without `guide` no guide.
   tdo_capacity_guide(&cfg.cap, map.desc.nx, map.desc.ny, map.desc.nz, 1);
   if (!guide) cfg.cap.guide_shift = 0u;
+  cfg.cap.stream_samples = samples;
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";
@@ -170,6 +171,10 @@ ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
   tdo_plan_result res{};
   ScaleOutcome o;
   const tdo_status st = plan_best_of(tdo_, req, repeat, &res, &o);
+  if (res.reached == TDO_PLAN_TRAJECTORY) {
+    ++tdo_trajectories_;
+    if (res.sample_passes > 0u) ++tdo_sampled_;
+  }
   if (st != TDO_OK && st != TDO_ERR_INFEASIBLE) {
     o.status = tdo_status_str(st);
     return o;

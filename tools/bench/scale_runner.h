@@ -54,12 +54,13 @@ class ScaleMapRun {
    *        0 = voxels x headings). `states`: the tdo search's tdo_state_space; with
    *        TDO_STATES_VOXEL tdo is sized without headings but keeps the retry tables, as tdo-plan
    *        --states voxel. `guide`: tdo's coarse guide on grids of 2^19 voxels or more
-   *        (tdo_capacity.guide_shift 2), as tdo-plan --guide. @return null with `error` on a
-   *        set-up failure.
+   *        (tdo_capacity.guide_shift 2), as tdo-plan --guide. `samples`: tdo's
+   *        tdo_capacity.stream_samples (TDO_TRAJ_SAMPLES_STORED, _STREAMED or _PIECES).
+   *        @return null with `error` on a set-up failure.
    */
   static std::unique_ptr<ScaleMapRun> create(const tdo_io::Map& map, double clearance,
                                              uint32_t node_cap, int states, bool guide, bool rrt,
-                                             std::string* error);
+                                             uint32_t samples, std::string* error);
   ~ScaleMapRun();
   ScaleMapRun(const ScaleMapRun&) = delete;
   ScaleMapRun& operator=(const ScaleMapRun&) = delete;
@@ -69,6 +70,10 @@ class ScaleMapRun {
   /** Whether `planner` takes part on this map. */
   bool has(int planner) const;
   const ScaleSetup& setup(int planner) const { return setup_[planner]; }
+  /** tdo plans run so far that reached the trajectory stage, and those of them that verified a
+   *  round over the samples (tdo_plan_result.sample_passes > 0: with pieces, the fallbacks). */
+  uint64_t tdo_trajectories() const { return tdo_trajectories_; }
+  uint64_t tdo_sampled() const { return tdo_sampled_; }
 
  private:
   ScaleMapRun() = default;
@@ -79,6 +84,7 @@ class ScaleMapRun {
 
   double clearance_ = 0.0;
   int states_ = TDO_STATES_HEADING;  // tdo_plan_params.states of tdo
+  uint64_t tdo_trajectories_ = 0, tdo_sampled_ = 0;
   std::unique_ptr<unsigned char[]> tdo_memory_;
   tdo_planner* tdo_ = nullptr;
   std::unique_ptr<tdo_baselines::Environment> env_;  // A*'s planner

@@ -61,8 +61,11 @@ typedef struct tdo_capacity {
   uint32_t max_refinements; /**< feasibility refinement rounds before TDO_ERR_INFEASIBLE */
   uint32_t stream_samples;  /**< 0: trajectory samples are stored (tdo_plan_result.samples);
                                  1: not stored, verified and measured in streaming passes (same
-                                 numbers), read with tdo_planner_each_sample (trajectory.h,
-                                 tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 0 */
+                                 numbers); 2: not stored, verified per profile piece in closed form
+                                 (fallback to 1 per round: tdo_plan_result.sample_passes; the
+                                 feasibility report's maxima are bounds and the energy the
+                                 integral, trajectory.h); 1 and 2: read with tdo_planner_each_sample
+                                 (tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 0 */
   uint32_t max_open;        /**< search open-list items per direction (16 bytes each, plus 27 of
                                  slack); 0 = max_nodes (never full). Too small:
                                  TDO_ERR_OPEN_CAPACITY; tdo_search_output.peak_open measures a

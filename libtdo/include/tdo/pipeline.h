@@ -124,6 +124,10 @@ typedef struct tdo_plan_result {
   tdo_feasibility feasibility; /**< stage 5 report (also when infeasible) */
   uint32_t refinements;        /**< feasibility refinement rounds */
   tdo_metrics metrics;         /**< stage 6, of the deepest output */
+  uint32_t sample_passes;      /**< trajectory rounds verified over the samples (every round when
+                                    stored or streamed; with tdo_capacity.stream_samples
+                                    TDO_TRAJ_SAMPLES_PIECES only those whose closed-form check
+                                    failed: tdo_traj_output.sample_passes), summed as refinements */
 } tdo_plan_result;
 
 /**
