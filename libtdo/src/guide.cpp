@@ -30,6 +30,7 @@ struct Guide {
   uint32_t* avoid;  // max_avoid masks of blocks of 2^3 cells: the second route's corridor
   uint32_t max_avoid;
   tdo_voxel* route;           // max_path cells: the coarse route
+  tdo_voxel* kept;            // max_path voxels: the second route's plan
   const tdo_grid* built_for;  // the fine grid the coarse grid was built from
   uint32_t built_version;     // its tdo_grid.version then
   tdo_search_corridor corridor;
@@ -281,7 +282,7 @@ size_t guide_footprint(const GuideCapacity& cap) {
          tdo_search_footprint(&sc) + tdo_arena_round(cap.max_cells * sizeof(uint32_t)) +
          tdo_arena_round(27u * cap.max_path * sizeof(uint32_t)) +
          tdo_arena_round(avoid_capacity(cap) * sizeof(uint32_t)) +
-         tdo_arena_round(cap.max_path * sizeof(tdo_voxel));
+         2u * tdo_arena_round(cap.max_path * sizeof(tdo_voxel));
 }
 
 tdo_status guide_init(Guide** out, tdo_arena* arena, const GuideCapacity& cap) {
@@ -303,7 +304,9 @@ tdo_status guide_init(Guide** out, tdo_arena* arena, const GuideCapacity& cap) {
   gd->max_avoid = avoid_capacity(cap);
   gd->avoid = static_cast<uint32_t*>(tdo_arena_alloc(arena, gd->max_avoid * sizeof(uint32_t)));
   gd->route = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cap.max_path * sizeof(tdo_voxel)));
-  if (gd->cells == nullptr || gd->marked == nullptr || gd->avoid == nullptr || gd->route == nullptr)
+  gd->kept = static_cast<tdo_voxel*>(tdo_arena_alloc(arena, cap.max_path * sizeof(tdo_voxel)));
+  if (gd->cells == nullptr || gd->marked == nullptr || gd->avoid == nullptr ||
+      gd->route == nullptr || gd->kept == nullptr)
     return TDO_ERR_ARENA_TOO_SMALL;
   memset(gd->cells, 0, cap.max_cells * sizeof(uint32_t));
   *out = gd;
@@ -337,21 +340,24 @@ tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
     report->coarse_path = co.n_path;
     const uint32_t n = co.n_path;
     memcpy(gd->route, co.path, n * sizeof(tdo_voxel));
-    tdo_search_output alt;  // the second route first: the route's plan, kept most often, last
+    // The second route's search first, its plan copied (gd->kept): the route's plan, the one
+    // returned most often, is then the search's last and stays in place.
+    tdo_search_output alt;      // the second coarse route
+    tdo_search_output alt_out;  // its plan
     tdo_status st_alt = TDO_ERR_NO_PATH;
-    double len_alt = 0.0;
     if (second_route(gd, ci, gd->route, n, co.cost, &alt, report)) {
-      st_alt = corridor_search(gd, fine, in, alt.path, alt.n_path, out, report);
-      len_alt = out->cost;
+      st_alt = corridor_search(gd, fine, in, alt.path, alt.n_path, &alt_out, report);
+      if (st_alt == TDO_OK && alt_out.n_path <= gd->cap.max_path) {
+        memcpy(gd->kept, alt_out.path, alt_out.n_path * sizeof(tdo_voxel));
+        alt_out.path = gd->kept;
+      } else {
+        st_alt = TDO_ERR_NO_PATH;  // no plan, or one longer than the copy's room
+      }
     }
     const tdo_status st = corridor_search(gd, fine, in, gd->route, n, out, report);
-    const bool alt_better = st_alt == TDO_OK && len_alt < out->cost * (1.0 - kAltGain);
-    if (st == TDO_OK && !alt_better) {
-      report->used = 1;
-      return st;
-    }
-    if (st_alt == TDO_OK &&
-        corridor_search(gd, fine, in, alt.path, alt.n_path, out, report) == TDO_OK) {
+    const bool alt_better = st_alt == TDO_OK && alt_out.cost < out->cost * (1.0 - kAltGain);
+    if (st == TDO_OK || st_alt == TDO_OK) {
+      if (st != TDO_OK || alt_better) *out = alt_out;
       report->used = 1;
       return TDO_OK;
     }
