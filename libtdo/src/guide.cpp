@@ -1,6 +1,7 @@
 // The coarse guide of the turn-penalised search (docs/design.md s.1, "The coarse guide").
 #include "guide.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -214,11 +215,27 @@ uint32_t cells_outside(const tdo_voxel* alt, uint32_t n_alt, const tdo_voxel* ro
   return outside;
 }
 
+// The route is as short as the octile distance between its ends: no second route is tried.
+bool straight_route(const tdo_voxel* route, uint32_t n, double cost, double res) {
+  int32_t d[3] = {abs(route[n - 1u].i - route[0].i), abs(route[n - 1u].j - route[0].j),
+                  abs(route[n - 1u].k - route[0].k)};
+  for (int a = 0; a < 2; ++a)
+    for (int b = a + 1; b < 3; ++b)
+      if (d[b] > d[a]) {
+        const int32_t t = d[a];
+        d[a] = d[b];
+        d[b] = t;
+      }
+  const double octile = d[2] * sqrt(3.0) + (d[1] - d[2]) * sqrt(2.0) + (d[0] - d[1]);
+  return cost <= octile * res * (1.0 + 1e-9);
+}
+
 // A second coarse route `alt` (its path is the coarse search's, valid until its next run): the
 // shortest on the shallow grid that avoids the blocks of `route` but near its ends. True when it
 // is worth a corridor search (kAltMargin, kAltOutside).
 bool second_route(Guide* gd, const tdo_search_input& ci, const tdo_voxel* route, uint32_t n,
                   double cost, tdo_search_output* alt, GuideReport* report) {
+  if (straight_route(route, n, cost, gd->coarse->desc.res)) return false;
   tdo_search_corridor av;
   if (!build_avoid(gd, route, n, &av)) return false;
   tdo_search_input ai = ci;
