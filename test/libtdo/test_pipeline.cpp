@@ -457,6 +457,35 @@ TEST(PlannerGuide, GivenWallMaps_WhenPlanningWithTheGuide_ThenAPlanWheneverOneEx
   EXPECT_EQ(res.search.guide, 0u);
 }
 
+// A thick wall with a slot that keeps the clearance but no voxel one edge deeper (so the route's
+// coarse grid has no cell there) near the straight line, and a wide opening far from it: the
+// second route (shallow coarse grid) finds the slot, whose plan is far shorter than the detour.
+TEST(PlannerGuide, GivenASlotOnlyTheShallowGridSees_WhenPlanningWithTheGuide_ThenThroughTheSlot) {
+  constexpr int32_t nx = 48, ny = 64, nz = 1;
+  constexpr double clearance = 2.2;  // voxel edges of 1 m; the slot's centre row is 2.5 m clear
+  tdo_capacity cap{};
+  tdo_capacity_for_grid(&cap, nx, ny, nz, clearance, 27u, 0u);
+  cap.guide_shift = 2u;
+  TestPlanner pl(cap);
+  ASSERT_EQ(pl.status(), TDO_OK);
+  tdo_test::VoxelMap m(nx, ny, nz, 1.0, tdo_vec3{0.0, 0.0, 0.0});
+  for (int32_t i = 12; i < 28; ++i)
+    for (int32_t j = 0; j < ny; ++j)
+      m.set(i, j, 0, !(j >= 16 && j <= 20) && !(j >= 44));  // slot y 16..20, opening y >= 44
+  ASSERT_EQ(tdo_test::load_voxels(pl.grid(), m, clearance), TDO_OK);
+  tdo_plan_request r{};
+  r.start = m.center(tdo_voxel{4, 18, 0});
+  r.goal = m.center(tdo_voxel{43, 18, 0});
+  tdo_plan_params_default(&r.params);
+  r.params.depth = TDO_PLAN_SEARCH;
+  tdo_plan_result res{};
+  ASSERT_EQ(tdo_planner_plan(pl.planner(), &r, &res), TDO_OK);
+  EXPECT_EQ(res.search.guide, 1u);
+  // Through the slot: 39 m straight; around through the opening: more than 2 * hypot(26, 19.5).
+  EXPECT_LT(res.search.cost, 41.0);
+  EXPECT_TRUE(tdo_test::valid_path(m, res.search, tdo_voxel{4, 18, 0}, tdo_voxel{43, 18, 0}));
+}
+
 TEST(PlanStageInputs, GivenParams_WhenStageInputsFilled_ThenTheirFieldsComeFromParamsAndNoOther) {
   tdo_plan_params p;
   tdo_plan_params_default(&p);
