@@ -229,9 +229,15 @@ void metrics_of(tdo_planner* pl, tdo_plan_result* r, const tdo_path* path, const
   // report's cap): a tight hint (tdo_metrics_input.clearance_hint).
   const double seen = r->feasibility.min_clearance;
   const double cap = tdo_grid_clearance(pl->grid) + TDO_TRAJ_CLEARANCE_CAP_EXTRA;
-  if (r->reached == TDO_PLAN_TRAJECTORY && seen >= 0.0 && seen < cap)
-    mi.clearance_hint = seen + 1e-9;
+  const bool near = r->reached == TDO_PLAN_TRAJECTORY && seen >= 0.0 && seen < cap;
+  if (near) mi.clearance_hint = seen + 1e-9;
+  // A round that pieces mode accepted measured the path itself as tdo_metrics_compute does
+  // (trajectory.h, tdo_traj_output.report): below its cap that is this metric, taken as it is.
+  const bool path_measured = near && traj != nullptr && traj->samples == nullptr &&
+                             traj->report.ok && traj->sample_passes == traj->refinements;
+  if (path_measured) mi.grid = nullptr;
   tdo_metrics_compute(&mi, &r->metrics);
+  if (path_measured) r->metrics.min_clearance_m = seen;
   if (traj != nullptr && traj->n_samples >= 2u && (traj->samples == nullptr || known)) {
     r->metrics.energy = traj->energy;
     r->metrics.flight_time_s = traj->samples != nullptr
