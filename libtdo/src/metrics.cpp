@@ -18,6 +18,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "path_clearance.h"
 #include "path_segment.h"
 #include "sample_energy.h"
 #include "scalar.h"
@@ -372,6 +373,23 @@ tdo_status validate(const tdo_metrics_input* in) {
 }
 
 }  // namespace
+
+// A hint starts the running minimum just above the expected result, so the queries are capped
+// tightly from the first one; the result is the same as long as the path comes below the hint
+// (every piece at or above it changes nothing), else it is measured again without.
+double path_min_clearance(const tdo_grid* grid, const tdo_path* path, const tdo_vec3* w, uint32_t n,
+                          double cap, double hint) {
+  const bool hinted = hint > 0.0 && hint < cap;
+  const auto measure = [=](double start) {
+    return path != nullptr ? path_clearance(grid, *path, cap, start)
+                           : polyline_clearance(grid, w, n, cap, start);
+  };
+  double d = measure(hinted ? hint : HUGE_VAL);
+  if (hinted && !(d < hint)) d = measure(HUGE_VAL);
+  if (d < 0.0) d = 0.0;  // a lower bound below zero means touching
+  return d < cap ? d : cap;
+}
+
 }  // namespace tdo_internal
 
 using namespace tdo_internal;
@@ -404,23 +422,9 @@ extern "C" tdo_status tdo_metrics_compute(const tdo_metrics_input* in, tdo_metri
   out->avg_curvature = length > 0.0 ? abs_int / length : 0.0;
   out->smoothness = 1.0 / (1.0 + sq_int * 1.0);  // integral kappa^2 ds (1/m) times 1 m
 
-  if (in->grid != nullptr) {
-    const double cap = in->clearance_cap;
-    // A hint starts the running minimum just above the expected result, so the queries are
-    // capped tightly from the first one; the result is the same as long as the path comes below
-    // the hint (every piece at or above it changes nothing), else it is measured again without.
-    const double hint = in->clearance_hint;
-    const bool hinted = hint > 0.0 && hint < cap;
-    const auto measure = [in, cap](double start) {
-      return in->path != nullptr
-                 ? path_clearance(in->grid, *in->path, cap, start)
-                 : polyline_clearance(in->grid, in->waypoints, in->n_waypoints, cap, start);
-    };
-    double d = measure(hinted ? hint : HUGE_VAL);
-    if (hinted && !(d < hint)) d = measure(HUGE_VAL);
-    if (d < 0.0) d = 0.0;  // a lower bound below zero means touching
-    out->min_clearance_m = d < cap ? d : cap;
-  }
+  if (in->grid != nullptr)
+    out->min_clearance_m = path_min_clearance(in->grid, in->path, in->waypoints, in->n_waypoints,
+                                              in->clearance_cap, in->clearance_hint);
 
   if (in->samples != nullptr && in->n_samples >= 2u) {
     double energy = 0.0;

@@ -41,11 +41,11 @@
 
 #include "bisect_highest.h"
 #include "collision_internal.h"
+#include "path_clearance.h"
 #include "path_segment.h"
 #include "sample_energy.h"
 #include "scalar.h"
 #include "tdo/collision.h"
-#include "tdo/metrics.h"
 #include "vec3.h"
 
 namespace tdo_internal {
@@ -2126,24 +2126,11 @@ double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
 }
 
 /** m, the path's distance to the obstacles as tdo_metrics_compute measures it (lines exact, curves
- *  a chord lower bound), capped at `cap`. */
+ *  a chord lower bound), capped at `cap`. The paths keep the clearance and most touch it (the
+ *  geometric stages hold them there): a hint just above it caps the queries tightly; the result is
+ *  the same whatever the hint. */
 double pieces_clearance(const tdo_traj_input* in, double cap) {
-  const tdo_path& path = in->path;
-  const tdo_path_segment& last = path.seg[path.n - 1u];
-  const tdo_vec3 ends[2] = {path.seg[0].p[0], tdo_segment_point(&last, last.length)};
-  tdo_metrics_input mi;
-  memset(&mi, 0, sizeof(mi));
-  mi.waypoints = ends;
-  mi.n_waypoints = 2u;
-  mi.path = &path;
-  mi.grid = in->grid;
-  mi.clearance_cap = cap;
-  // The paths keep the clearance and most touch it (the geometric stages hold them there): a
-  // hint just above it caps the queries tightly; the result is the same whatever the hint.
-  mi.clearance_hint = in->clearance + kPieceClearHint;
-  tdo_metrics mt;
-  if (tdo_metrics_compute(&mi, &mt) != TDO_OK) return -HUGE_VAL;
-  return mt.min_clearance_m;
+  return path_min_clearance(in->grid, &in->path, nullptr, 0u, cap, in->clearance + kPieceClearHint);
 }
 
 /** Pieces mode: the closed-form checks of the current profile; true when every one holds (the
