@@ -47,8 +47,9 @@ inline void add_planner_options(CLI::App& app, PlannerConfig& cfg, std::vector<i
   const std::map<std::string, int32_t> modes{{"stored", 0}, {"streamed", 1}, {"pieces", 2}};
   app.add_option("--samples", cfg.stream_samples,
                  "stored | streamed | pieces: trajectory samples kept in the arena, or regenerated "
-                 "on demand (tdo_capacity.stream_samples; the answers are the same). Default: as "
-                 "tdo_capacity_for_grid sets it")
+                 "on demand (tdo_capacity.stream_samples; the same samples; pieces verifies each "
+                 "profile piece in closed form: its feasibility maxima are bounds, its energy the "
+                 "integral). Default: as tdo_capacity_for_grid sets it")
       ->transform(CLI::CheckedTransformer(modes));
 }
 

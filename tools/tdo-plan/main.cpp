@@ -279,6 +279,11 @@ double voxel_count(const tdo_grid_desc& d) {
   return static_cast<double>(d.nx) * static_cast<double>(d.ny) * static_cast<double>(d.nz);
 }
 
+/** " (--samples MODE)" when --samples was given, for the messages that depend on it. */
+std::string samples_note(const Options& o) {
+  return o.samples.empty() ? "" : " (--samples " + o.samples + ")";
+}
+
 /** Size, allocate and initialise the planner, then load the map. Throws BadInput. */
 void build_planner(const Options& o, const tdo_io::Map& map, double clearance, Planner* p) {
   // Voxel states need one state per voxel, as plain A* does (tdo_state_space).
@@ -293,7 +298,6 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   cfg.cap.exact_heuristic = o.retry == "off" ? 0u : 1u;  // "first*" need the tables too
   cfg.cap.max_open = static_cast<uint32_t>(o.max_open);
   if (!o.samples.empty()) (void)tdo_samples::mode_parse(o.samples.c_str(), &cfg.cap.stream_samples);
-  const std::string samples_note = o.samples.empty() ? "" : " (--samples " + o.samples + ")";
   const double nvox = voxel_count(map.desc);
   const std::size_t fit_bytes = tdo_planner_footprint(&cfg);  // the arena this map needs
   const auto vcap = static_cast<uint32_t>(o.max_voxels);
@@ -315,7 +319,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
     tdo_planner* none = nullptr;
     const tdo_status why = tdo_planner_init(&none, &byte, 1u, &cfg);
     throw BadInput{std::string(tdo_status_str(why)) +
-                   ": invalid planner configuration for this map" + samples_note};
+                   ": invalid planner configuration for this map" + samples_note(o)};
   }
   p->bytes = o.arena_bytes >= 0 ? static_cast<std::size_t>(o.arena_bytes) : p->footprint;
   p->memory.reset(new (std::nothrow) unsigned char[std::max<std::size_t>(p->bytes, 1u)]);
@@ -328,7 +332,7 @@ void build_planner(const Options& o, const tdo_io::Map& map, double clearance, P
   }
   if (st != TDO_OK)
     throw BadInput{std::string(tdo_status_str(st)) + ": planner initialisation failed" +
-                   samples_note};
+                   samples_note(o)};
   p->grid = tdo_planner_grid(p->planner);
   p->search = tdo_planner_search(p->planner);
   st = tdo_io::load_into(map, p->grid, clearance);
@@ -692,8 +696,7 @@ int run_single(const Options& o, const tdo_io::Map& map, double clearance, tdo_s
       o.json || o.optimum ? tdo_samples::plan_samples(p.planner, res, &samples) : TDO_OK;
   if (sst != TDO_OK)
     throw BadInput{std::string(tdo_status_str(sst)) + ": cannot read the plan's " +
-                   std::to_string(res.n_samples) + " samples" +
-                   (o.samples.empty() ? "" : " (--samples " + o.samples + ")")};
+                   std::to_string(res.n_samples) + " samples" + samples_note(o)};
   const bool optimum = o.optimum && planned && samples.size() > 1;
   const tdo_tools::VaOptimum opt = optimum ? plan_optimum(samples, o) : tdo_tools::VaOptimum{};
   const double ratio = opt.time_s > 0.0 ? m.flight_time_s / opt.time_s : 0.0;
@@ -903,8 +906,10 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--samples", o.samples,
                  "stored | streamed | pieces: the trajectory samples kept in the arena, or "
-                 "regenerated on demand (tdo_capacity.stream_samples 0 / 1 / 2; same output, "
-                 "smaller arena). Default: as tdo_capacity_for_grid sets it")
+                 "regenerated on demand (tdo_capacity.stream_samples 0 / 1 / 2; the same samples; "
+                 "pieces verifies each profile piece in closed form, so its feasibility maxima "
+                 "are bounds and its energy the integral). Default: as tdo_capacity_for_grid sets "
+                 "it")
       ->check(CLI::IsMember({"stored", "streamed", "pieces"}));
   app.add_option("--stop", o.stop, "tdo search stopping rule: first-meet (the paper) | optimal")
       ->check(CLI::IsMember({"first-meet", "optimal"}))

@@ -497,8 +497,8 @@ int run(int argc, char** argv) {
   std::string samples;
   app.add_option("--samples", samples,
                  "stored | streamed | pieces: the planner's trajectory samples kept in its arena, "
-                 "or regenerated on demand (tdo_capacity.stream_samples; same episodes). Default: "
-                 "as tdo_capacity_for_grid sets it")
+                 "or regenerated on demand (tdo_capacity.stream_samples; the same samples, so the "
+                 "same episodes). Default: as tdo_capacity_for_grid sets it")
       ->check(CLI::IsMember({"stored", "streamed", "pieces"}));
   tdo_online::Options online;
   std::string replanner = "tdo";

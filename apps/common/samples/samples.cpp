@@ -62,16 +62,18 @@ tdo_status traj_samples(const tdo_traj* traj, const tdo_traj_output& o,
 }
 
 namespace {
-const char* const kModes[] = {"stored", "streamed", "pieces"};
-}
+// Indexed by tdo_capacity.stream_samples (TDO_TRAJ_SAMPLES_STORED .. _PIECES).
+constexpr uint32_t kModeCount = TDO_TRAJ_SAMPLES_PIECES + 1u;
+const char* const kModes[kModeCount] = {"stored", "streamed", "pieces"};
+}  // namespace
 
 const char* mode_name(uint32_t stream_samples) {
-  return stream_samples < 3u ? kModes[stream_samples] : nullptr;
+  return stream_samples < kModeCount ? kModes[stream_samples] : nullptr;
 }
 
 bool mode_parse(const char* name, uint32_t* stream_samples) {
   if (name == nullptr || stream_samples == nullptr) return false;
-  for (uint32_t i = 0; i < 3u; ++i)
+  for (uint32_t i = 0; i < kModeCount; ++i)
     if (std::strcmp(name, kModes[i]) == 0) {
       *stream_samples = i;
       return true;
