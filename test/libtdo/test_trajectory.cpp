@@ -517,6 +517,12 @@ std::vector<tdo_path_segment> random_path(tdo_test::Rng& rng) {
   return segs;
 }
 
+// Random limits (v, a, j, lateral a) and dt for a random path: half of them at dt = 0.01 s.
+tdo_traj_input random_input(tdo_test::Rng& rng, const tdo_path& path) {
+  return make_input(path, rng.uniform(0.5, 5.0), rng.uniform(0.5, 6.0), rng.uniform(1.0, 30.0),
+                    rng.uniform(0.3, 6.0), rng.uniform() < 0.5 ? 0.01 : rng.uniform(0.005, 0.05));
+}
+
 TEST(Trajectory, GivenRandomPathsAndLimitsThenEveryOkTrajectoryPassesTheIndependentCheck) {
   Traj t;
   uint32_t ok = 0, runs = 0;
@@ -524,9 +530,7 @@ TEST(Trajectory, GivenRandomPathsAndLimitsThenEveryOkTrajectoryPassesTheIndepend
     tdo_test::Rng rng(seed);
     const auto segs = random_path(rng);
     const tdo_path path = make_path(segs);
-    const tdo_traj_input in =
-        make_input(path, rng.uniform(0.5, 5.0), rng.uniform(0.5, 6.0), rng.uniform(1.0, 30.0),
-                   rng.uniform(0.3, 6.0), rng.uniform() < 0.5 ? 0.01 : rng.uniform(0.005, 0.05));
+    const tdo_traj_input in = random_input(rng, path);
     tdo_traj_output out{};
     const tdo_status st = tdo_traj_run(t.ctx(), &in, &out);
     ++runs;
@@ -1012,9 +1016,7 @@ TEST(TrajectoryPieces,
     tdo_test::Rng rng(seed);
     const auto segs = random_path(rng);
     const tdo_path path = make_path(segs);
-    const tdo_traj_input in =
-        make_input(path, rng.uniform(0.5, 5.0), rng.uniform(0.5, 6.0), rng.uniform(1.0, 30.0),
-                   rng.uniform(0.3, 6.0), rng.uniform() < 0.5 ? 0.01 : rng.uniform(0.005, 0.05));
+    const tdo_traj_input in = random_input(rng, path);
     tdo_traj_output a{}, b{};
     // WHEN both run
     const tdo_status sa = tdo_traj_run(stored.ctx(), &in, &a);

@@ -824,16 +824,31 @@ std::vector<tdo_sample> collect_samples(const tdo_planner* pl) {
   return out;
 }
 
-TEST(PipelineStreaming,
-     GivenStreamedSamplesWhenPlannedThenReportMetricsAndSamplesAreTheStoredOnes) {
-  int compared = 0;
+// Every metric of `a` and `b` bit for bit; the energy only `with_energy`.
+void expect_same_metrics(const tdo_metrics& a, const tdo_metrics& b, bool with_energy,
+                         const std::string& what) {
+  EXPECT_EQ(a.turns, b.turns) << what;
+  EXPECT_EQ(a.curvature_continuous, b.curvature_continuous) << what;
+  for (const auto field :
+       {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
+        &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
+    EXPECT_EQ(std::memcmp(&(a.*field), &(b.*field), sizeof(double)), 0) << what;
+  if (with_energy) EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof(double)), 0) << what;
+}
+
+// Plans each of Map1, 2, 3 and 5 (Map4 left out: 150 MB per planner) at clearance 0.5 m with
+// stored samples and with stream_samples `mode`: the map's own query and three seeded random ones,
+// which include infeasible and failed ones. check(a, b, sa, sb, what, stored, other) gets both
+// results, their statuses, a label and both planners.
+template <typename Check>
+void for_each_mode_pair(uint32_t mode, Check check) {
   for (int n : {1, 2, 3, 5}) {
     const std::string name = "map" + std::to_string(n);
     const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
     TestPlanner stored = map_planner(map, 0.5, 0u);
-    TestPlanner streamed = map_planner(map, 0.5, 0u, 1u);
+    TestPlanner other = map_planner(map, 0.5, 0u, mode);
     ASSERT_EQ(stored.status(), TDO_OK) << name;
-    ASSERT_EQ(streamed.status(), TDO_OK) << name;
+    ASSERT_EQ(other.status(), TDO_OK) << name;
     TestRng rng(300u + static_cast<uint64_t>(n));
     for (int q = 0; q < 4; ++q) {
       tdo_plan_request req{};
@@ -842,50 +857,51 @@ TEST(PipelineStreaming,
       tdo_plan_params_default(&req.params);
       tdo_plan_result a{}, b{};
       const tdo_status sa = tdo_planner_plan(stored.planner(), &req, &a);
-      const tdo_status sb = tdo_planner_plan(streamed.planner(), &req, &b);
-      const std::string what = name + " query " + std::to_string(q);
-      ASSERT_EQ(sa, sb) << what;
-      EXPECT_EQ(b.samples, nullptr) << what;
-      EXPECT_EQ(a.n_samples, b.n_samples) << what;
-      EXPECT_EQ(a.refinements, b.refinements) << what;
-      // The reports field by field (the violation lists by value), the metrics bit for bit.
-      const tdo_feasibility& fa = a.feasibility;
-      const tdo_feasibility& fb = b.feasibility;
-      EXPECT_EQ(fa.ok, fb.ok) << what;
-      EXPECT_EQ(std::memcmp(&fa.max_speed, &fb.max_speed, sizeof(double)), 0) << what;
-      EXPECT_EQ(std::memcmp(&fa.max_acc, &fb.max_acc, sizeof(double)), 0) << what;
-      EXPECT_EQ(std::memcmp(&fa.max_jerk, &fb.max_jerk, sizeof(double)), 0) << what;
-      EXPECT_EQ(std::memcmp(&fa.min_turn_radius, &fb.min_turn_radius, sizeof(double)), 0) << what;
-      EXPECT_EQ(std::memcmp(&fa.min_clearance, &fb.min_clearance, sizeof(double)), 0) << what;
-      EXPECT_EQ(fa.n_violations_total, fb.n_violations_total) << what;
-      ASSERT_EQ(fa.n_violations, fb.n_violations) << what;
-      for (uint32_t i = 0; i < fa.n_violations; ++i) {  // field by field (padding differs)
-        const tdo_violation& va = fa.violations[i];
-        const tdo_violation& vb = fb.violations[i];
-        EXPECT_EQ(va.what, vb.what) << what;
-        for (const auto field : {&tdo_violation::t, &tdo_violation::value, &tdo_violation::limit})
-          EXPECT_EQ(std::memcmp(&(va.*field), &(vb.*field), sizeof(double)), 0) << what;
-      }
-      const tdo_metrics& ma = a.metrics;
-      const tdo_metrics& mb = b.metrics;
-      EXPECT_EQ(ma.turns, mb.turns) << what;
-      EXPECT_EQ(ma.curvature_continuous, mb.curvature_continuous) << what;
-      for (const auto field :
-           {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
-            &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::energy,
-            &tdo_metrics::flight_time_s})
-        EXPECT_EQ(std::memcmp(&(ma.*field), &(mb.*field), sizeof(double)), 0) << what;
-      if (sa != TDO_OK || a.n_samples == 0u) continue;
-      ++compared;
-      EXPECT_GT(b.metrics.energy, 0.0) << what;  // the streamed energy is there, not left at 0
-      const std::vector<tdo_sample> via_a = collect_samples(stored.planner());
-      const std::vector<tdo_sample> via_b = collect_samples(streamed.planner());
-      ASSERT_EQ(via_a.size(), a.n_samples) << what;
-      ASSERT_EQ(via_b.size(), a.n_samples) << what;
-      EXPECT_EQ(std::memcmp(via_a.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
-      EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+      const tdo_status sb = tdo_planner_plan(other.planner(), &req, &b);
+      check(a, b, sa, sb, name + " query " + std::to_string(q), stored.planner(), other.planner());
     }
   }
+}
+
+TEST(PipelineStreaming,
+     GivenStreamedSamplesWhenPlannedThenReportMetricsAndSamplesAreTheStoredOnes) {
+  int compared = 0;
+  for_each_mode_pair(1u, [&](const tdo_plan_result& a, const tdo_plan_result& b, tdo_status sa,
+                             tdo_status sb, const std::string& what, const tdo_planner* stored,
+                             const tdo_planner* streamed) {
+    ASSERT_EQ(sa, sb) << what;
+    EXPECT_EQ(b.samples, nullptr) << what;
+    EXPECT_EQ(a.n_samples, b.n_samples) << what;
+    EXPECT_EQ(a.refinements, b.refinements) << what;
+    // The reports field by field (the violation lists by value), the metrics bit for bit.
+    const tdo_feasibility& fa = a.feasibility;
+    const tdo_feasibility& fb = b.feasibility;
+    EXPECT_EQ(fa.ok, fb.ok) << what;
+    EXPECT_EQ(std::memcmp(&fa.max_speed, &fb.max_speed, sizeof(double)), 0) << what;
+    EXPECT_EQ(std::memcmp(&fa.max_acc, &fb.max_acc, sizeof(double)), 0) << what;
+    EXPECT_EQ(std::memcmp(&fa.max_jerk, &fb.max_jerk, sizeof(double)), 0) << what;
+    EXPECT_EQ(std::memcmp(&fa.min_turn_radius, &fb.min_turn_radius, sizeof(double)), 0) << what;
+    EXPECT_EQ(std::memcmp(&fa.min_clearance, &fb.min_clearance, sizeof(double)), 0) << what;
+    EXPECT_EQ(fa.n_violations_total, fb.n_violations_total) << what;
+    ASSERT_EQ(fa.n_violations, fb.n_violations) << what;
+    for (uint32_t i = 0; i < fa.n_violations; ++i) {  // field by field (padding differs)
+      const tdo_violation& va = fa.violations[i];
+      const tdo_violation& vb = fb.violations[i];
+      EXPECT_EQ(va.what, vb.what) << what;
+      for (const auto field : {&tdo_violation::t, &tdo_violation::value, &tdo_violation::limit})
+        EXPECT_EQ(std::memcmp(&(va.*field), &(vb.*field), sizeof(double)), 0) << what;
+    }
+    expect_same_metrics(a.metrics, b.metrics, true, what);
+    if (sa != TDO_OK || a.n_samples == 0u) return;
+    ++compared;
+    EXPECT_GT(b.metrics.energy, 0.0) << what;  // the streamed energy is there, not left at 0
+    const std::vector<tdo_sample> via_a = collect_samples(stored);
+    const std::vector<tdo_sample> via_b = collect_samples(streamed);
+    ASSERT_EQ(via_a.size(), a.n_samples) << what;
+    ASSERT_EQ(via_b.size(), a.n_samples) << what;
+    EXPECT_EQ(std::memcmp(via_a.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+    EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+  });
   EXPECT_GE(compared, 4);  // at least the four maps' own queries
 }
 
@@ -896,58 +912,38 @@ TEST(PipelineStreaming,
 // switches: well below 1e-3 of the integral on these flights of tens of seconds).
 TEST(PipelineStreaming, GivenPiecesWhenPlannedThenPlanSamplesAndMetricsAreTheStoredOnes) {
   int compared = 0, closed = 0;
-  for (int n : {1, 2, 3, 5}) {
-    const std::string name = "map" + std::to_string(n);
-    const tdo_io::Map map = load(kMaps + "/" + name + ".tdomap");
-    TestPlanner stored = map_planner(map, 0.5, 0u);
-    TestPlanner pieces = map_planner(map, 0.5, 0u, TDO_TRAJ_SAMPLES_PIECES);
-    ASSERT_EQ(stored.status(), TDO_OK) << name;
-    ASSERT_EQ(pieces.status(), TDO_OK) << name;
-    TestRng rng(300u + static_cast<uint64_t>(n));
-    for (int q = 0; q < 4; ++q) {
-      tdo_plan_request req{};
-      req.start = q == 0 ? map.start : random_point(rng, map.desc);
-      req.goal = q == 0 ? map.goal : random_point(rng, map.desc);
-      tdo_plan_params_default(&req.params);
-      tdo_plan_result a{}, b{};
-      const tdo_status sa = tdo_planner_plan(stored.planner(), &req, &a);
-      const tdo_status sb = tdo_planner_plan(pieces.planner(), &req, &b);
-      const std::string what = name + " query " + std::to_string(q);
-      ASSERT_EQ(sa, sb) << what;
-      EXPECT_EQ(b.samples, nullptr) << what;
-      EXPECT_EQ(a.n_samples, b.n_samples) << what;
-      EXPECT_EQ(a.refinements, b.refinements) << what;
-      EXPECT_EQ(a.feasibility.ok, b.feasibility.ok) << what;
-      ASSERT_EQ(a.n_waypoints, b.n_waypoints) << what;
-      if (a.n_waypoints > 0u) {  // no waypoints (a failed search): nothing to compare
-        EXPECT_EQ(std::memcmp(a.waypoints, b.waypoints, a.n_waypoints * sizeof(tdo_vec3)), 0)
-            << what;
-      }
-      ASSERT_EQ(a.path.n, b.path.n) << what;
-      for (uint32_t i = 0; i < a.path.n; ++i) {
-        const tdo_path_segment& x = a.path.seg[i];
-        const tdo_path_segment& y = b.path.seg[i];
-        EXPECT_EQ(x.kind, y.kind) << what;
-        EXPECT_EQ(std::memcmp(x.p, y.p, sizeof(x.p)), 0) << what;
-        EXPECT_EQ(std::memcmp(&x.length, &y.length, sizeof(double)), 0) << what;
-      }
-      const tdo_metrics& ma = a.metrics;
-      const tdo_metrics& mb = b.metrics;
-      EXPECT_EQ(ma.turns, mb.turns) << what;
-      EXPECT_EQ(ma.curvature_continuous, mb.curvature_continuous) << what;
-      for (const auto field :
-           {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
-            &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
-        EXPECT_EQ(std::memcmp(&(ma.*field), &(mb.*field), sizeof(double)), 0) << what;
-      if (sa != TDO_OK || a.n_samples == 0u) continue;
-      ++compared;
-      if (b.sample_passes == 0u) ++closed;
-      EXPECT_NEAR(mb.energy, ma.energy, 1e-3 * ma.energy) << what;
-      const std::vector<tdo_sample> via_b = collect_samples(pieces.planner());
-      ASSERT_EQ(via_b.size(), a.n_samples) << what;
-      EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+  for_each_mode_pair(TDO_TRAJ_SAMPLES_PIECES, [&](const tdo_plan_result& a,
+                                                  const tdo_plan_result& b, tdo_status sa,
+                                                  tdo_status sb, const std::string& what,
+                                                  const tdo_planner*, const tdo_planner* pieces) {
+    ASSERT_EQ(sa, sb) << what;
+    EXPECT_EQ(b.samples, nullptr) << what;
+    EXPECT_EQ(a.n_samples, b.n_samples) << what;
+    EXPECT_EQ(a.refinements, b.refinements) << what;
+    EXPECT_EQ(a.feasibility.ok, b.feasibility.ok) << what;
+    ASSERT_EQ(a.n_waypoints, b.n_waypoints) << what;
+    if (a.n_waypoints > 0u) {  // no waypoints (a failed search): nothing to compare
+      EXPECT_EQ(std::memcmp(a.waypoints, b.waypoints, a.n_waypoints * sizeof(tdo_vec3)), 0) << what;
     }
-  }
+    ASSERT_EQ(a.path.n, b.path.n) << what;
+    for (uint32_t i = 0; i < a.path.n; ++i) {
+      const tdo_path_segment& x = a.path.seg[i];
+      const tdo_path_segment& y = b.path.seg[i];
+      EXPECT_EQ(x.kind, y.kind) << what;
+      EXPECT_EQ(std::memcmp(x.p, y.p, sizeof(x.p)), 0) << what;
+      EXPECT_EQ(std::memcmp(&x.length, &y.length, sizeof(double)), 0) << what;
+    }
+    const tdo_metrics& ma = a.metrics;
+    const tdo_metrics& mb = b.metrics;
+    expect_same_metrics(ma, mb, false, what);
+    if (sa != TDO_OK || a.n_samples == 0u) return;
+    ++compared;
+    if (b.sample_passes == 0u) ++closed;
+    EXPECT_NEAR(mb.energy, ma.energy, 1e-3 * ma.energy) << what;
+    const std::vector<tdo_sample> via_b = collect_samples(pieces);
+    ASSERT_EQ(via_b.size(), a.n_samples) << what;
+    EXPECT_EQ(std::memcmp(via_b.data(), a.samples, a.n_samples * sizeof(tdo_sample)), 0) << what;
+  });
   EXPECT_GE(compared, 4);  // at least the four maps' own queries
   EXPECT_GE(closed, 1);    // and the closed form accepted some of them
 }
