@@ -833,7 +833,9 @@ void expect_same_metrics(const tdo_metrics& a, const tdo_metrics& b, bool with_e
        {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
         &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
     EXPECT_EQ(std::memcmp(&(a.*field), &(b.*field), sizeof(double)), 0) << what;
-  if (with_energy) EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof(double)), 0) << what;
+  if (with_energy) {
+    EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof(double)), 0) << what;
+  }
 }
 
 // Plans each of Map1, 2, 3 and 5 (Map4 left out: 150 MB per planner) at clearance 0.5 m with
