@@ -50,6 +50,12 @@ extern "C" void tdo_capacity_for_grid(tdo_capacity* cap, int32_t nx, int32_t ny,
   const uint64_t samples = 64u * static_cast<uint64_t>(cap->max_path) + 1024u;
   cap->max_samples = static_cast<uint32_t>(samples < (1u << 22) ? samples : (1u << 22));
   cap->max_profile = TDO_TRAJ_PIECES_PER_SEGMENT * (3u * cap->max_path + 4u) + 1u;
+  // Big grids (the guide's) verify each profile piece in closed form and keep no samples
+  // (design s.5): a stored flight costs 84 bytes per 0.01 s and a verification pass over it, which
+  // on short plans of a big map costs more than the search. Small grids (Map1-5, the embedded
+  // demos) keep their samples and finite-difference maxima.
+  cap->stream_samples =
+      n >= TDO_GUIDE_MIN_VOXELS ? TDO_TRAJ_SAMPLES_PIECES : TDO_TRAJ_SAMPLES_STORED;
   cap->max_violations = 64u;  // enough to show a pattern; the total is always counted
   cap->max_refinements = 8u;  // each round lowers local limits by 20 %: 8 rounds reach 17 %
 }

@@ -28,10 +28,12 @@ constexpr uint32_t kMaxViolations = 64;
 using tdo_test::TestPlanner;
 using tdo_test::TestTraj;
 
-/** `map` at `clearance` in a planner of tdo_io::capacity_for's sizes. */
+/** `map` at `clearance` in a planner of tdo_io::capacity_for's sizes, its samples stored (big
+ *  grids default to pieces, whose report gives the path's clearance, not the samples'). */
 TestPlanner map_planner(const tdo_io::Map& map, double clearance) {
-  return TestPlanner(tdo_io::capacity_for(map, clearance, 27u, 400000u),
-                     [&](tdo_grid* g) { return tdo_io::load_into(map, g, clearance); });
+  tdo_capacity cap = tdo_io::capacity_for(map, clearance, 27u, 400000u);
+  cap.stream_samples = TDO_TRAJ_SAMPLES_STORED;
+  return TestPlanner(cap, [&](tdo_grid* g) { return tdo_io::load_into(map, g, clearance); });
 }
 
 tdo_traj_config traj_cfg(uint32_t max_samples, uint32_t max_segments, uint32_t stream) {

@@ -40,12 +40,15 @@ struct Options {
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
   std::string guide = "on";            // tdo's coarse guide on grids of 2^19 voxels or more
-  std::string samples = "stored";      // tdo's trajectory samples: stored | streamed | pieces
-  uint64_t trajectories = 0;           // timed tdo plans that reached the trajectory stage
-  uint64_t sampled = 0;                // of them: verified a round over the samples
+  std::string samples =
+      "default";              // tdo's trajectory samples: default | stored | streamed | pieces
+  uint64_t trajectories = 0;  // timed tdo plans that reached the trajectory stage
+  uint64_t sampled = 0;       // of them: verified a round over the samples
 };
 
+// tdo_bench::kScaleSamplesDefault keeps tdo_capacity_for_grid's choice.
 uint32_t samples_mode(const std::string& s) {
+  if (s == "default") return tdo_bench::kScaleSamplesDefault;
   return s == "pieces" ? TDO_TRAJ_SAMPLES_PIECES
                        : (s == "streamed" ? TDO_TRAJ_SAMPLES_STREAMED : TDO_TRAJ_SAMPLES_STORED);
 }
@@ -55,7 +58,7 @@ void usage(FILE* f) {
       f,
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
       "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
-      "                       [--guide on|off] [--samples stored|streamed|pieces]\n"
+      "                       [--guide on|off] [--samples default|stored|streamed|pieces]\n"
       "                       [--maps-dir DIR] [--load]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
@@ -70,8 +73,9 @@ void usage(FILE* f) {
       "                   (tdo_plan_params.states; tdo sized without headings, as tdo-plan)\n"
       "  --guide on|off   tdo's coarse guide on grids of 2^19 voxels or more (design s.1;\n"
       "                   default on, as tdo-plan)\n"
-      "  --samples M      tdo's trajectory samples (tdo_capacity.stream_samples): stored (the\n"
-      "                   default), streamed, or pieces (closed-form check per profile piece;\n"
+      "  --samples M      tdo's trajectory samples (tdo_capacity.stream_samples): default (the\n"
+      "                   library's: pieces on grids of 2^19 voxels or more, else stored),\n"
+      "                   stored, streamed, or pieces (closed-form check per profile piece;\n"
       "                   the header counts the plans that fell back to the samples)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"
@@ -117,7 +121,8 @@ int parse_args(int argc, char** argv, Options* o) {
       ok = o->guide == "on" || o->guide == "off";
     } else if (a == "--samples") {
       o->samples = v;
-      ok = o->samples == "stored" || o->samples == "streamed" || o->samples == "pieces";
+      ok = o->samples == "default" || o->samples == "stored" || o->samples == "streamed" ||
+           o->samples == "pieces";
     } else if (a == "--states") {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";

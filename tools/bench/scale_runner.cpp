@@ -111,7 +111,7 @@ std::unique_ptr<ScaleMapRun> ScaleMapRun::create(const tdo_io::Map& map, double 
   // states included); without `guide` no guide.
   tdo_capacity_guide(&cfg.cap, map.desc.nx, map.desc.ny, map.desc.nz, 1);
   if (!guide) cfg.cap.guide_shift = 0u;
-  cfg.cap.stream_samples = samples;
+  if (samples != kScaleSamplesDefault) cfg.cap.stream_samples = samples;
   const size_t bytes = tdo_planner_footprint(&cfg);
   if (bytes == 0) {
     if (error) *error = map.path + ": invalid tdo planner configuration";

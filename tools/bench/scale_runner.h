@@ -20,6 +20,8 @@ namespace tdo_bench {
 /** Planner ids, in table order. */
 enum ScalePlanner { kScaleTdo = 0, kScaleAstar = 1, kScaleRrt = 2, kScaleTextbook = 3 };
 constexpr int kScalePlanners = 4;
+/** ScaleMapRun::create's `samples` that keeps the library's default (tdo_capacity_for_grid). */
+constexpr uint32_t kScaleSamplesDefault = 0xFFFFFFFFu;
 
 /** Table name of a planner id. */
 const char* scale_planner_name(int planner);
@@ -55,7 +57,8 @@ class ScaleMapRun {
    *        TDO_STATES_VOXEL tdo is sized without headings but keeps the retry tables, as tdo-plan
    *        --states voxel. `guide`: tdo's coarse guide on grids of 2^19 voxels or more
    *        (tdo_capacity.guide_shift 2), as tdo-plan --guide. `samples`: tdo's
-   *        tdo_capacity.stream_samples (TDO_TRAJ_SAMPLES_STORED, _STREAMED or _PIECES).
+   *        tdo_capacity.stream_samples (TDO_TRAJ_SAMPLES_STORED, _STREAMED or _PIECES), or
+   *        kScaleSamplesDefault for tdo_capacity_for_grid's choice.
    *        @return null with `error` on a set-up failure.
    */
   static std::unique_ptr<ScaleMapRun> create(const tdo_io::Map& map, double clearance,

@@ -65,7 +65,8 @@ typedef struct tdo_capacity {
                                  (fallback to 1 per round: tdo_plan_result.sample_passes; the
                                  feasibility report's maxima are bounds and the energy the
                                  integral, trajectory.h); 1 and 2: read with tdo_planner_each_sample
-                                 (tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 0 */
+                                 (tdo_traj_config.stream_samples). tdo_capacity_for_grid sets 2 on
+                                 grids of TDO_GUIDE_MIN_VOXELS or more, else 0 */
   uint32_t max_open;        /**< search open-list items per direction (16 bytes each, plus 27 of
                                  slack); 0 = max_nodes (never full). Too small:
                                  TDO_ERR_OPEN_CAPACITY; tdo_search_output.peak_open measures a
