@@ -492,6 +492,16 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
   cursor_state(*c, st);
 }
 
+/** 1/m, kappa at the cursor's parameter, as cursor_curvature computes it (without dkappa_ds). */
+double cursor_kappa(const BezierCursor& c) {
+  const double u = c.u;
+  const tdo_vec3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
+  const double sp = c.have ? c.spu : norm(d1);
+  if (!(sp > 0.0)) return 0.0;
+  const double cn = norm(cross(d1, d2));
+  return cn / (sp * sp * sp);
+}
+
 /** kappa and dkappa_ds at the cursor's parameter, as tdo_segment_eval computes them. */
 void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   st->kappa = 0.0;
@@ -1701,45 +1711,83 @@ void cubic_range(const double r[4], double ua, double ub, double* lo, double* hi
   *hi = dmax(dmax(b[0], b[1]), dmax(b[2], b[3]));
 }
 
-/** Rigorous bounds of a planar cubic Bezier over the parameters [ua, ub] (plane normal n): kappa
- *  and the range [klo, khi] of d|kappa|/ds. With B' = h0 + u h1 + u^2 h2, the signed curvature is
- *  c / |B'|^3, c = (B' x B'').n a quadratic, and its derivative along s is
- *  (c' / |B'|^3 - 3 c r / |B'|^5) / |B'| with r = B'.B'' a cubic: interval arithmetic on the
- *  polynomials' ranges (Bernstein coefficients on [ua, ub]) and on |B'| in [m, M] (its
- * restriction's control points: m along B' at the middle, M their largest norm). Where c keeps a
- * sign, |kappa|'s derivative is that sign times it; elsewhere symmetric. False when |B'| may vanish
- * there. */
-bool bezier_bounds(const BezierCursor& cb, const tdo_vec3& n, double ua, double ub, double* kappa,
-                   double* klo, double* khi) {
+/** bezier_bounds' polynomials of one planar Bezier (plane normal n), once per segment: with
+ *  B' = h0 + u h1 + u^2 h2, c(u) = (B' x B'').n = c0 + c1 u + c2 u^2 (B' x B'' = h0 x h1 +
+ *  2u h0 x h2 + u^2 h1 x h2) and r(u) = B'.B'' = h0.h1 + u (2 h0.h2 + h1.h1) + u^2 3 h1.h2 +
+ *  u^3 2 h2.h2, with their rounding allowances. */
+struct BezierPoly {
+  tdo_vec3 h0, h1, h2;
+  double c0, c1, c2, slack;
+  double r[4], rs;
+};
+
+BezierPoly bezier_poly(const BezierCursor& cb, const tdo_vec3& n) {
+  BezierPoly p;
   const tdo_vec3 h0 = cb.h[0], h1 = cb.h[1], h2 = cb.h[2];
-  const auto d1 = [&](double u) { return add(h0, mul(add(h1, mul(h2, u)), u)); };
-  const auto d2 = [&](double u) { return add(h1, mul(h2, 2.0 * u)); };
+  p.h0 = h0;
+  p.h1 = h1;
+  p.h2 = h2;
+  p.c0 = dot(cross(h0, h1), n);
+  p.c1 = 2.0 * dot(cross(h0, h2), n);
+  p.c2 = dot(cross(h1, h2), n);
+  p.slack = 1e-9 * (fabs(p.c0) + fabs(p.c1) + fabs(p.c2)) + 1e-300;
+  p.r[0] = dot(h0, h1);
+  p.r[1] = 2.0 * dot(h0, h2) + dot(h1, h1);
+  p.r[2] = 3.0 * dot(h1, h2);
+  p.r[3] = 2.0 * dot(h2, h2);
+  p.rs = 1e-9 * (fabs(p.r[0]) + fabs(p.r[1]) + fabs(p.r[2]) + fabs(p.r[3])) + 1e-300;
+  return p;
+}
+
+/** What bezier_bounds needs at one end of a part: B'(u), |B'(u)|, c(u) and c'(u) (an end shared
+ *  by two neighbouring parts is evaluated once). */
+struct BezierEnd {
+  double u;
+  tdo_vec3 q;
+  double nq, c, dc;
+};
+
+BezierEnd bezier_end(const BezierPoly& p, double u) {
+  BezierEnd e;
+  e.u = u;
+  e.q = add(p.h0, mul(add(p.h1, mul(p.h2, u)), u));
+  e.nq = norm(e.q);
+  e.c = p.c0 + u * (p.c1 + u * p.c2);
+  e.dc = p.c1 + 2.0 * p.c2 * u;
+  return e;
+}
+
+/** Rigorous bounds of a planar cubic Bezier (bezier_poly) over the parameters [a.u, b.u]: kappa
+ *  and the range [klo, khi] of d|kappa|/ds. The signed curvature is c / |B'|^3 and its derivative
+ *  along s is (c' / |B'|^3 - 3 c r / |B'|^5) / |B'|: interval arithmetic on the polynomials'
+ *  ranges (Bernstein coefficients on [a.u, b.u]) and on |B'| in [m, M] (its restriction's
+ *  control points: m along B' at the middle, M their largest norm). Where c keeps a sign,
+ *  |kappa|'s derivative is that sign times it; elsewhere symmetric. False when |B'| may vanish
+ *  there. */
+bool bezier_bounds(const BezierPoly& p, const BezierEnd& a, const BezierEnd& b, double* kappa,
+                   double* klo, double* khi) {
+  const double ua = a.u, ub = b.u;
+  const auto d1 = [&](double u) { return add(p.h0, mul(add(p.h1, mul(p.h2, u)), u)); };
+  const auto d2 = [&](double u) { return add(p.h1, mul(p.h2, 2.0 * u)); };
   const double du = ub - ua;
-  const tdo_vec3 q0 = d1(ua), q2 = d1(ub), q1 = add(q0, mul(d2(ua), 0.5 * du));
+  const tdo_vec3 q0 = a.q, q2 = b.q, q1 = add(q0, mul(d2(ua), 0.5 * du));
   const tdo_vec3 mid = d1(0.5 * (ua + ub));
   const double nm = norm(mid);
   if (!(nm > 0.0)) return false;
   const tdo_vec3 t = mul(mid, 1.0 / nm);
   const double m = dmin(dot(t, q0), dmin(dot(t, q1), dot(t, q2))) * (1.0 - 1e-9);
-  const double big = dmax(norm(q0), dmax(norm(q1), norm(q2))) * (1.0 + 1e-9);
+  const double big = dmax(a.nq, dmax(norm(q1), b.nq)) * (1.0 + 1e-9);
   if (!(m > 0.0)) return false;
-  // c(u) = c0 + c1 u + c2 u^2 (B' x B'' = h0 x h1 + 2u h0 x h2 + u^2 h1 x h2).
-  const double c0 = dot(cross(h0, h1), n), c1 = 2.0 * dot(cross(h0, h2), n),
-               c2 = dot(cross(h1, h2), n);
-  const double ca = c0 + ua * (c1 + ua * c2), cbv = c0 + ub * (c1 + ub * c2);
-  const double cm = ca + 0.5 * du * (c1 + 2.0 * c2 * ua);
-  const double slack = 1e-9 * (fabs(c0) + fabs(c1) + fabs(c2)) + 1e-300;
+  const double ca = a.c, cbv = b.c;
+  const double cm = ca + 0.5 * du * a.dc;
+  const double slack = p.slack;
   const double c_lo = dmin(ca, dmin(cm, cbv)) - slack, c_hi = dmax(ca, dmax(cm, cbv)) + slack;
-  const double dc_a = c1 + 2.0 * c2 * ua, dc_b = c1 + 2.0 * c2 * ub;
+  const double dc_a = a.dc, dc_b = b.dc;
   const double dc_lo = dmin(dc_a, dc_b) - slack, dc_hi = dmax(dc_a, dc_b) + slack;
-  // r(u) = B'.B'' = h0.h1 + u (2 h0.h2 + h1.h1) + u^2 3 h1.h2 + u^3 2 h2.h2.
-  const double r[4] = {dot(h0, h1), 2.0 * dot(h0, h2) + dot(h1, h1), 3.0 * dot(h1, h2),
-                       2.0 * dot(h2, h2)};
   double r_lo, r_hi;
-  cubic_range(r, ua, ub, &r_lo, &r_hi);
-  const double rs = 1e-9 * (fabs(r[0]) + fabs(r[1]) + fabs(r[2]) + fabs(r[3])) + 1e-300;
-  r_lo -= rs;
-  r_hi += rs;
+  cubic_range(p.r, ua, ub, &r_lo, &r_hi);
+  r_lo -= p.rs;
+  r_hi += p.rs;
   const double m3 = m * m * m, b3 = big * big * big;
   *kappa = dmax(fabs(c_lo), fabs(c_hi)) / m3 * (1.0 + 1e-9);
   double t1_lo, t1_hi, cr_lo, cr_hi, t2_lo, t2_hi;
@@ -1787,6 +1835,10 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
   BezierCursor cur;
   memset(&cur, 0, sizeof(cur));
   cur.seg = UINT32_MAX;
+  BezierPoly poly{};  // of segment plane_seg
+  uint32_t plane_seg = UINT32_MAX;
+  bool planar = false;  // segment plane_seg is planar
+  tdo_vec3 n{0.0, 0.0, 1.0};
   for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
     Plateau& p = ctx->plateaus[q];
     const tdo_path_segment& seg = path.seg[p.seg];
@@ -1796,20 +1848,31 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     if (seg.kind != TDO_SEGMENT_BEZIER) continue;
     for (uint32_t i = 0; i < kRigorParts; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    tdo_vec3 n;
-    if (!bezier_plane(seg, &n)) continue;
-    if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
+    if (plane_seg != p.seg) {  // the plane and the polynomials once per segment
+      plane_seg = p.seg;
+      planar = bezier_plane(seg, &n);
+      if (planar) {
+        if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
+        poly = bezier_poly(cur, n);
+      }
+    }
+    if (!planar) continue;
     cursor_seek(&cur, p.off);
     const double u0 = dmax(0.0, cur.u - kRigorSlackU);
     double u_at = cur.u, s_local = cur.s;  // the cursor's arclength, carried part to part
     cursor_seek(&cur, p.off + p.len);
     const double u1 = dmin(1.0, cur.u + kRigorSlackU);
     bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
+    // The start of part i: the end of part i - 1 (the same expression), else evaluated.
+    BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
     for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
       const double ua = u0 + (u1 - u0) * i / kRigorParts;
       const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
+      if (!same(a.u, ua)) a = bezier_end(poly, ua);
+      const BezierEnd b = bezier_end(poly, ub);
       double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
-      ok = bezier_bounds(cur, n, ua, ub, &k, &lo, &hi);
+      ok = bezier_bounds(poly, a, b, &k, &lo, &hi);
+      a = b;
       // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
       if (i > 0u) {
         s_local += bez_arclen(cur, u_at, ua);
@@ -2089,10 +2152,8 @@ double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment&
       double k = kr;
       if (seg.kind == TDO_SEGMENT_BEZIER) {
         if (cur->seg != index) cursor_reset(cur, seg, index);
-        tdo_segment_state st;
         cursor_seek(cur, dmin(seg.length, dmax(0.0, ph_s(f, t) - seg_s0)));
-        cursor_curvature(*cur, &st);
-        k = st.kappa;
+        k = cursor_kappa(*cur);
       }
       part += kGl5W[g] * k * k * v2 * v2;
     }
