@@ -88,6 +88,11 @@ int main(int argc, char** argv) {
                  "steps (of 1/rate), timed mode: a setpoint whose utime lies further behind the "
                  "simulated clock is stale (setpoint_stale): the vehicle brakes (0 = no check)")
       ->capture_default_str();
+  app.add_option("--setpoint-wait", cfg.setpoint_wait_s,
+                 "s of wall clock, timed mode: a step waits this long past its tick for the "
+                 "setpoint answering the current state; without it the vehicle brakes "
+                 "(setpoint_late); 0 = fly the latest setpoint (--setpoint-max-age applies)")
+      ->capture_default_str();
   app.add_option("--max-movers", cfg.max_movers, "capacity: movers simulated")
       ->capture_default_str();
   app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints in")->capture_default_str();
@@ -152,6 +157,11 @@ int main(int argc, char** argv) {
                  static_cast<long long>(c.boxes_revealed), static_cast<long long>(c.boxes_hidden),
                  static_cast<long long>(c.rejected), static_cast<long long>(c.ignored), s.state.p.x,
                  s.state.p.y, s.state.p.z, s.state.t);
+    std::fprintf(stderr,
+                 "tdo-sim: %lld ticks waited for the answer to their state, %lld late steps "
+                 "braked, %lld answers came after their state\n",
+                 static_cast<long long>(c.waits), static_cast<long long>(c.late_steps),
+                 static_cast<long long>(c.late_setpoints));
     for (const auto& kv : c.reasons)
       std::fprintf(stderr, "tdo-sim:   %s %lld\n", kv.first.c_str(),
                    static_cast<long long>(kv.second));
