@@ -11,6 +11,34 @@
 #include "tdo_lcm/node_status.h"
 #include "tdo_lcm/run_loop.h"
 
+namespace {
+
+// The counters on stderr when tdo-sim stops.
+void print_summary(const tdo_lcm::SimNode& node) {
+  const tdo_lcm::SimCounters& c = node.counters();
+  const tdo_sim_output s = node.current();
+  std::fprintf(stderr,
+               "tdo-sim: stopped: %lld received, %lld steps (%lld braking, %lld in collision: "
+               "%lld static, %lld mover), %lld of %lld hidden boxes revealed, "
+               "%lld rejected, %lld ignored; at (%.3f, %.3f, %.3f) after %.2f s\n",
+               static_cast<long long>(c.received), static_cast<long long>(c.steps),
+               static_cast<long long>(c.brakes), static_cast<long long>(c.collision_steps),
+               static_cast<long long>(c.static_collisions),
+               static_cast<long long>(c.mover_collisions), static_cast<long long>(c.boxes_revealed),
+               static_cast<long long>(c.boxes_hidden), static_cast<long long>(c.rejected),
+               static_cast<long long>(c.ignored), s.state.p.x, s.state.p.y, s.state.p.z, s.state.t);
+  std::fprintf(stderr,
+               "tdo-sim: %lld ticks waited for the answer to their state, %lld late steps "
+               "braked, %lld answers came after their state\n",
+               static_cast<long long>(c.waits), static_cast<long long>(c.late_steps),
+               static_cast<long long>(c.late_setpoints));
+  for (const auto& kv : c.reasons)
+    std::fprintf(stderr, "tdo-sim:   %s %lld\n", kv.first.c_str(),
+                 static_cast<long long>(kv.second));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   tdo_lcm::SimConfig cfg;
   tdo_lcm::RunOptions opt;
@@ -88,6 +116,11 @@ int main(int argc, char** argv) {
                  "steps (of 1/rate), timed mode: a setpoint whose utime lies further behind the "
                  "simulated clock is stale (setpoint_stale): the vehicle brakes (0 = no check)")
       ->capture_default_str();
+  app.add_option("--setpoint-wait", cfg.setpoint_wait_s,
+                 "s of wall clock, timed mode: a step waits this long past its tick for the "
+                 "setpoint answering the current state; without it the vehicle brakes "
+                 "(setpoint_late); 0 = fly the latest setpoint (--setpoint-max-age applies)")
+      ->capture_default_str();
   app.add_option("--max-movers", cfg.max_movers, "capacity: movers simulated")
       ->capture_default_str();
   app.add_option("--setpoint-channel", cfg.setpoint_channel, "setpoints in")->capture_default_str();
@@ -138,23 +171,6 @@ int main(int argc, char** argv) {
       "tdo-sim", bus, opt, [&] { return node.next_due(); },
       [&](tdo_lcm::SteadyTime now) { node.poll(now); });
   node.publish_status();  // a last heartbeat with the final counters
-  const tdo_lcm::SimCounters& c = node.counters();
-  if (!opt.quiet) {
-    const tdo_sim_output s = node.current();
-    std::fprintf(stderr,
-                 "tdo-sim: stopped: %lld received, %lld steps (%lld braking, %lld in collision: "
-                 "%lld static, %lld mover), %lld of %lld hidden boxes revealed, "
-                 "%lld rejected, %lld ignored; at (%.3f, %.3f, %.3f) after %.2f s\n",
-                 static_cast<long long>(c.received), static_cast<long long>(c.steps),
-                 static_cast<long long>(c.brakes), static_cast<long long>(c.collision_steps),
-                 static_cast<long long>(c.static_collisions),
-                 static_cast<long long>(c.mover_collisions),
-                 static_cast<long long>(c.boxes_revealed), static_cast<long long>(c.boxes_hidden),
-                 static_cast<long long>(c.rejected), static_cast<long long>(c.ignored), s.state.p.x,
-                 s.state.p.y, s.state.p.z, s.state.t);
-    for (const auto& kv : c.reasons)
-      std::fprintf(stderr, "tdo-sim:   %s %lld\n", kv.first.c_str(),
-                   static_cast<long long>(kv.second));
-  }
+  if (!opt.quiet) print_summary(node);
   return exit_status;
 }

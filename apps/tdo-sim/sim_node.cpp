@@ -29,8 +29,10 @@ bool SimNode::start(std::string* error) {
   if (!(cfg_.map_clearance >= 0.0) || !std::isfinite(cfg_.map_clearance))
     return fail_start(error, "the map clearance must be finite and >= 0");
   if (cfg_.map_id < 0) return fail_start(error, "the map id must be >= 0");
-  if (!(cfg_.brake_gain >= 0.0) || !std::isfinite(cfg_.brake_gain))
-    return fail_start(error, "the brake gain must be finite and >= 0");
+  if (!std::isfinite(cfg_.brake_gain))
+    return fail_start(error, "the brake gain must be finite (< 0: the follower's braking)");
+  if (!(cfg_.setpoint_wait_s >= 0.0) || !std::isfinite(cfg_.setpoint_wait_s))
+    return fail_start(error, "the setpoint wait must be finite and >= 0");
   if (!(cfg_.setpoint_max_age_steps >= 0.0) || !std::isfinite(cfg_.setpoint_max_age_steps))
     return fail_start(error, "the setpoint max age must be finite and >= 0");
   if (cfg_.has_goal) {
@@ -121,7 +123,10 @@ bool SimNode::start(std::string* error) {
   sp.n_boxes = static_cast<uint32_t>(true_boxes_.size());
   sp.seed = cfg_.seed;
   sp.accel_noise = cfg_.accel_noise;
-  sp.brake_gain = cfg_.brake_gain;
+  // By default the braking the follower's safety filter rolls out (apf.h, brake_des): a_max
+  // against v, proportional below v_lin = a_max^2 / (2 j_max), i.e. a = -(a_max / v_lin) v limited
+  // to a_max: a late step brakes the way the last command's roll-out was checked to be safe.
+  sp.brake_gain = cfg_.brake_gain >= 0.0 ? cfg_.brake_gain : 2.0 * cfg_.j_max / cfg_.a_max;
   // Lock-step waits for the follower: its setpoints cannot fall behind the clock.
   sp.setpoint_max_age = cfg_.lockstep ? 0.0 : cfg_.setpoint_max_age_steps / cfg_.rate_hz;
   st = tdo_sim_reset(sim_, &sp, &s0, movers.data(), static_cast<uint32_t>(movers.size()));
@@ -182,7 +187,13 @@ void SimNode::on_setpoint(const void* data, std::size_t size) {
     refuse("setpoint", c);
     return;
   }
+  // An answer to a state already passed: never flown while steps wait for their answer.
+  if (!cfg_.lockstep && cfg_.setpoint_wait_s > 0.0 && m.utime < state_utime_) {
+    ++counters_.late_setpoints;
+    ++counters_.reasons["setpoint.late"];
+  }
   setpoint_ = sp;
+  setpoint_utime_ = m.utime;
   yaw_ = m.yaw;
   have_setpoint_ = true;
   setpoint_wall_ = std::chrono::steady_clock::now();
@@ -192,17 +203,22 @@ void SimNode::on_setpoint(const void* data, std::size_t size) {
 
 void SimNode::step() { step_at(std::chrono::steady_clock::now()); }
 
+bool SimNode::follower_alive(std::chrono::steady_clock::time_point now) const {
+  return have_setpoint_ &&
+         (cfg_.lockstep || now - setpoint_wall_ <= steady_seconds(cfg_.setpoint_timeout_s));
+}
+
 void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   if (sim_ == nullptr) return;
   tdo_sim_input in{};
   in.setpoint = setpoint_;  // the library judges its age against the simulated clock
-  const bool came =
-      have_setpoint_ &&
-      (cfg_.lockstep || now - setpoint_wall_ <= steady_seconds(cfg_.setpoint_timeout_s));
+  const bool came = follower_alive(now);
+  // Timed steps that wait for their answer fly nothing else: without it the step is late.
+  const bool late = came && !cfg_.lockstep && cfg_.setpoint_wait_s > 0.0 && !answered();
   tdo_sim_output out{};
   const auto t0 = std::chrono::steady_clock::now();
-  // None came lately: brake.
-  const tdo_status st = came ? tdo_sim_run(sim_, &in, &out) : tdo_sim_hold(sim_, &out);
+  // None came lately, or not the answer to this state: brake.
+  const tdo_status st = came && !late ? tdo_sim_run(sim_, &in, &out) : tdo_sim_hold(sim_, &out);
   counters_.last_step_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (st != TDO_OK && st != TDO_ERR_SETPOINT_STALE) {  // not after a good reset; count it
@@ -210,6 +226,7 @@ void SimNode::step_at(std::chrono::steady_clock::time_point now) {
     return;
   }
   note_stale(st == TDO_ERR_SETPOINT_STALE, out);
+  note_late(late, out);
   if (out.braked != 0) ++counters_.brakes;
   ++counters_.steps;
   if (out.collision_mover != 0) ++counters_.mover_collisions;
@@ -237,6 +254,21 @@ void SimNode::note_stale(bool stale, const tdo_sim_output& out) {
   stale_ = stale;
 }
 
+void SimNode::note_late(bool late, const tdo_sim_output& out) {
+  if (late) {
+    ++counters_.late_steps;
+    ++counters_.reasons["step.setpoint_late"];
+  }
+  if (cfg_.log && late != late_)
+    std::fprintf(stderr,
+                 late ? "tdo-sim: setpoint_late at t = %.2f s: no answer to the state within %g s: "
+                        "braking\n"
+                      : "tdo-sim: setpoint_late ended at t = %.2f s (wait %g s): flying the "
+                        "answers again\n",
+                 out.state.t, cfg_.setpoint_wait_s);
+  late_ = late;
+}
+
 void SimNode::publish_state() {
   if (sim_ == nullptr) return;
   const tdo_sim_output out = current();
@@ -252,6 +284,7 @@ void SimNode::publish_state() {
   // Movers first: a lock-step follower steps as soon as the state arrives.
   bus_->publish(cfg_.obstacles_channel, o);
   bus_->publish(cfg_.state_channel, s);
+  state_utime_ = s.utime;
   ++obstacles_seq_;
   ++state_seq_;
 }
@@ -301,8 +334,17 @@ void SimNode::publish_status() {
 
 void SimNode::poll(std::chrono::steady_clock::time_point now) {
   if (!cfg_.lockstep && now >= next_tick_) {
-    step_at(now);
-    advance_deadline(&next_tick_, now, steady_seconds(1.0 / cfg_.rate_hz));
+    // Wait (bounded by setpoint_wait_s) for the answer to the current state while the follower
+    // is alive; then step with it, or late.
+    if (!waiting_) wait_until_ = next_tick_ + steady_seconds(cfg_.setpoint_wait_s);
+    const bool wait =
+        cfg_.setpoint_wait_s > 0.0 && follower_alive(now) && !answered() && now < wait_until_;
+    if (wait && !waiting_) ++counters_.waits;  // once per tick
+    waiting_ = wait;
+    if (!waiting_) {
+      step_at(now);
+      advance_deadline(&next_tick_, now, steady_seconds(1.0 / cfg_.rate_hz));
+    }
   }
   if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0 && now >= next_map_) {
     publish_map();
@@ -317,7 +359,7 @@ void SimNode::poll(std::chrono::steady_clock::time_point now) {
 std::chrono::steady_clock::time_point SimNode::next_due() const {
   auto t = std::chrono::steady_clock::time_point::max();
   if (cfg_.heartbeat_period_s > 0.0) t = next_status_;
-  if (!cfg_.lockstep) t = std::min(t, next_tick_);
+  if (!cfg_.lockstep) t = std::min(t, waiting_ ? wait_until_ : next_tick_);
   if (!cfg_.lockstep && has_map_ && cfg_.map_period_s > 0.0) t = std::min(t, next_map_);
   if (cfg_.request_goal && !requested_) t = std::min(t, request_at_);
   return t;

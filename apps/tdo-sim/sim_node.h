@@ -6,12 +6,19 @@
  *        are the simulated movers and whose geometry is the static collision check.
  *
  * Thin: decode (wire.h) -> adapter (vehicle.h) -> tdo_sim_run -> encode. Steps:
- *  - timed (default): one step per tick at the configured rate (poll() calls it) with the latest
- *    setpoint; when no setpoint came for setpoint_timeout_s (wall clock), or the latest one is
- *    stale (its utime more than setpoint_max_age_steps steps behind the simulated clock: the
- *    follower fell behind, e.g. starved of CPU), the vehicle brakes towards a hover (the library's
- *    braking, sim.h: command a = -brake_gain v through the motion limits). A stale step is counted
- *    as "step.setpoint_stale" in the heartbeat and logged when staleness starts and ends;
+ *  - timed (default): one step per tick at the configured rate (poll() calls it). A step flies
+ *    only the setpoint that answers the current state (its utime is the state's): the follower's
+ *    command, and its safety filter's braking roll-out, hold for the state it was computed from
+ *    (apf.h). When that answer has not come at the tick, the step waits for it (the simulated
+ *    clock waits) up to setpoint_wait_s of wall clock; if it is still missing the step is late:
+ *    the vehicle brakes (the library's braking, sim.h: a = -brake_gain v through the motion
+ *    limits; by default the braking of the follower's roll-out) instead of flying an older
+ *    command on a state it was not computed for. A late step is counted as "step.setpoint_late"
+ *    in the heartbeat and logged when lateness starts and ends; an answer that arrives after its
+ *    state was passed is never flown ("setpoint.late"). With setpoint_wait_s 0 the step flies the
+ *    latest setpoint whatever state it answers, unless it is stale (its utime more than
+ *    setpoint_max_age_steps steps behind the simulated clock: "step.setpoint_stale", braking).
+ *    When no setpoint came for setpoint_timeout_s (wall clock) the vehicle brakes at once;
  *  - lock-step: one step per accepted setpoint, at once, and nothing else (deterministic runs).
  * Every step publishes the state and the movers, both stamped with the simulated clock:
  * utime = the start utime + steps * dt. start() publishes the map and the initial state and movers.
@@ -75,7 +82,12 @@ struct SimConfig {
   uint64_t seed = 1;               /**< seed of the disturbance and the hidden boxes */
   double accel_noise = 0.0;        /**< m/s^2, standard deviation of the disturbance */
   double setpoint_timeout_s = 0.5; /**< s, timed mode: brake when no setpoint came for this long */
-  double brake_gain = 2.0;         /**< 1/s, braking command a = -gain v */
+  double brake_gain = -1.0;        /**< 1/s, braking command a = -gain v; < 0: 2 j_max / a_max,
+                                        the braking of the follower's safety roll-out (apf.h: a_max
+                                        against v, proportional below a_max^2 / (2 j_max)) */
+  double setpoint_wait_s = 0.1;    /**< s, timed mode: wall time a step waits past its tick for
+                                        the setpoint answering the current state, then brakes
+                                        (setpoint_late); 0: fly the latest setpoint (age check) */
   double setpoint_max_age_steps = 3.0; /**< timed mode: a setpoint more than this many steps
                                             (1 / rate) older than the simulated clock is stale:
                                             brake; 0: no age check */
@@ -101,6 +113,9 @@ struct SimCounters {
   int64_t steps = 0;             /**< simulator steps (heartbeat: answered) */
   int64_t brakes = 0;            /**< steps without a fresh setpoint (braking) */
   int64_t stale_steps = 0;       /**< of them, steps whose setpoint was stale (setpoint_stale) */
+  int64_t late_steps = 0;        /**< of them, steps whose answer did not come (setpoint_late) */
+  int64_t late_setpoints = 0;    /**< answers that came after their state was passed (not flown) */
+  int64_t waits = 0;             /**< ticks that waited for the answer to the current state */
   int64_t collision_steps = 0;   /**< steps ending in a collision (heartbeat: failed) */
   int64_t mover_collisions = 0;  /**< steps with a mover gap below 0 */
   int64_t static_collisions = 0; /**< steps closer than static_clearance to the map */
@@ -179,6 +194,9 @@ class SimNode {
   void refuse(const std::string& what, const Check& c);
   void step_at(std::chrono::steady_clock::time_point now);
   void note_stale(bool stale, const tdo_sim_output& out);
+  void note_late(bool late, const tdo_sim_output& out);
+  bool follower_alive(std::chrono::steady_clock::time_point now) const;
+  bool answered() const { return have_setpoint_ && setpoint_utime_ == state_utime_; }
   bool start_sensing(const tdo_io::Map& map, std::string* error);
   void sense(bool publish = true);
   Check known_map_msg();
@@ -206,7 +224,12 @@ class SimNode {
 
   int64_t utime0_ = 0; /**< us, utime of simulated t = 0 */
   bool have_setpoint_ = false;
-  bool stale_ = false;  // the last step's setpoint was stale (for the log's transitions)
+  bool stale_ = false;           // the last step's setpoint was stale (for the log's transitions)
+  bool late_ = false;            // the last step was late (for the log's transitions)
+  int64_t state_utime_ = 0;      // utime of the state published last (the current one)
+  int64_t setpoint_utime_ = -1;  // utime of the state the latest setpoint answers
+  bool waiting_ = false;         // the due tick waits for the answer to the current state
+  std::chrono::steady_clock::time_point wait_until_;
   tdo_setpoint setpoint_{};
   double yaw_ = 0.0;
   std::chrono::steady_clock::time_point setpoint_wall_;

@@ -3,6 +3,7 @@
 // seeded determinism, collision counting, and bad setpoints counted while the next one is served.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -268,6 +269,142 @@ TEST_F(SimNodeTimedTest, StepsAtTheRateAndBrakesWithoutSetpoints) {
   EXPECT_EQ(maps_.size(), 2u);
 }
 
+// The state a message describes, and one step of the motion rule (sim.h) from it.
+tdo_vehicle_state state_of(const tdo::vehicle_state_t& m) {
+  tdo_vehicle_state s{};
+  s.p = tdo_vec3{m.position[0], m.position[1], m.position[2]};
+  s.v = tdo_vec3{m.velocity[0], m.velocity[1], m.velocity[2]};
+  s.a = tdo_vec3{m.acceleration[0], m.acceleration[1], m.acceleration[2]};
+  return s;
+}
+void expect_step(const tdo::vehicle_state_t& from, tdo_vec3 a_cmd, const tdo::vehicle_state_t& to) {
+  const tdo_vehicle_state s = state_of(from);
+  tdo_setpoint next{};
+  tdo_motion_limit(&s, a_cmd, 3.0, 3.0, 10.0, 0.02, &next);
+  EXPECT_NEAR(to.position[0], next.p.x, 1e-12);
+  EXPECT_NEAR(to.position[1], next.p.y, 1e-12);
+  EXPECT_NEAR(to.position[2], next.p.z, 1e-12);
+  EXPECT_NEAR(to.velocity[0], next.v.x, 1e-12);
+  EXPECT_NEAR(to.velocity[1], next.v.y, 1e-12);
+  EXPECT_NEAR(to.velocity[2], next.v.z, 1e-12);
+}
+
+// GIVEN timed steps and a follower whose answers (setpoint utime = the state it answers) come
+// late WHEN a tick is due without the answer to the current state THEN the step waits for it (no
+// state goes out), flies it on that state as soon as it comes, never flies an answer to a state
+// already passed ("setpoint.late"), and after the wait (0.1 s) brakes as the follower's safety
+// roll-out does (apf.h: a_max against v, proportional below a_max^2 / (2 j_max)), named
+// "step.setpoint_late" in the heartbeat.
+TEST_F(SimNodeTimedTest, LateAnswersAreNeverFlownTheStepWaitsThenBrakesNamedLate) {
+  // Within the setpoint timeout (0.5 s) of the wall clock: the follower counts as alive.
+  const auto t0 = std::chrono::steady_clock::now() + std::chrono::milliseconds(30);
+  const auto ms = [](int n) { return std::chrono::milliseconds(n); };
+  send(cfg_.setpoint_channel, setpoint(0, 2, 1, 0));  // answers state 0
+  node_->poll(t0);
+  pump();
+  ASSERT_EQ(states_.size(), 2u);
+  expect_step(states_[0], tdo_vec3{2, 1, 0}, states_[1]);
+  send(cfg_.setpoint_channel, setpoint(0, -3, 0, 0));  // state 0 again: passed, never flown
+  EXPECT_EQ(node_->counters().late_setpoints, 1);
+  node_->poll(t0 + ms(20));  // due, no answer to state 1: waits
+  node_->poll(t0 + ms(60));
+  pump();
+  EXPECT_EQ(states_.size(), 2u);
+  EXPECT_EQ(node_->counters().waits, 1);
+  EXPECT_LE(node_->next_due(), t0 + ms(120));         // no later than the end of the tick's wait
+  send(cfg_.setpoint_channel, setpoint(1, 2, 1, 0));  // the answer to state 1
+  node_->poll(t0 + ms(61));
+  pump();
+  ASSERT_EQ(states_.size(), 3u);
+  expect_step(states_[1], tdo_vec3{2, 1, 0}, states_[2]);
+  node_->poll(t0 + ms(81));  // due; the answer to state 2 never comes
+  node_->poll(t0 + ms(180));
+  pump();
+  EXPECT_EQ(states_.size(), 3u);
+  node_->poll(t0 + ms(181));  // the wait is over: a late step, braking
+  pump();
+  ASSERT_EQ(states_.size(), 4u);
+  const tdo_vehicle_state s2 = state_of(states_[2]);
+  const double speed = std::sqrt(s2.v.x * s2.v.x + s2.v.y * s2.v.y + s2.v.z * s2.v.z);
+  const double k = 3.0 / std::max(speed, 3.0 * 3.0 / (2.0 * 10.0));  // a_max / max(|v|, v_lin)
+  expect_step(states_[2], tdo_vec3{-k * s2.v.x, -k * s2.v.y, -k * s2.v.z}, states_[3]);
+  const tdo_lcm::SimCounters& c = node_->counters();
+  EXPECT_EQ(c.steps, 3);
+  EXPECT_EQ(c.late_steps, 1);
+  EXPECT_EQ(c.brakes, 1);
+  EXPECT_EQ(c.stale_steps, 0);
+  node_->publish_status();
+  pump();
+  ASSERT_FALSE(status_.empty());
+  EXPECT_EQ(heartbeat_reason(status_.back(), "step.setpoint_late"), 1);
+  EXPECT_EQ(heartbeat_reason(status_.back(), "setpoint.late"), 1);
+}
+
+// GIVEN a follower that always answers one state late (within the age bound of 3 steps), asking
+// for 2 m/s^2 towards Map1's wall (x = 6 .. 7, ahead of the start (2, 2, 3)) WHEN the simulator
+// waits for answers (the default) THEN none is flown: every step is late, braking, the vehicle
+// stays at rest with no contact. Flying the latest setpoint instead (setpoint wait 0: the old
+// command on a newer state) takes the vehicle into the wall.
+struct Lagging {
+  tdo_lcm::SimCounters counters;
+  double moved = 0.0;
+};
+Lagging lagging_follower(double wait_s) {
+  tdo_lcm::Bus bus("memq://");
+  tdo_lcm::SimConfig cfg;
+  cfg.vehicle_id = kVehicle;
+  cfg.map_file = std::string(TDO_MAPS_DIR) + "/map1.tdomap";
+  cfg.start_utime = kT0;
+  cfg.map_period_s = 0.0;
+  cfg.setpoint_timeout_s = 1e6;
+  cfg.setpoint_wait_s = wait_s;
+  tdo_lcm::SimNode node(&bus, cfg);
+  std::string error;
+  EXPECT_TRUE(node.start(&error)) << error;
+  const tdo_vec3 p0 = node.current().state.p;
+  auto pump = [&bus] {
+    for (int i = 0; i < 10000 && bus.handle_timeout(0) > 0; ++i) {
+    }
+  };
+  pump();
+  auto t = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  EXPECT_TRUE(bus.publish(cfg.setpoint_channel, setpoint(0, 2.0, 0.0, 0.0)));
+  pump();
+  node.poll(t);  // state 0 answered: the first step flies it
+  for (int k = 1; k < 200; ++k) {
+    EXPECT_TRUE(bus.publish(cfg.setpoint_channel, setpoint(k - 1, 2.0, 0.0, 0.0)));
+    pump();
+    t += std::chrono::milliseconds(20);
+    node.poll(t);
+    if (wait_s > 0.0) {
+      t += std::chrono::milliseconds(100);
+      node.poll(t);  // past the wait
+    }
+    pump();
+  }
+  Lagging r;
+  r.counters = node.counters();
+  const tdo_vec3 p = node.current().state.p;
+  r.moved = std::sqrt((p.x - p0.x) * (p.x - p0.x) + (p.y - p0.y) * (p.y - p0.y) +
+                      (p.z - p0.z) * (p.z - p0.z));
+  EXPECT_EQ(r.counters.steps, 200);
+  return r;
+}
+
+TEST(SimNodeStandalone, AFollowerOneStateLateIsNeverFlownIntoTheWall) {
+  const Lagging r = lagging_follower(0.1);
+  EXPECT_EQ(r.counters.late_steps, 199);
+  EXPECT_EQ(r.counters.late_setpoints, 199);
+  EXPECT_EQ(r.counters.stale_steps, 0);
+  EXPECT_EQ(r.counters.collision_steps, 0);
+  EXPECT_LT(r.moved, 0.01);  // one step of 2 m/s^2, then braking to rest
+
+  const Lagging old = lagging_follower(0.0);
+  EXPECT_EQ(old.counters.late_steps, 0);
+  EXPECT_EQ(old.counters.stale_steps, 0);  // one step behind: within the age bound
+  EXPECT_GT(old.counters.static_collisions, 0) << "the late commands no longer reach the wall";
+}
+
 TEST(SimNodeStandalone, VoxelMapFilesArePublishedRunLengthEncoded) {
   // MovingAI (.3dmap: a header line "voxel 105 132 105", then 512 distinct voxels) and OctoMap
   // (.bt): the occupied voxels go out run-length encoded, and the planner's adapter loads them
@@ -423,6 +560,7 @@ Starved starve(double max_age_steps) {
   cfg.map_period_s = 0.0;
   cfg.setpoint_timeout_s = 1e6;
   cfg.setpoint_max_age_steps = max_age_steps;
+  cfg.setpoint_wait_s = 0.0;  // the age check of the latest setpoint, not the wait for answers
   EXPECT_TRUE(bus.subscribe(cfg.state_channel, collect(&states)));
   EXPECT_TRUE(bus.subscribe(cfg.status_channel, collect(&status)));
   tdo_lcm::SimNode node(&bus, cfg);
