@@ -136,9 +136,11 @@ void mark(Guide* gd, const tdo_grid_desc& d, int32_t i, int32_t j, int32_t k) {
 uint32_t neighbour_mask(const Guide* gd, const tdo_grid_desc& d, uint32_t c, int32_t i, int32_t j,
                         int32_t k, const int64_t* off) {
   uint32_t mask = 0;
-  if (interior(d, i, j, k)) {  // no bounds to test
-    for (int n = 0; n < 27; ++n)
-      mask |= ((gd->cells[static_cast<int64_t>(c) + off[n]] >> 13) & 1u) << n;
+  if (interior(d, i, j, k)) {  // no bounds to test: the 9 rows of three cells
+    for (int r = 0; r < 9; ++r) {
+      const uint32_t* row = gd->cells + (static_cast<int64_t>(c) + off[3 * r + 1]);
+      mask |= (((row[-1] >> 13) & 1u) | ((row[0] >> 12) & 2u) | ((row[1] >> 11) & 4u)) << (3 * r);
+    }
     return mask;
   }
   for (int n = 0; n < 27; ++n) {
