@@ -18,6 +18,12 @@ constexpr uint32_t kAllCells = (1u << 27) - 1u;  // tdo_search_corridor: every n
 constexpr double kAltMargin = 0.02;
 constexpr uint32_t kAltOutside = 3u;
 constexpr double kAltGain = 0.02;
+// Short queries (docs/design.md s.1, "The coarse guide", step 0): ends at most kShortCells coarse
+// cell edges apart (Manhattan distance) are searched on the whole grid first, with a budget of
+// kShortBudget expansions per voxel of that distance (plus kShortBase).
+constexpr int32_t kShortCells = 8;
+constexpr uint32_t kShortBudget = 12u;
+constexpr uint32_t kShortBase = 16u;
 
 struct Guide {
   GuideCapacity cap;
@@ -304,6 +310,38 @@ bool applies(const Guide* gd, const tdo_search_input* in) {
   return n <= gd->cap.max_cells;
 }
 
+// The expansion budget of a short query's whole-grid search; 0 when the query is not short.
+uint32_t short_budget(const Guide* gd, const tdo_search_input* in) {
+  tdo_voxel e[2];
+  if (!tdo_grid_world_to_voxel(in->grid, in->start, &e[0]) ||
+      !tdo_grid_world_to_voxel(in->grid, in->goal, &e[1]))
+    return 0u;
+  const int32_t d = abs(e[1].i - e[0].i) + abs(e[1].j - e[0].j) + abs(e[1].k - e[0].k);
+  if (d > (kShortCells << gd->cap.shift)) return 0u;
+  const uint32_t budget = kShortBudget * static_cast<uint32_t>(d) + kShortBase;
+  return in->max_expansions != 0u && in->max_expansions < budget ? in->max_expansions : budget;
+}
+
+// A short query's search on the whole grid with voxel states (as the corridor's) and its budget:
+// for so few voxels the coarse route and the corridor cost more than they save. TDO_OK or
+// TDO_ERR_NO_PATH (voxel states reach every voxel plain A* reaches: a proof) are final; any other
+// status (the budget spent) leaves the query to the corridor.
+bool short_search(Guide* gd, tdo_search* fine, const tdo_search_input* in, tdo_search_output* out,
+                  GuideReport* report, tdo_status* st) {
+  const uint32_t budget = short_budget(gd, in);
+  if (budget == 0u) return false;
+  tdo_search_input wi = *in;
+  wi.states = TDO_STATES_VOXEL;
+  wi.max_expansions = budget;
+  *st = tdo_search_run(fine, &wi, out);
+  if (*st == TDO_OK || *st == TDO_ERR_NO_PATH) {
+    report->used = 2;
+    return true;
+  }
+  report->expansions = out->expansions;  // spent before the coarse route
+  return false;
+}
+
 }  // namespace
 
 GuideCapacity guide_capacity(uint32_t max_voxels, int32_t shift) {
@@ -361,6 +399,8 @@ tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
                         tdo_search_output* out, GuideReport* report) {
   memset(report, 0, sizeof(*report));
   if (!applies(gd, in)) return tdo_search_run(fine, in, out);
+  tdo_status st_short = TDO_OK;
+  if (short_search(gd, fine, in, out, report, &st_short)) return st_short;
   if ((gd->built_for != in->grid || gd->built_version != in->grid->version) &&
       build_coarse(gd, in->grid) != TDO_OK) {
     gd->built_for = nullptr;
@@ -380,7 +420,7 @@ tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
   ci.first_meet = 0;
   tdo_search_output co;
   if (tdo_search_run(gd->search, &ci, &co) == TDO_OK && co.n_path <= gd->cap.max_path) {
-    report->expansions = co.expansions;
+    report->expansions += co.expansions;
     report->coarse_path = co.n_path;
     const uint32_t n = co.n_path;
     memcpy(gd->route, co.path, n * sizeof(tdo_voxel));
