@@ -18,6 +18,12 @@ constexpr uint32_t kAllCells = (1u << 27) - 1u;  // tdo_search_corridor: every n
 constexpr double kAltMargin = 0.02;
 constexpr uint32_t kAltOutside = 3u;
 constexpr double kAltGain = 0.02;
+// Short queries (docs/design.md s.1, "The coarse guide", step 0): ends at most kShortCells coarse
+// cell edges apart (Manhattan distance) are searched on the whole grid first, with a budget of
+// kShortBudget expansions per voxel of that distance (plus kShortBase).
+constexpr int32_t kShortCells = 8;
+constexpr uint32_t kShortBudget = 12u;
+constexpr uint32_t kShortBase = 16u;
 
 struct Guide {
   GuideCapacity cap;
@@ -110,48 +116,75 @@ tdo_status build_coarse(Guide* gd, const tdo_grid* fine) {
   return TDO_OK;
 }
 
-// Mark cell (i,j,k) as in the corridor (outside the coarse grid: nothing).
-void mark(Guide* gd, const tdo_grid_desc& d, int32_t i, int32_t j, int32_t k) {
-  if (i < 0 || j < 0 || k < 0 || i >= d.nx || j >= d.ny || k >= d.nz) return;
-  const uint32_t c =
-      static_cast<uint32_t>(i) +
-      static_cast<uint32_t>(d.nx) *
-          (static_cast<uint32_t>(j) + static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(k));
+// A cell of `d` at least one cell from every face: its 26 neighbours lie inside the grid.
+inline bool interior(const tdo_grid_desc& d, int32_t i, int32_t j, int32_t k) {
+  return i > 0 && j > 0 && k > 0 && i < d.nx - 1 && j < d.ny - 1 && k < d.nz - 1;
+}
+
+// Mark cell c, (i,j,k) of the coarse grid, as in the corridor.
+inline void mark_cell(Guide* gd, uint32_t c) {
   if (gd->cells[c] != 0u || gd->n_marked >= gd->max_marked) return;
   gd->cells[c] = kCorridorBit;
   gd->marked[gd->n_marked++] = c;
 }
 
+// Mark cell (i,j,k) as in the corridor (outside the coarse grid: nothing).
+void mark(Guide* gd, const tdo_grid_desc& d, int32_t i, int32_t j, int32_t k) {
+  if (i < 0 || j < 0 || k < 0 || i >= d.nx || j >= d.ny || k >= d.nz) return;
+  mark_cell(
+      gd, static_cast<uint32_t>(i) + static_cast<uint32_t>(d.nx) *
+                                         (static_cast<uint32_t>(j) +
+                                          static_cast<uint32_t>(d.ny) * static_cast<uint32_t>(k)));
+}
+
+// The tdo_search_corridor.cells mask of marked cell c = (i,j,k): the cells of its 3x3x3 block in
+// the corridor. `off`: the linear offsets of the block's cells, in mask bit order.
+uint32_t neighbour_mask(const Guide* gd, const tdo_grid_desc& d, uint32_t c, int32_t i, int32_t j,
+                        int32_t k, const int64_t* off) {
+  uint32_t mask = 0;
+  if (interior(d, i, j, k)) {  // no bounds to test: the 9 rows of three cells
+    for (int r = 0; r < 9; ++r) {
+      const uint32_t* row = gd->cells + (static_cast<int64_t>(c) + off[3 * r + 1]);
+      mask |= (((row[-1] >> 13) & 1u) | ((row[0] >> 12) & 2u) | ((row[1] >> 11) & 4u)) << (3 * r);
+    }
+    return mask;
+  }
+  for (int n = 0; n < 27; ++n) {
+    const int32_t x = i + n % 3 - 1, y = j + (n / 3) % 3 - 1, z = k + n / 9 - 1;
+    if (x < 0 || y < 0 || z < 0 || x >= d.nx || y >= d.ny || z >= d.nz) continue;
+    mask |= ((gd->cells[static_cast<int64_t>(c) + off[n]] >> 13) & 1u) << n;
+  }
+  return mask;
+}
+
 // The corridor: the cells of the coarse path and their 26 neighbours, each with the mask of its
-// neighbours in the corridor (tdo_search_corridor.cells).
+// neighbours in the corridor (tdo_search_corridor.cells). Cells away from the grid's faces skip
+// the bounds tests.
 void build_corridor(Guide* gd, const tdo_voxel* path, uint32_t n_path) {
   const tdo_grid_desc d = gd->coarse->desc;
-  gd->n_marked = 0;
-  for (uint32_t p = 0; p < n_path; ++p)
-    for (int32_t dz = -1; dz <= 1; ++dz)
-      for (int32_t dy = -1; dy <= 1; ++dy)
-        for (int32_t dx = -1; dx <= 1; ++dx)
-          mark(gd, d, path[p].i + dx, path[p].j + dy, path[p].k + dz);
   const int64_t sy = d.nx;
   const int64_t sz = static_cast<int64_t>(d.nx) * d.ny;
+  int64_t off[27];  // bit n = (dx+1) + 3 (dy+1) + 9 (dz+1)
+  for (int n = 0; n < 27; ++n) off[n] = (n % 3 - 1) + ((n / 3) % 3 - 1) * sy + (n / 9 - 1) * sz;
+  gd->n_marked = 0;
+  for (uint32_t p = 0; p < n_path; ++p) {
+    const tdo_voxel& v = path[p];
+    if (interior(d, v.i, v.j, v.k)) {
+      const int64_t c = v.i + v.j * sy + v.k * sz;
+      for (int n = 0; n < 27; ++n) mark_cell(gd, static_cast<uint32_t>(c + off[n]));
+      continue;
+    }
+    for (int32_t dz = -1; dz <= 1; ++dz)
+      for (int32_t dy = -1; dy <= 1; ++dy)
+        for (int32_t dx = -1; dx <= 1; ++dx) mark(gd, d, v.i + dx, v.j + dy, v.k + dz);
+  }
   for (uint32_t m = 0; m < gd->n_marked; ++m) {
     const uint32_t c = gd->marked[m];
     const int32_t i = static_cast<int32_t>(c % static_cast<uint32_t>(d.nx));
     const int32_t j =
         static_cast<int32_t>((c / static_cast<uint32_t>(d.nx)) % static_cast<uint32_t>(d.ny));
     const int32_t k = static_cast<int32_t>(c / static_cast<uint32_t>(sz));
-    uint32_t mask = 0;
-    for (int32_t dz = -1; dz <= 1; ++dz)
-      for (int32_t dy = -1; dy <= 1; ++dy)
-        for (int32_t dx = -1; dx <= 1; ++dx) {
-          const int32_t x = i + dx, y = j + dy, z = k + dz;
-          if (x < 0 || y < 0 || z < 0 || x >= d.nx || y >= d.ny || z >= d.nz) continue;
-          const uint32_t w =
-              static_cast<uint32_t>(static_cast<int64_t>(c) + dx + dy * sy + dz * sz);
-          if ((gd->cells[w] & kCorridorBit) != 0u)
-            mask |= 1u << ((dz + 1) * 9 + (dy + 1) * 3 + (dx + 1));
-        }
-    gd->cells[c] |= mask;
+    gd->cells[c] |= neighbour_mask(gd, d, c, i, j, k, off);
   }
 }
 
@@ -277,6 +310,38 @@ bool applies(const Guide* gd, const tdo_search_input* in) {
   return n <= gd->cap.max_cells;
 }
 
+// The expansion budget of a short query's whole-grid search; 0 when the query is not short.
+uint32_t short_budget(const Guide* gd, const tdo_search_input* in) {
+  tdo_voxel e[2];
+  if (!tdo_grid_world_to_voxel(in->grid, in->start, &e[0]) ||
+      !tdo_grid_world_to_voxel(in->grid, in->goal, &e[1]))
+    return 0u;
+  const int32_t d = abs(e[1].i - e[0].i) + abs(e[1].j - e[0].j) + abs(e[1].k - e[0].k);
+  if (d > (kShortCells << gd->cap.shift)) return 0u;
+  const uint32_t budget = kShortBudget * static_cast<uint32_t>(d) + kShortBase;
+  return in->max_expansions != 0u && in->max_expansions < budget ? in->max_expansions : budget;
+}
+
+// A short query's search on the whole grid with voxel states (as the corridor's) and its budget:
+// for so few voxels the coarse route and the corridor cost more than they save. TDO_OK or
+// TDO_ERR_NO_PATH (voxel states reach every voxel plain A* reaches: a proof) are final; any other
+// status (the budget spent) leaves the query to the corridor.
+bool short_search(Guide* gd, tdo_search* fine, const tdo_search_input* in, tdo_search_output* out,
+                  GuideReport* report, tdo_status* st) {
+  const uint32_t budget = short_budget(gd, in);
+  if (budget == 0u) return false;
+  tdo_search_input wi = *in;
+  wi.states = TDO_STATES_VOXEL;
+  wi.max_expansions = budget;
+  *st = tdo_search_run(fine, &wi, out);
+  if (*st == TDO_OK || *st == TDO_ERR_NO_PATH) {
+    report->used = 2;
+    return true;
+  }
+  report->expansions = out->expansions;  // spent before the coarse route
+  return false;
+}
+
 }  // namespace
 
 GuideCapacity guide_capacity(uint32_t max_voxels, int32_t shift) {
@@ -334,6 +399,8 @@ tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
                         tdo_search_output* out, GuideReport* report) {
   memset(report, 0, sizeof(*report));
   if (!applies(gd, in)) return tdo_search_run(fine, in, out);
+  tdo_status st_short = TDO_OK;
+  if (short_search(gd, fine, in, out, report, &st_short)) return st_short;
   if ((gd->built_for != in->grid || gd->built_version != in->grid->version) &&
       build_coarse(gd, in->grid) != TDO_OK) {
     gd->built_for = nullptr;
@@ -353,7 +420,7 @@ tdo_status guide_search(Guide* gd, tdo_search* fine, const tdo_search_input* in,
   ci.first_meet = 0;
   tdo_search_output co;
   if (tdo_search_run(gd->search, &ci, &co) == TDO_OK && co.n_path <= gd->cap.max_path) {
-    report->expansions = co.expansions;
+    report->expansions += co.expansions;
     report->coarse_path = co.n_path;
     const uint32_t n = co.n_path;
     memcpy(gd->route, co.path, n * sizeof(tdo_voxel));

@@ -352,16 +352,17 @@ inline void push_headed(Side& s, uint32_t idx, double f, double h) {
   if (!push_stack(s, idx, it.f)) enqueue(s, it);
 }
 
-void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx, bool headed) {
+// Queue state idx with its priority; inlined into the voxel-state relaxation (kHeaded false).
+template <bool kHeaded>
+inline void push(tdo_search* ctx, const Query& q, Side& s, int back, uint32_t idx) {
   OpenItem it;
   float h;
   it.node = static_cast<Index>(idx);
-  it.f = headed ? priority<true>(ctx, q, s, back, s.nodes[idx], &h)
-                : priority<false>(ctx, q, s, back, s.nodes[idx], &h);
+  it.f = priority<kHeaded>(ctx, q, s, back, s.nodes[idx], &h);
   it.h = h;
   if (!push_stack(s, idx, it.f)) {
     enqueue(s, it);
-  } else if (!headed) {
+  } else if (!kHeaded) {
     prefetch(q.grid->moves + s.nodes[idx].voxel);  // expanded soon
   }
 }
@@ -601,7 +602,7 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
                     kStepDelta.d[e][2], d, kNil);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
     slot_set(s, w, idx);
-    push(ctx, q, s, back, idx, false);
+    push<false>(ctx, q, s, back, idx);
   }
   if (q.bidir) meet<false>(ctx, q, back, idx);
   return TDO_OK;
@@ -789,7 +790,10 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   }
   index_state(s, n.voxel, kHeadingNone, 0, true);
   slot_set(s, n.voxel, 0);
-  push(ctx, q, s, back, 0, headed);
+  if (headed)
+    push<true>(ctx, q, s, back, 0);
+  else
+    push<false>(ctx, q, s, back, 0);
 }
 
 // f of the state a side expands next (the stack top first); HUGE_VAL when both are empty.

@@ -149,10 +149,10 @@ typedef struct tdo_search_output {
                               is not the heading search's (needs max_nodes >= the grid's voxels;
                               else the pool's status). expansions counts every try */
   uint32_t guide;        /**< set by the planner (tdo_capacity.guide_shift): 0 = no coarse guide,
-                              1 = found in the guide's corridor, 2 = the corridor held no path and
-                              the whole grid was searched (docs/design.md s.1) */
-  uint32_t guide_expansions; /**< the guide's coarse search and corridor search; expansions counts
-                              the search that returned */
+                              1 = found in the guide's corridor, 2 = the whole grid was searched
+                              (a short query, or the corridor held no path; docs/design.md s.1) */
+  uint32_t guide_expansions; /**< the guide's spent short try, coarse search and corridor search;
+                              expansions counts the search that returned */
   uint32_t direct;           /**< set by the planner: 1 = the straight segment from start to goal
                               keeps the clearance and no search ran (n_path = 0; cost = its
                               length; docs/design.md s.1, "The direct route") */
