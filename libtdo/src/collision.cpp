@@ -1520,6 +1520,9 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   if (!(len > 0.0) || !isfinite(len)) return cubes_clear(g, a, b, c);
   df_ensure(g);
   const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
+  // A short segment (a grid path's step) without an occupied voxel near its span box is clear:
+  // every cube is farther than need > c (block_free), as the walk below would find.
+  if (len2 <= 4.0 * g->desc.res * g->desc.res && block_free(g, a, b, need, false)) return true;
   double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
   for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
   const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
