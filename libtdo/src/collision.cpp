@@ -738,6 +738,11 @@ bool leaf_min(const tdo_grid* g, const PieceInfo& pi, bool point, double* best) 
   return *best > 0.0;
 }
 
+// Margin (of res) of cubes_min's block test of a leaf: far above the rounding of the block
+// test's voxel ranges and of the leaf's end points.
+constexpr double kLeafBlockRel = 4e-7;
+bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], double r, bool boxes);
+
 // Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top): the
 // parameters and what piece_info found, 40 bytes (the end points are recomputed, bit for bit:
 // seg_point), so the heap stays at 1.9 KB of stack (embedded targets: docs/embedded.md).
@@ -800,8 +805,13 @@ inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
   const bool point = a == b;
-  const auto visit = [g, point, &best](const PieceInfo& pi) {
+  const double margin = kLeafBlockRel * g->desc.res;
+  const auto visit = [g, point, margin, &best](const PieceInfo& pi) {
     if (pi.lb >= best) return PieceStep::skip;
+    // A piece without an occupied voxel within the minimum (plus a margin far above the
+    // rounding) has no cube that could lower it: none of its leaves would change anything.
+    if (block_free(g, pi.p0, pi.p1, best + margin + brick_tol(g, pi.p0, pi.p1, best), false))
+      return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
     return leaf_min(g, pi, point, &best) ? PieceStep::skip : PieceStep::stop;
