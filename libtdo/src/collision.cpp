@@ -805,12 +805,14 @@ inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
   const bool point = a == b;
-  const double margin = kLeafBlockRel * g->desc.res;
-  const auto visit = [g, point, margin, &best](const PieceInfo& pi) {
+  const double res = g->desc.res, margin = kLeafBlockRel * res;
+  const auto visit = [g, point, res, margin, &best](const PieceInfo& pi) {
     if (pi.lb >= best) return PieceStep::skip;
     // A piece without an occupied voxel within the minimum (plus a margin far above the
     // rounding) has no cube that could lower it: none of its leaves would change anything.
-    if (block_free(g, pi.p0, pi.p1, best + margin + brick_tol(g, pi.p0, pi.p1, best), false))
+    // Tried while the minimum is within a voxel (beyond, the block holds too many voxels).
+    if (best <= res &&
+        block_free(g, pi.p0, pi.p1, best + margin + brick_tol(g, pi.p0, pi.p1, best), false))
       return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
@@ -1532,7 +1534,9 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
   // A short segment (a grid path's step) without an occupied voxel near its span box is clear:
   // every cube is farther than need > c (block_free), as the walk below would find.
-  if (len2 <= 4.0 * g->desc.res * g->desc.res && block_free(g, a, b, need, false)) return true;
+  if (need <= 0.5 * g->desc.res && len2 <= 4.0 * g->desc.res * g->desc.res &&
+      block_free(g, a, b, need, false))
+    return true;
   double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
   for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
   const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;
