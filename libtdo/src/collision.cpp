@@ -738,6 +738,11 @@ bool leaf_min(const tdo_grid* g, const PieceInfo& pi, bool point, double* best) 
   return *best > 0.0;
 }
 
+// Margin (of res) of cubes_min's block test of a leaf: far above the rounding of the block
+// test's voxel ranges and of the leaf's end points.
+constexpr double kLeafBlockRel = 4e-7;
+bool block_free(const tdo_grid* g, const double p0[3], const double p1[3], double r, bool boxes);
+
 // Pieces of the best-first walk of cubes_min waiting in its heap (smallest lb on top): the
 // parameters and what piece_info found, 40 bytes (the end points are recomputed, bit for bit:
 // seg_point), so the heap stays at 1.9 KB of stack (embedded targets: docs/embedded.md).
@@ -800,8 +805,15 @@ inline HeapPiece heap_pop(HeapPiece* h, uint32_t* n) {
 double cubes_min(const tdo_grid* g, const double a[3], const double b[3], double best) {
   if (g->n_cubes == 0) return best;
   const bool point = a == b;
-  const auto visit = [g, point, &best](const PieceInfo& pi) {
+  const double res = g->desc.res, margin = kLeafBlockRel * res;
+  const auto visit = [g, point, res, margin, &best](const PieceInfo& pi) {
     if (pi.lb >= best) return PieceStep::skip;
+    // A piece without an occupied voxel within the minimum (plus a margin far above the
+    // rounding) has no cube that could lower it: none of its leaves would change anything.
+    // Tried while the minimum is within a voxel (beyond, the block holds too many voxels).
+    if (best <= res &&
+        block_free(g, pi.p0, pi.p1, best + margin + brick_tol(g, pi.p0, pi.p1, best), false))
+      return PieceStep::skip;
     if (!pi.leaf) return PieceStep::split;
     if (pi.in_cube) return PieceStep::stop;
     return leaf_min(g, pi, point, &best) ? PieceStep::skip : PieceStep::stop;
@@ -1484,13 +1496,17 @@ __attribute__((noinline)) int slab_walk(const tdo_grid* g, const double a[3], co
       for (int64_t j = j0; j <= j1; ++j) {
         const uint8_t f = row[j * stride[ay]];
         if ((f & (kFlagOccupied | kFlagCube)) == 0) continue;
+        // A voxel the segment misses grown by `need` (> c) cannot certainly violate c either
+        // (that needs a point within c of its cube), so the miss test goes first: the same
+        // violations, in the same order, and the same open spans.
+        if (misses_grown_voxel(g, ix, j, k, ax, ay, az, a, b, need)) continue;
         const int64_t idx = ix * stride[ax] + j * stride[ay] + k * stride[az];
         if ((f & kFlagSurface) != 0 &&
             cube_certainly_violates(g, static_cast<uint32_t>(idx), a, b, c)) {
           *hint = static_cast<uint32_t>(idx) + 1u;
           return 0;
         }
-        if (!misses_grown_voxel(g, ix, j, k, ax, ay, az, a, b, need)) open = true;
+        open = true;
       }
     }
     if (open) add_span(sp, t0 - widen, t1 + widen);
@@ -1516,6 +1532,11 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
   if (!(len > 0.0) || !isfinite(len)) return cubes_clear(g, a, b, c);
   df_ensure(g);
   const double need = c + kSteerRel * g->desc.res + quick_tol(c, bounds_scale(g));
+  // A short segment (a grid path's step) without an occupied voxel near its span box is clear:
+  // every cube is farther than need > c (block_free), as the walk below would find.
+  if (need <= 0.5 * g->desc.res && len2 <= 4.0 * g->desc.res * g->desc.res &&
+      block_free(g, a, b, need, false))
+    return true;
   double mag = len;  // largest magnitude in the length's rounding: coordinates and the length
   for (int i = 0; i < 3; ++i) mag = dmax(mag, dmax(fabs(a[i]), fabs(b[i])));
   const double leaf_tol = 1e-9 * g->desc.res + 64.0 * kDoubleEps * mag;

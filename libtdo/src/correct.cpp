@@ -402,11 +402,32 @@ bool corner_costs(const tdo_vec3* p, uint32_t m, uint32_t k, const tdo_vec3& q, 
   return true;
 }
 
-// min(cap, exact distance) of [a, b], counted as a check; -1 when the budget ran out.
-double capped_distance(Run& r, const tdo_vec3& a, const tdo_vec3& b, double cap) {
-  if (r.checks >= r.budget) return -1.0;
+// A capped distance of one of tighten's two current segments: counted as a check when first
+// asked for (as the budget sees it), computed only when a clearance check reads it, so a
+// candidate whose first new segment fails never needs the second distance.
+struct Capped {
+  enum : uint8_t { kUnknown, kPending, kKnown } state;  // not asked for / counted / computed
+  double d;                                             // m, min(cap, exact distance) when known
+};
+
+// Count the check of a capped distance; false when the budget ran out.
+bool count_distance(Run& r, Capped* c) {
+  if (c->state != Capped::kUnknown) return true;
+  if (r.checks >= r.budget) return false;
   ++r.checks;
-  return tdo_collision_segment_distance(r.grid, a, b, cap);
+  c->state = Capped::kPending;
+  return true;
+}
+
+// The clearance the replacement of segment [a, b] (distance *c, counted) must keep:
+// max(distance, the run's clearance), the distance computed when pending.
+double replacement_clearance(const Run& r, Capped* c, const tdo_vec3& a, const tdo_vec3& b,
+                             double cap) {
+  if (c->state == Capped::kPending) {
+    c->d = tdo_collision_segment_distance(r.grid, a, b, cap);
+    c->state = Capped::kKnown;
+  }
+  return c->d > r.clearance ? c->d : r.clearance;
 }
 
 // The pass; returns false when the budget ran out.
@@ -414,11 +435,12 @@ bool tighten(Run& r, uint32_t m) {
   tdo_vec3* p = r.ctx->pts;
   const double res = tdo_grid_get_desc(r.grid).res;
   const double cap = r.clearance + kRoomMargin;
-  double carried = -1.0;  // capped distance of [p[k-1], p[k]] when known, else -1
+  constexpr Capped kNotAsked{Capped::kUnknown, 0.0};
+  Capped carried = kNotAsked;  // capped distance of [p[k-1], p[k]] when already asked for
   for (uint32_t k = 1; k + 1u < m; ++k) {
     const tdo_vec3 a = p[k - 1u], c = p[k + 1u];
-    double d1 = carried, d2 = -1.0;  // capped distances of the current segments, -1 unknown
-    carried = -1.0;
+    Capped d1 = carried, d2 = kNotAsked;  // capped distances of the current segments
+    carried = kNotAsked;
     uint32_t failed = 0u;  // bit per direction whose clearance check failed
     bool moved = true;
     // Bounded: kTightMoves moves, each of at most 3 x 6 candidates.
@@ -445,11 +467,9 @@ bool tighten(Run& r, uint32_t m) {
           if (!corner_costs(p, m, k, q, &turns, &room)) continue;
           if (turns > turns0 || room > room0 * (1.0 + kRoomTol)) continue;
           // The old segments' distances, only for a candidate that got this far.
-          if (d1 < 0.0) d1 = capped_distance(r, a, b, cap);
-          if (d2 < 0.0 && d1 >= 0.0) d2 = capped_distance(r, b, c, cap);
-          if (d1 < 0.0 || d2 < 0.0) return false;
-          int ok = check_at(r, a, q, d1 > r.clearance ? d1 : r.clearance);
-          if (ok == 1) ok = check_at(r, q, c, d2 > r.clearance ? d2 : r.clearance);
+          if (!count_distance(r, &d1) || !count_distance(r, &d2)) return false;
+          int ok = check_at(r, a, q, replacement_clearance(r, &d1, a, b, cap));
+          if (ok == 1) ok = check_at(r, q, c, replacement_clearance(r, &d2, b, c, cap));
           if (ok < 0) return false;
           if (ok == 0) {
             failed |= 1u << dir;
@@ -458,7 +478,7 @@ bool tighten(Run& r, uint32_t m) {
           p[k] = q;
           r.ctx->orig[k] = kNone;
           moved = true;
-          d1 = d2 = -1.0;  // both segments changed
+          d1 = d2 = kNotAsked;  // both segments changed
         }
         if (moved) break;
       }

@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "arena_typed.h"
+#include "g2_shape.h"
 #include "scalar.h"
 #include "tdo/collision.h"
 #include "vec3.h"
@@ -39,12 +40,6 @@ using namespace tdo_internal;  // vec3.h, scalar.h, arena_typed.h
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// Yang-Sukkarieh constants, c1 derived exactly (see the header comment).
-constexpr double kC2 = 0.5797958971132712392789;   // 2 (sqrt(6) - 1) / 5
-constexpr double kC1 = (kC2 + 1.0) * (kC2 + 4.0);  // 7.2351427678757392...
-constexpr double kC3 = (kC2 + 4.0) / (kC1 + 6.0);  // 0.3460329803339428...
-constexpr double kQ = 1.0 - kC3 * (1.0 + kC2);     // 0.4533385174025598... = 6 c3 / (c2 + 4)
 
 constexpr double kStraightAngle = 1e-7;  // rad; smaller deflections pass straight, no corner
 constexpr double kNearPi = 1e-6;         // rad; deflections within this of pi always stop
@@ -56,9 +51,6 @@ constexpr double kDefaultMinRadius = 0.05;  // of R_min, when the input gives 0
 constexpr double kAbsMinRadius = 1e-6;      // m; no corner radius below this, whatever the input
 constexpr double kClearTolerance = 0.005;   // m; conservativeness allowed to the Bezier check
 constexpr uint32_t kMaxChords = 64u;        // chords per arc clearance check
-constexpr int kRateSamples = 32;            // t samples of the curvature-rate maximum search
-constexpr int kRateGolden = 40;  // golden-section steps refining it (bracket 1/16 -> 1e-10)
-constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximum
 // Time-oriented corner shapes (tdo_smooth_input.corner_time): the inner control points at these
 // fractions of the tangent length spread the curvature change over the whole curve (max|dkappa/ds|
 // about 5x lower than Yang-Sukkarieh's for the same tangent length up to ~60 degrees).
@@ -90,171 +82,6 @@ struct Corner {
   uint8_t kind;          // CornerKind
   uint8_t shrunk;        // 1 when r < r_des
 };
-
-/** Tangent length per metre of radius of the G2 corner with half-deflection beta. */
-double g2_tau(double beta) {
-  const double cb = cos(beta);
-  return (2.0 / 3.0) * kC3 * sin(beta) / (kQ * kQ * cb * cb);
-}
-
-/**
- * The first Bezier of the unit-radius G2 corner in the plane (u_in = x axis, turning left by
- * theta): control points on the x axis and at the junction, held as the differences its
- * derivatives are made of (the same operations, computed once per curve instead of once per t).
- */
-struct PlanarBez {
-  double a[2], b[2], e[2];  // c1 - c0, c2 - c1, c3 - c2
-  double s[2], w[2];        // c2 - 2 c1 + c0, c3 - 2 c2 + c1
-  double d3[2];             // third derivative
-};
-
-PlanarBez planar_bez(const double px[4], const double py[4]) {
-  PlanarBez z;
-  const double* p[2] = {px, py};
-  for (int i = 0; i < 2; ++i) {
-    const double* c = p[i];
-    z.a[i] = c[1] - c[0];
-    z.b[i] = c[2] - c[1];
-    z.e[i] = c[3] - c[2];
-    z.s[i] = c[2] - 2.0 * c[1] + c[0];
-    z.w[i] = c[3] - 2.0 * c[2] + c[1];
-    z.d3[i] = 6.0 * (c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]);
-  }
-  return z;
-}
-
-/** First and second derivative of a PlanarBez at parameter t. */
-struct PlanarDeriv {
-  double d1[2], d2[2];
-};
-
-inline PlanarDeriv planar_deriv(const PlanarBez& z, double t) {
-  const double u = 1.0 - t;
-  const double uu = u * u, ut2 = 2.0 * u * t, tt = t * t;
-  PlanarDeriv d;
-  for (int i = 0; i < 2; ++i) {
-    d.d1[i] = 3.0 * (uu * z.a[i] + ut2 * z.b[i] + tt * z.e[i]);
-    d.d2[i] = 6.0 * (u * z.s[i] + t * z.w[i]);
-  }
-  return d;
-}
-
-/** |dkappa/ds| of the curve with derivatives d (third derivative z.d3). */
-inline double g2_rate_of(const PlanarBez& z, const PlanarDeriv& d) {
-  const double* d1 = d.d1;
-  const double* d2 = d.d2;
-  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
-  const double sp = sqrt(sp2);
-  if (!(sp > 0.0)) return 0.0;
-  // Signed curvature kappa = c / sp^3 with c = d1 x d2 (>= 0 for a left turn), c' = d1 x d3.
-  const double c = d1[0] * d2[1] - d1[1] * d2[0];
-  const double cp = d1[0] * z.d3[1] - d1[1] * z.d3[0];
-  const double sp3 = sp2 * sp;
-  const double dk_dt = cp / sp3 - 3.0 * c * (d1[0] * d2[0] + d1[1] * d2[1]) / (sp3 * sp2);
-  return fabs(dk_dt / sp);
-}
-
-/** kappa (signed, >= 0 for a left turn) of the curve with derivatives d. */
-inline double g2_kappa_of(const PlanarDeriv& d) {
-  const double* d1 = d.d1;
-  const double* d2 = d.d2;
-  const double sp2 = d1[0] * d1[0] + d1[1] * d1[1];
-  if (!(sp2 > 0.0)) return 0.0;
-  return (d1[0] * d2[1] - d1[1] * d2[0]) / (sp2 * sqrt(sp2));
-}
-
-inline double g2_rate_at(const PlanarBez& z, double t) { return g2_rate_of(z, planar_deriv(z, t)); }
-
-inline double g2_kappa_at(const PlanarBez& z, double t) { return g2_kappa_of(planar_deriv(z, t)); }
-
-/** Running maximum of the samples of max_on_unit. */
-struct UnitSamples {
-  int best = 0;
-  double best_v = -HUGE_VAL;
-  void add(int i, double v) {
-    if (v > best_v) {
-      best_v = v;
-      best = i;
-    }
-  }
-};
-
-/** Golden-section refinement of f around the best sample s; the maximum found. */
-template <typename F>
-double refine_on_unit(F f, const UnitSamples& s) {
-  const int best = s.best;
-  double lo = static_cast<double>(best > 0 ? best - 1 : 0) / kRateSamples;
-  double hi = static_cast<double>(best < kRateSamples ? best + 1 : kRateSamples) / kRateSamples;
-  const double gr = 0.6180339887498948482;
-  double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  for (int it = 0; it < kRateGolden; ++it) {
-    if (f1 < f2) {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + gr * (hi - lo);
-      f2 = f(x2);
-    } else {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - gr * (hi - lo);
-      f1 = f(x1);
-    }
-  }
-  return dmax(s.best_v, dmax(f1, f2));
-}
-
-/** Maximum over t in [0, 1] of f: kRateSamples + 1 samples, golden-section refinement. */
-template <typename F>
-double max_on_unit(F f) {
-  UnitSamples s;
-  for (int i = 0; i <= kRateSamples; ++i) s.add(i, f(static_cast<double>(i) / kRateSamples));
-  return refine_on_unit(f, s);
-}
-
-/**
- * max |dkappa/ds| of the unit-radius G2 corner (both halves are mirror images): max_on_unit over
- * the first half, with a 1e-6 relative safety margin.
- * Scale: a corner of radius r has max |dkappa/ds| = g2_rate(beta) / r^2.
- */
-double g2_rate(double beta) {
-  const double d = g2_tau(beta);
-  const double h = kC3 * d, g = kC2 * h;
-  const double theta = 2.0 * beta;
-  // Waypoint at the origin, incoming along +x, outgoing along (cos theta, sin theta).
-  const double b2 = d - g - h;
-  const double px[4] = {-d, -(d - g), -b2, 0.5 * (-b2 + b2 * cos(theta))};
-  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
-  const PlanarBez z = planar_bez(px, py);
-  return max_on_unit([&](double t) { return g2_rate_at(z, t); }) * kRateMargin;
-}
-
-/**
- * Tangent length per metre of radius (tau) and rate = max|dkappa/ds| r^2 of the G2 corner whose
- * inner control points sit at fractions gf, hf of the tangent length, with half-deflection beta:
- * "radius" r = 1 / max kappa, so that the corner of radius r has tangent length tau r, peak
- * curvature 1/r and max|dkappa/ds| = rate / r^2, as for the Yang-Sukkarieh shape. The two maxima
- * share their samples (each the same value max_on_unit would find).
- */
-void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
-  const double theta = 2.0 * beta;
-  const double b2 = 1.0 - gf - hf;  // unit tangent length
-  const double px[4] = {-1.0, -(1.0 - gf), -b2, 0.5 * (-b2 + b2 * cos(theta))};
-  const double py[4] = {0.0, 0.0, 0.0, 0.5 * (b2 * sin(theta))};
-  const PlanarBez z = planar_bez(px, py);
-  UnitSamples sk, sf;
-  for (int i = 0; i <= kRateSamples; ++i) {
-    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
-    sk.add(i, g2_kappa_of(d));
-    sf.add(i, g2_rate_of(z, d));
-  }
-  const double k = refine_on_unit([&](double t) { return g2_kappa_at(z, t); }, sk) * kRateMargin;
-  const double f = refine_on_unit([&](double t) { return g2_rate_at(z, t); }, sf) * kRateMargin;
-  *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
-  *rate = f / (k * k);  // max|dkappa/ds| = f / d^2 = f / (k r)^2
-}
 
 tdo_path_segment blank_segment(tdo_segment_kind kind) {
   tdo_path_segment s;
@@ -378,10 +205,17 @@ void g2_choose(const tdo_smooth_input& in, double theta, double r8, double v_c, 
     return;
   }
   const double j_design = kTimeJerkShare * in.j_max;
+  // A shape whose rate puts its jerk radius above r8 has r_des = that radius, so its speed is at
+  // most min(.., cbrt(j_design r_des^2 / rate)) = v_c up to rounding: once the best speed is v_c,
+  // such a blend cannot pass the comparison below (it needs 1e-9 more) and is not computed.
+  const double rate_r8 = r8 * r8 * j_design / (v_c * v_c * v_c);  // rate whose jerk radius is r8
   double best_v = -1.0;
   for (int b = 0; b <= kShapeBlends; ++b) {
     const double lam = in.corner_time * b / kShapeBlends;
     const double gf = ys_g + lam * (kGentleG - ys_g), hf = ys_h + lam * (kGentleH - ys_h);
+    if (b > 0 && best_v >= v_c * (1.0 - 1e-10) &&
+        g2_rate_lower(beta, gf, hf) > rate_r8 * (1.0 + 1e-9))
+      continue;
     double tau, rate;
     if (b == 0) {
       tau = g2_tau(beta);
