@@ -335,7 +335,7 @@ bool short_search(Guide* gd, tdo_search* fine, const tdo_search_input* in, tdo_s
   wi.max_expansions = budget;
   *st = tdo_search_run(fine, &wi, out);
   if (*st == TDO_OK || *st == TDO_ERR_NO_PATH) {
-    report->used = 2;
+    report->used = 3;
     return true;
   }
   report->expansions = out->expansions;  // spent before the coarse route

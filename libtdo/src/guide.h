@@ -32,8 +32,8 @@ tdo_status guide_init(Guide** out, tdo_arena* arena, const GuideCapacity& cap);
 // What the guide did for one query.
 struct GuideReport {
   uint32_t used;         // 0: no guide (grid too small or too large for it), 1: the corridor's
-                         // search found the path, 2: the whole grid was searched (a short query,
-                         // or the corridor's search found no path)
+                         // search found the path, 2: the corridor's search found no path and the
+                         // whole grid was searched, 3: a short query's whole-grid search answered
   uint32_t expansions;   // a short query's spent try, coarse search and corridor search (the
                          // search that returned excluded)
   uint32_t corridor;     // coarse cells in the corridor

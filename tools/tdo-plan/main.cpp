@@ -649,9 +649,13 @@ void print_search(const Options& o, const tdo_search_output& sr) {
   if (sr.direct != 0)  // tdo_search_output.direct (search.h: the direct route)
     std::printf(
         "search_direct    the straight start-goal segment keeps the clearance: no search\n");
-  if (sr.guide > 0)  // tdo_search_output.guide (search.h: the coarse guide)
-    std::printf("search_guide     %s (%" PRIu32 " coarse and corridor expansions)\n",
-                sr.guide == 1 ? "corridor" : "corridor empty, whole grid", sr.guide_expansions);
+  if (sr.guide > 0) {  // tdo_search_output.guide (search.h: the coarse guide)
+    const char* how = sr.guide == 1   ? "corridor"
+                      : sr.guide == 2 ? "corridor empty, whole grid"
+                                      : "short query, whole grid";
+    std::printf("search_guide     %s (%" PRIu32 " expansions of the guide's other tries)\n", how,
+                sr.guide_expansions);
+  }
 }
 
 // The start or goal (`name`): --NAME when given, else the map file's line; bad input without both.

@@ -149,8 +149,9 @@ typedef struct tdo_search_output {
                               is not the heading search's (needs max_nodes >= the grid's voxels;
                               else the pool's status). expansions counts every try */
   uint32_t guide;        /**< set by the planner (tdo_capacity.guide_shift): 0 = no coarse guide,
-                              1 = found in the guide's corridor, 2 = the whole grid was searched
-                              (a short query, or the corridor held no path; docs/design.md s.1) */
+                              1 = found in the guide's corridor, 2 = the corridor held no path and
+                              the whole grid was searched, 3 = a short query answered by its
+                              whole-grid try (docs/design.md s.1) */
   uint32_t guide_expansions; /**< the guide's spent short try, coarse search and corridor search;
                               expansions counts the search that returned */
   uint32_t direct;           /**< set by the planner: 1 = the straight segment from start to goal
