@@ -19,6 +19,7 @@
 #include "scale_report.h"
 #include "scale_runner.h"
 #include "scale_workloads.h"
+#include "tdo_samples/samples.h"
 
 #ifndef TDO_BENCH_SCALE_MAPS_DIR
 #define TDO_BENCH_SCALE_MAPS_DIR "maps"
@@ -40,17 +41,18 @@ struct Options {
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
   std::string guide = "on";            // tdo's coarse guide on grids of 2^19 voxels or more
-  std::string samples =
-      "default";              // tdo's trajectory samples: default | stored | streamed | pieces
+  std::string samples = "default";     // tdo's trajectory samples: default | a mode name
+  uint32_t stream_samples = tdo_bench::kScaleSamplesDefault;  // `samples` parsed (samples_mode)
   uint64_t trajectories = 0;  // timed tdo plans that reached the trajectory stage
   uint64_t sampled = 0;       // of them: verified a round over the samples
 };
 
-// tdo_bench::kScaleSamplesDefault keeps tdo_capacity_for_grid's choice.
-uint32_t samples_mode(const std::string& s) {
-  if (s == "default") return tdo_bench::kScaleSamplesDefault;
-  return s == "pieces" ? TDO_TRAJ_SAMPLES_PIECES
-                       : (s == "streamed" ? TDO_TRAJ_SAMPLES_STREAMED : TDO_TRAJ_SAMPLES_STORED);
+// --samples as ScaleMapRun::create takes it: "default" (tdo_bench::kScaleSamplesDefault, the
+// library's choice) or a mode name of tdo_samples::mode_parse; false for another name.
+bool samples_mode(const std::string& s, uint32_t* mode) {
+  if (s != "default") return tdo_samples::mode_parse(s.c_str(), mode);
+  *mode = tdo_bench::kScaleSamplesDefault;
+  return true;
 }
 
 void usage(FILE* f) {
@@ -121,8 +123,7 @@ int parse_args(int argc, char** argv, Options* o) {
       ok = o->guide == "on" || o->guide == "off";
     } else if (a == "--samples") {
       o->samples = v;
-      ok = o->samples == "default" || o->samples == "stored" || o->samples == "streamed" ||
-           o->samples == "pieces";
+      ok = samples_mode(o->samples, &o->stream_samples);
     } else if (a == "--states") {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";
@@ -171,7 +172,7 @@ int run_map(Options& o, const tdo_bench::Workload& w, const tdo_bench::ScaleMap&
   std::unique_ptr<tdo_bench::ScaleMapRun> run =
       tdo_bench::ScaleMapRun::create(map, sm.clearance, static_cast<uint32_t>(o.max_nodes),
                                      o.states == "voxel" ? TDO_STATES_VOXEL : TDO_STATES_HEADING,
-                                     o.guide == "on", w.rrt, samples_mode(o.samples), &err);
+                                     o.guide == "on", w.rrt, o.stream_samples, &err);
   if (!run) {
     std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
     return 2;
