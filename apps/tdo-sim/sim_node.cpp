@@ -188,7 +188,7 @@ void SimNode::on_setpoint(const void* data, std::size_t size) {
     return;
   }
   // An answer to a state already passed: never flown while steps wait for their answer.
-  if (!cfg_.lockstep && cfg_.setpoint_wait_s > 0.0 && m.utime < state_utime_) {
+  if (waits_for_answers() && m.utime < state_utime_) {
     ++counters_.late_setpoints;
     ++counters_.reasons["setpoint.late"];
   }
@@ -214,7 +214,7 @@ void SimNode::step_at(std::chrono::steady_clock::time_point now) {
   in.setpoint = setpoint_;  // the library judges its age against the simulated clock
   const bool came = follower_alive(now);
   // Timed steps that wait for their answer fly nothing else: without it the step is late.
-  const bool late = came && !cfg_.lockstep && cfg_.setpoint_wait_s > 0.0 && !answered();
+  const bool late = came && waits_for_answers() && !answered();
   tdo_sim_output out{};
   const auto t0 = std::chrono::steady_clock::now();
   // None came lately, or not the answer to this state: brake.
@@ -338,7 +338,7 @@ void SimNode::poll(std::chrono::steady_clock::time_point now) {
     // is alive; then step with it, or late.
     if (!waiting_) wait_until_ = next_tick_ + steady_seconds(cfg_.setpoint_wait_s);
     const bool wait =
-        cfg_.setpoint_wait_s > 0.0 && follower_alive(now) && !answered() && now < wait_until_;
+        waits_for_answers() && follower_alive(now) && !answered() && now < wait_until_;
     if (wait && !waiting_) ++counters_.waits;  // once per tick
     waiting_ = wait;
     if (!waiting_) {

@@ -197,6 +197,8 @@ class SimNode {
   void note_late(bool late, const tdo_sim_output& out);
   bool follower_alive(std::chrono::steady_clock::time_point now) const;
   bool answered() const { return have_setpoint_ && setpoint_utime_ == state_utime_; }
+  // Timed steps fly only the answer to their state (setpoint_wait_s > 0).
+  bool waits_for_answers() const { return !cfg_.lockstep && cfg_.setpoint_wait_s > 0.0; }
   bool start_sensing(const tdo_io::Map& map, std::string* error);
   void sense(bool publish = true);
   Check known_map_msg();

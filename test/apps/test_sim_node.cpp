@@ -349,23 +349,33 @@ struct Lagging {
   tdo_lcm::SimCounters counters;
   double moved = 0.0;
 };
-Lagging lagging_follower(double wait_s) {
-  tdo_lcm::Bus bus("memq://");
+
+// A timed simulator of kVehicle on Map1 from kT0: the map sent once, the follower never timed out.
+tdo_lcm::SimConfig timed_map1_config() {
   tdo_lcm::SimConfig cfg;
   cfg.vehicle_id = kVehicle;
   cfg.map_file = std::string(TDO_MAPS_DIR) + "/map1.tdomap";
   cfg.start_utime = kT0;
   cfg.map_period_s = 0.0;
   cfg.setpoint_timeout_s = 1e6;
+  return cfg;
+}
+
+// Deliver the messages queued on `bus` (at most 10,000).
+void drain(tdo_lcm::Bus& bus) {
+  for (int i = 0; i < 10000 && bus.handle_timeout(0) > 0; ++i) {
+  }
+}
+
+Lagging lagging_follower(double wait_s) {
+  tdo_lcm::Bus bus("memq://");
+  tdo_lcm::SimConfig cfg = timed_map1_config();
   cfg.setpoint_wait_s = wait_s;
   tdo_lcm::SimNode node(&bus, cfg);
   std::string error;
   EXPECT_TRUE(node.start(&error)) << error;
   const tdo_vec3 p0 = node.current().state.p;
-  auto pump = [&bus] {
-    for (int i = 0; i < 10000 && bus.handle_timeout(0) > 0; ++i) {
-    }
-  };
+  auto pump = [&bus] { drain(bus); };
   pump();
   auto t = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   EXPECT_TRUE(bus.publish(cfg.setpoint_channel, setpoint(0, 2.0, 0.0, 0.0)));
@@ -553,12 +563,7 @@ Starved starve(double max_age_steps) {
   tdo_lcm::Bus bus("memq://");
   std::vector<tdo::vehicle_state_t> states;
   std::vector<tdo::status_t> status;
-  tdo_lcm::SimConfig cfg;
-  cfg.vehicle_id = kVehicle;
-  cfg.map_file = std::string(TDO_MAPS_DIR) + "/map1.tdomap";
-  cfg.start_utime = kT0;
-  cfg.map_period_s = 0.0;
-  cfg.setpoint_timeout_s = 1e6;
+  tdo_lcm::SimConfig cfg = timed_map1_config();
   cfg.setpoint_max_age_steps = max_age_steps;
   cfg.setpoint_wait_s = 0.0;  // the age check of the latest setpoint, not the wait for answers
   EXPECT_TRUE(bus.subscribe(cfg.state_channel, collect(&states)));
@@ -566,10 +571,7 @@ Starved starve(double max_age_steps) {
   tdo_lcm::SimNode node(&bus, cfg);
   std::string error;
   EXPECT_TRUE(node.start(&error)) << error;
-  auto pump = [&bus] {
-    for (int i = 0; i < 10000 && bus.handle_timeout(0) > 0; ++i) {
-    }
-  };
+  auto pump = [&bus] { drain(bus); };
   pump();
   const auto t0 = std::chrono::steady_clock::now() + std::chrono::seconds(1);
   for (int k = 0; k < 300; ++k) {  // 6 s at 50 Hz
