@@ -10,8 +10,9 @@
 
 namespace tdo_internal {
 
-constexpr uint32_t kCorridorBit = 1u << 13;      // tdo_search_corridor: the cell itself is in
-constexpr uint32_t kAllCells = (1u << 27) - 1u;  // tdo_search_corridor: every neighbour in
+constexpr int kCorridorShift = 13;  // the mask bit of the cell itself (dx = dy = dz = 0)
+constexpr uint32_t kCorridorBit = 1u << kCorridorShift;  // tdo_search_corridor: the cell is in
+constexpr uint32_t kAllCells = (1u << 27) - 1u;          // tdo_search_corridor: every neighbour in
 // The second route (docs/design.md s.1, "The coarse guide", step 3): searched in its own corridor
 // when its coarse cost is within kAltMargin of the route's and kAltOutside of its cells lie
 // outside the route's corridor; its plan is kept when its grid path is kAltGain shorter.
@@ -145,14 +146,16 @@ uint32_t neighbour_mask(const Guide* gd, const tdo_grid_desc& d, uint32_t c, int
   if (interior(d, i, j, k)) {  // no bounds to test: the 9 rows of three cells
     for (int r = 0; r < 9; ++r) {
       const uint32_t* row = gd->cells + (static_cast<int64_t>(c) + off[3 * r + 1]);
-      mask |= (((row[-1] >> 13) & 1u) | ((row[0] >> 12) & 2u) | ((row[1] >> 11) & 4u)) << (3 * r);
+      mask |= (((row[-1] >> kCorridorShift) & 1u) | ((row[0] >> (kCorridorShift - 1)) & 2u) |
+               ((row[1] >> (kCorridorShift - 2)) & 4u))
+              << (3 * r);
     }
     return mask;
   }
   for (int n = 0; n < 27; ++n) {
     const int32_t x = i + n % 3 - 1, y = j + (n / 3) % 3 - 1, z = k + n / 9 - 1;
     if (x < 0 || y < 0 || z < 0 || x >= d.nx || y >= d.ny || z >= d.nz) continue;
-    mask |= ((gd->cells[static_cast<int64_t>(c) + off[n]] >> 13) & 1u) << n;
+    mask |= ((gd->cells[static_cast<int64_t>(c) + off[n]] >> kCorridorShift) & 1u) << n;
   }
   return mask;
 }
