@@ -41,6 +41,7 @@ struct Options {
   uint64_t max_nodes = 4000000;        // search states per direction (tdo-plan's default)
   std::string states = "heading";      // tdo's state space: heading | voxel
   std::string guide = "on";            // tdo's coarse guide on grids of 2^19 voxels or more
+  std::string depth = "trajectory";    // tdo's stages: trajectory (all) | search
   std::string samples = "default";     // tdo's trajectory samples: default | a mode name
   uint32_t stream_samples = tdo_bench::kScaleSamplesDefault;  // `samples` parsed (samples_mode)
   uint64_t trajectories = 0;  // timed tdo plans that reached the trajectory stage
@@ -61,6 +62,7 @@ void usage(FILE* f) {
       "usage: tdo-bench-scale [--workload NAME]... [--limit N] [--repeat R] [--warmup W]\n"
       "                       [--seed S] [--no-rrt-movingai] [--max-nodes N] [--states S]\n"
       "                       [--guide on|off] [--samples default|stored|streamed|pieces]\n"
+      "                       [--depth trajectory|search]\n"
       "                       [--maps-dir DIR] [--load]\n"
       "  --workload NAME  geb079, simple, complex, forest, map1 .. map5; repeatable\n"
       "                   (default: all, in that order)\n"
@@ -79,6 +81,9 @@ void usage(FILE* f) {
       "                   library's: pieces on grids of 2^19 voxels or more, else stored),\n"
       "                   stored, streamed, or pieces (closed-form check per profile piece;\n"
       "                   the header counts the plans that fell back to the samples)\n"
+      "  --depth D        tdo's stages (tdo_plan_params.depth): trajectory (default, the full\n"
+      "                   pipeline) or search (the search alone, no direct-route check; its\n"
+      "                   grid path measured and checked as A*'s)\n"
       "  --maps-dir DIR   the repository's maps/ folder (default %s)\n"
       "  --load           time map loading instead of planning: tdo's load of each OcTree and\n"
       "                   .3dmap map against the OctoMap library's read / the .3dmap parse\n"
@@ -104,7 +109,7 @@ int parse_args(int argc, char** argv, Options* o) {
     const bool takes_value = a == "--workload" || a == "--limit" || a == "--repeat" ||
                              a == "--warmup" || a == "--seed" || a == "--maps-dir" ||
                              a == "--max-nodes" || a == "--states" || a == "--guide" ||
-                             a == "--samples";
+                             a == "--samples" || a == "--depth";
     int rc = 0;
     const char* v =
         tdo_bench::option_value("tdo-bench-scale", argc, argv, &i, takes_value, usage, &rc);
@@ -124,6 +129,9 @@ int parse_args(int argc, char** argv, Options* o) {
     } else if (a == "--samples") {
       o->samples = v;
       ok = samples_mode(o->samples, &o->stream_samples);
+    } else if (a == "--depth") {
+      o->depth = v;
+      ok = o->depth == "trajectory" || o->depth == "search";
     } else if (a == "--states") {
       o->states = v;
       ok = o->states == "heading" || o->states == "voxel";
@@ -177,6 +185,7 @@ int run_map(Options& o, const tdo_bench::Workload& w, const tdo_bench::ScaleMap&
     std::fprintf(stderr, "tdo-bench-scale: %s\n", err.c_str());
     return 2;
   }
+  run->set_tdo_depth(o.depth == "search" ? TDO_PLAN_SEARCH : TDO_PLAN_TRAJECTORY);
   for (int p = 0; p < kScalePlanners; ++p) {
     tdo_bench::ScaleSetup& s = rec->p[p].setup;
     const tdo_bench::ScaleSetup& m = run->setup(p);
@@ -249,12 +258,13 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "tdo-bench-scale: repeat %llu (best of), warmup %llu, seed %llu, max-nodes %llu, states "
-      "%s, guide %s, samples %s (%llu of %llu tdo trajectories verified over the samples)%s\n",
+      "%s, guide %s, samples %s (%llu of %llu tdo trajectories verified over the samples), depth "
+      "%s%s\n",
       static_cast<unsigned long long>(o.repeat), static_cast<unsigned long long>(o.warmup),
       static_cast<unsigned long long>(o.seed), static_cast<unsigned long long>(o.max_nodes),
       o.states.c_str(), o.guide.c_str(), o.samples.c_str(),
       static_cast<unsigned long long>(o.sampled), static_cast<unsigned long long>(o.trajectories),
-      o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
+      o.depth.c_str(), o.rrt_movingai ? "" : ", no rrtconnect-simplify on MovingAI");
   std::printf("command:");
   for (int i = 0; i < argc; ++i) std::printf(" %s", argv[i]);
   std::printf("\ncpu: %s; load average before %s, after %s\n", tdo_bench::cpu_model().c_str(),

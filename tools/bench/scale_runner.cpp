@@ -163,14 +163,38 @@ ScaleOutcome ScaleMapRun::run(int planner, const ScaleQuery& q, uint64_t seed, u
   }
 }
 
+// A grid path of the libtdo planner measured and checked by tools/baselines' evaluate_polyline
+// (as its "astar" planner).
+ScaleOutcome ScaleMapRun::grid_outcome(const tdo_plan_result& res, const ScaleQuery& q,
+                                       ScaleOutcome o) const {
+  const std::vector<tdo_vec3> pts(res.grid_path, res.grid_path + res.n_grid_path);
+  const tdo_baselines::PlanResult pr =
+      tdo_baselines::evaluate_polyline(*env_, pts, q.start, q.goal);
+  o.ok = pr.ok;
+  o.status = pr.status;
+  o.turns = pr.metrics.turns;
+  o.length = pr.metrics.length_m;
+  o.cost = res.search.cost;
+  return o;
+}
+
 // The full pipeline with the library's defaults; measured by its own stage 6 (tdo_metrics_compute
 // on the final path), checked as tools/baselines checks its "tdo": exact ends and the clearance.
+// With depth_ TDO_PLAN_SEARCH the search alone, its grid path measured as A*'s (grid_outcome).
 ScaleOutcome ScaleMapRun::run_tdo(const ScaleQuery& q, uint64_t repeat) {
   tdo_plan_request req = default_request(q);
   req.params.states = states_;
+  req.params.depth = depth_;
   tdo_plan_result res{};
   ScaleOutcome o;
   const tdo_status st = plan_best_of(tdo_, req, repeat, &res, &o);
+  if (depth_ == TDO_PLAN_SEARCH) {
+    if (st != TDO_OK) {
+      o.status = tdo_status_str(st);
+      return o;
+    }
+    return grid_outcome(res, q, o);
+  }
   if (res.reached == TDO_PLAN_TRAJECTORY) {
     ++tdo_trajectories_;
     if (res.sample_passes > 0u) ++tdo_sampled_;
@@ -213,15 +237,7 @@ ScaleOutcome ScaleMapRun::run_astar(const ScaleQuery& q, uint64_t repeat) {
     o.status = tdo_status_str(st);
     return o;
   }
-  const std::vector<tdo_vec3> pts(res.grid_path, res.grid_path + res.n_grid_path);
-  const tdo_baselines::PlanResult pr =
-      tdo_baselines::evaluate_polyline(*env_, pts, q.start, q.goal);
-  o.ok = pr.ok;
-  o.status = pr.status;
-  o.turns = pr.metrics.turns;
-  o.length = pr.metrics.length_m;
-  o.cost = res.search.cost;
-  return o;
+  return grid_outcome(res, q, o);
 }
 
 ScaleOutcome ScaleMapRun::run_rrt(const ScaleQuery& q, uint64_t seed, uint64_t repeat) {

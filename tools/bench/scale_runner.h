@@ -70,6 +70,9 @@ class ScaleMapRun {
 
   /** Run `planner` on `q` `repeat` times (seeded with `seed`); the best time is kept. */
   ScaleOutcome run(int planner, const ScaleQuery& q, uint64_t seed, uint64_t repeat);
+  /** tdo's stages: TDO_PLAN_TRAJECTORY (the default, the full pipeline) or TDO_PLAN_SEARCH (the
+   *  search alone, its grid path measured as A*'s). */
+  void set_tdo_depth(tdo_plan_depth depth) { depth_ = depth; }
   /** Whether `planner` takes part on this map. */
   bool has(int planner) const;
   const ScaleSetup& setup(int planner) const { return setup_[planner]; }
@@ -82,11 +85,13 @@ class ScaleMapRun {
   ScaleMapRun() = default;
   ScaleOutcome run_tdo(const ScaleQuery& q, uint64_t repeat);
   ScaleOutcome run_astar(const ScaleQuery& q, uint64_t repeat);
+  ScaleOutcome grid_outcome(const tdo_plan_result& res, const ScaleQuery& q, ScaleOutcome o) const;
   ScaleOutcome run_rrt(const ScaleQuery& q, uint64_t seed, uint64_t repeat);
   ScaleOutcome run_textbook(const ScaleQuery& q, uint64_t repeat);
 
   double clearance_ = 0.0;
-  int states_ = TDO_STATES_HEADING;  // tdo_plan_params.states of tdo
+  int states_ = TDO_STATES_HEADING;             // tdo_plan_params.states of tdo
+  tdo_plan_depth depth_ = TDO_PLAN_TRAJECTORY;  // tdo_plan_params.depth of tdo
   uint64_t tdo_trajectories_ = 0, tdo_sampled_ = 0;
   std::unique_ptr<unsigned char[]> tdo_memory_;
   tdo_planner* tdo_ = nullptr;
