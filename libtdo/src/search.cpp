@@ -240,6 +240,18 @@ inline double deviation(const tdo_search* ctx, const Side& s, int travel, int32_
   return deviation_to(ctx, travel, vx, vy, vz, n);
 }
 
+// deviation() of a voxel-state search: from the table (VoxelTurnTables.dev) near the target.
+inline double deviation_voxel(const tdo_search* ctx, const Side& s, int travel, int32_t x,
+                              int32_t y, int32_t z) {
+  const VoxelTurnTables* t = ctx->vtt;
+  const int32_t vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
+  const int32_t ax = iabs(vx), ay = iabs(vy), az = iabs(vz);
+  if (t == nullptr || travel >= kNumDirs || (ax | ay | az) >= kDevAxis)
+    return deviation(ctx, s, travel, x, y, z);
+  const int m = (vx < 0 ? 1 : 0) | (vy < 0 ? 2 : 0) | (vz < 0 ? 4 : 0);
+  return t->dev[az][ay][ax][t->reflect[m][travel]];
+}
+
 // Least turn penalty (m) still to pay from a state whose heading deviates by T = dev*pi from the
 // target direction: the turns must add up to T (the path's later steps would otherwise stay in a
 // cone that misses the target) and each is at least kMinTurn = m. With n turns the penalty is at
@@ -299,7 +311,8 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   *h_out = static_cast<float>(h);
   if (!q.voxel_turns) return n.g + h;
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
-  const double dev = deviation(ctx, s, back ? dir_opposite(n.heading) : n.heading, n.x, n.y, n.z);
+  const double dev =
+      deviation_voxel(ctx, s, back ? dir_opposite(n.heading) : n.heading, n.x, n.y, n.z);
   return n.g + q.h_weight * (h + turn_bound(ctx, q, dev) * q.inv_res) + q.mu * q.inv_res * dev;
 }
 
@@ -1072,6 +1085,30 @@ bool dj_in_pool(const tdo_search_config& cfg) {
          static_cast<uint64_t>(cfg.max_voxels) * kDjBytes;
 }
 
+// VoxelTurnTables.dev and .reflect, and the unit vectors they are made of (the same arithmetic as
+// prepare_tables).
+void dev_table_fill(tdo_search* ctx) {
+  VoxelTurnTables* t = ctx->vtt;
+  for (int d = 0; d < kNumDirs; ++d) {
+    const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
+    const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+    ctx->unit[d][0] = dx / n;
+    ctx->unit[d][1] = dy / n;
+    ctx->unit[d][2] = dz / n;
+    for (int m = 0; m < 8; ++m)
+      t->reflect[m][d] = static_cast<uint8_t>(dir_of_cell(
+          cell_of((m & 1) != 0 ? -dx : dx, (m & 2) != 0 ? -dy : dy, (m & 4) != 0 ? -dz : dz)));
+  }
+  for (int c = 0; c < kDevAxis; ++c)
+    for (int b = 0; b < kDevAxis; ++b)
+      for (int a = 0; a < kDevAxis; ++a) {
+        const double vx = a, vy = b, vz = c;
+        const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
+        for (int d = 0; d < kNumDirs; ++d)
+          t->dev[c][b][a][d] = n > 0.0 ? deviation_to(ctx, d, vx, vy, vz, n) : 0.0;
+      }
+}
+
 // The query's counters (expansions, open-list and state peaks, states), every try counted.
 void report_counts(const Query& q, tdo_search_output* out) {
   out->expansions = q.expansions;
@@ -1115,6 +1152,7 @@ extern "C" tdo_status tdo_search_init(tdo_search** out, tdo_arena* arena,
     ctx->vtt = static_cast<VoxelTurnTables*>(tdo_arena_alloc(arena, sizeof(VoxelTurnTables)));
     if (ctx->vtt == nullptr) return TDO_ERR_ARENA_TOO_SMALL;
     ctx->vtt->key[0] = -2.0;  // no tables yet (vt_prune_ensure)
+    dev_table_fill(ctx);
   }
   for (int a = 0; a < kNumDirs; ++a) {
     double c[kNumDirs];

@@ -150,10 +150,17 @@ constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel w
 // pair of headings, and prune[back][hp][s]: the search-sense steps e of a state reached over step s
 // from a parent of heading hp whose neighbour the parent offered for less than the way through the
 // state, turns included.
+// dev[c][b][a][t]: deviation_to() of direction t from the target vector (a, b, c), 0 <= a, b, c <
+// kDevAxis (0 at the target), the same bits: negating an axis of both vectors keeps every product
+// and sum bit for bit, so reflect[m][d], direction d with the axes of mask m (bit 0 x, 1 y, 2 z)
+// negated, serves the other octants (dev_table_fill, once per context).
+constexpr int kDevAxis = 16;
 struct VoxelTurnTables {
   double vturn[kNumHeadings][kNumHeadings];  // voxel edges
   uint32_t prune[2][kNumHeadings][kNumDirs];
   double key[4];  // lambda, pivot cost, 1/voxel edge and theta_max the tables were built for
+  double dev[kDevAxis][kDevAxis][kDevAxis][kNumDirs];
+  uint8_t reflect[8][kNumDirs];
 };
 
 }  // namespace TDO_SEARCH_NS
