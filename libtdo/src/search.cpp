@@ -240,14 +240,15 @@ inline double deviation(const tdo_search* ctx, const Side& s, int travel, int32_
   return deviation_to(ctx, travel, vx, vy, vz, n);
 }
 
-// deviation() of a voxel-state search: from the table (VoxelTurnTables.dev) near the target.
-inline double deviation_voxel(const tdo_search* ctx, const Side& s, int travel, int32_t x,
-                              int32_t y, int32_t z) {
+// deviation() of a voxel-state search, and the split of turn_bound: from the table
+// (VoxelTurnTables.dev) near the target, else computed (split -2).
+inline DevEntry deviation_voxel(const tdo_search* ctx, const Side& s, int travel, int32_t x,
+                                int32_t y, int32_t z) {
   const VoxelTurnTables* t = ctx->vtt;
   const int32_t vx = s.tx - x, vy = s.ty - y, vz = s.tz - z;
   const int32_t ax = iabs(vx), ay = iabs(vy), az = iabs(vz);
   if (t == nullptr || travel >= kNumDirs || (ax | ay | az) >= kDevAxis)
-    return deviation(ctx, s, travel, x, y, z);
+    return DevEntry{deviation(ctx, s, travel, x, y, z), -2.0};
   const int m = (vx < 0 ? 1 : 0) | (vy < 0 ? 2 : 0) | (vz < 0 ? 4 : 0);
   return t->dev[az][ay][ax][t->reflect[m][travel]];
 }
@@ -270,6 +271,16 @@ inline double turn_bound(const tdo_search* ctx, const Query& q, double dev) {
   const double m = kMinTurn / kPi;
   const double more = (k + 1.0) * m * m;
   return ctx->turn_lambda * (split < more ? split : more);
+}
+
+// turn_bound() of a deviation with its split from the table (DevEntry; -2: not there): the same
+// arithmetic without the divisions.
+inline double turn_bound_split(const tdo_search* ctx, const Query& q, const DevEntry& e) {
+  const double dev = e.dev;
+  if (!(dev > 1e-9) || !(ctx->turn_lambda > 0.0)) return 0.0;
+  if (e.split < -1.5 || q.exact_turns) return turn_bound(ctx, q, dev);
+  if (e.split < 0.0) return ctx->turn_lambda * dev * dev;  // below one kMinTurn
+  return ctx->turn_lambda * e.split;
 }
 
 // Heuristic of a state at voxel v = (x, y, z): the octile distance, or with an exact table the
@@ -311,9 +322,10 @@ inline double priority(const tdo_search* ctx, const Query& q, const Side& s, int
   *h_out = static_cast<float>(h);
   if (!q.voxel_turns) return n.g + h;
   if (n.heading >= kNumDirs || !q.dev_terms) return n.g + q.h_weight * h;
-  const double dev =
+  const DevEntry e =
       deviation_voxel(ctx, s, back ? dir_opposite(n.heading) : n.heading, n.x, n.y, n.z);
-  return n.g + q.h_weight * (h + turn_bound(ctx, q, dev) * q.inv_res) + q.mu * q.inv_res * dev;
+  const double dev = e.dev;
+  return n.g + q.h_weight * (h + turn_bound_split(ctx, q, e) * q.inv_res) + q.mu * q.inv_res * dev;
 }
 
 // The parts of a turn-penalised state's priority that depend on its voxel alone: the heuristic and
@@ -1104,8 +1116,13 @@ void dev_table_fill(tdo_search* ctx) {
       for (int a = 0; a < kDevAxis; ++a) {
         const double vx = a, vy = b, vz = c;
         const double n = sqrt_nonneg(vx * vx + vy * vy + vz * vz);
-        for (int d = 0; d < kNumDirs; ++d)
-          t->dev[c][b][a][d] = n > 0.0 ? deviation_to(ctx, d, vx, vy, vz, n) : 0.0;
+        for (int d = 0; d < kNumDirs; ++d) {
+          DevEntry& e = t->dev[c][b][a][d];
+          e.dev = n > 0.0 ? deviation_to(ctx, d, vx, vy, vz, n) : 0.0;
+          // turn_bound's split (its division and its floor as there)
+          const double k = static_cast<double>(static_cast<int>(e.dev * kPi / kMinTurn));
+          e.split = k < 1.0 ? -1.0 : e.dev * e.dev / k;
+        }
       }
 }
 

@@ -154,12 +154,16 @@ constexpr uint32_t kAllMoves = (1u << kNumDirs) - 1u;  // move mask of a voxel w
 // kDevAxis (0 at the target), the same bits: negating an axis of both vectors keeps every product
 // and sum bit for bit, so reflect[m][d], direction d with the axes of mask m (bit 0 x, 1 y, 2 z)
 // negated, serves the other octants (dev_table_fill, once per context).
+// split: turn_bound's dev^2 / floor(dev pi / kMinTurn) of that deviation, -1 below one kMinTurn.
 constexpr int kDevAxis = 16;
+struct DevEntry {
+  double dev, split;
+};
 struct VoxelTurnTables {
   double vturn[kNumHeadings][kNumHeadings];  // voxel edges
   uint32_t prune[2][kNumHeadings][kNumDirs];
   double key[4];  // lambda, pivot cost, 1/voxel edge and theta_max the tables were built for
-  double dev[kDevAxis][kDevAxis][kDevAxis][kNumDirs];
+  DevEntry dev[kDevAxis][kDevAxis][kDevAxis][kNumDirs];
   uint8_t reflect[8][kNumDirs];
 };
 
