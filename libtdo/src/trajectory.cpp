@@ -169,10 +169,11 @@ struct RigorPart;
 
 /** Pieces mode's arrays (arena). */
 struct PiecesState {
-  Junction* junctions;  // plateau_cap + max_profile + 2
-  JointJump* jumps;     // plateau_cap + 1
-  RigorPart* parts;     // kRigorParts per plateau (plateau_cap of them)
-  int rigor_ready;      // `parts` is set for this run
+  Junction* junctions;   // plateau_cap + max_profile + 2
+  JointJump* jumps;      // plateau_cap + 1
+  RigorPart* parts;      // kRigorParts per plateau (plateau_cap of them)
+  int rigor_ready;       // `parts` is set for this run
+  uint32_t rigor_parts;  // parts per plateau in use: kRigorCoarse, then kRigorParts if it misses
 };
 /** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
 struct RigorPart {
@@ -1641,8 +1642,9 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 // x''' = (s''' - kappa^2 s'^3) T + (3 kappa s' s'' + kappa_s s'^3) N, each is bounded on an
 // interval from the exact range of the piece's s' (quadratic) and s'' (linear) and proven bounds
 // of kappa and kappa_s over it (rigorous_curvature: lines 0, arcs 1/r, Beziers by interval
-// arithmetic per sixteenth of a plateau; not the profile's station summary, which can miss a
-// peak between its stations: test peaked_path); rounding of the
+// arithmetic per eighth of a plateau, per sixteenth when a bound misses with those; not the
+// profile's station summary, which can miss a peak between its stations: test peaked_path);
+// rounding of the
 // positions (e_P) adds 2 e_P/dt, 4 e_P/dt^2, 8 e_P/dt^3. A stencil without a delta lies in pieces
 // whose bounds cover it; one with deltas lies within 3 dt of its first one, whose window (the
 // pieces' bounds over it and every delta in it) covers it. Turn radius: verify() flags radius
@@ -1662,6 +1664,11 @@ constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's in
 constexpr double kPieceClearSlack = 0.5 * kClearanceSlack;
 constexpr double kPieceClearHint = 0.05;  // m above the clearance: pieces_clearance's hint
 constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Bezier (bezier_bounds)
+// The first try's parts per plateau (pieces_verify): the bounds' cost per part against a second
+// try where they miss (MovingAI Simple, first 60 queries, trajectory stage: 16 parts only 25.3 M
+// instructions, 4 then 16 23.9 M with a larger median, 8 then 16 24.6 M and the median 314 K ->
+// 300 K; fallbacks to the samples unchanged)
+constexpr uint32_t kRigorCoarse = 8;
 constexpr double kRigorSlackU = 1e-9;
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
                                        // plateau's parameter range (inversion)
@@ -1827,11 +1834,12 @@ bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
   return true;
 }
 
-/** Pieces mode: the rigorous curvature bounds of every plateau (its kRigorParts parts), once
- *  per run. Lines and arcs: the summary's (kappa constant, within its margin); planar Beziers:
- *  bezier_bounds over kRigorParts parts of the plateau's parameter range; a non-planar Bezier
- *  gets infinite bounds, and so a fallback. */
-void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
+/** Pieces mode: the rigorous curvature bounds of every plateau in `np` parts (np <= kRigorParts,
+ *  the stride of `parts`). Lines and arcs: the summary's (kappa constant, within its margin);
+ *  planar Beziers: bezier_bounds over np parts of the plateau's parameter range; a non-planar
+ *  Bezier gets infinite bounds, and so a fallback. */
+void rigorous_curvature(tdo_traj* ctx, const tdo_path& path, uint32_t np) {
+  ctx->pieces->rigor_parts = np;
   BezierCursor cur;
   memset(&cur, 0, sizeof(cur));
   cur.seg = UINT32_MAX;
@@ -1843,10 +1851,10 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     Plateau& p = ctx->plateaus[q];
     const tdo_path_segment& seg = path.seg[p.seg];
     RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    for (uint32_t i = 0; i < kRigorParts; ++i)
+    for (uint32_t i = 0; i < np; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
     if (seg.kind != TDO_SEGMENT_BEZIER) continue;
-    for (uint32_t i = 0; i < kRigorParts; ++i)
+    for (uint32_t i = 0; i < np; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
     if (plane_seg != p.seg) {  // the plane and the polynomials once per segment
       plane_seg = p.seg;
@@ -1865,9 +1873,9 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
     // The start of part i: the end of part i - 1 (the same expression), else evaluated.
     BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
-    for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
-      const double ua = u0 + (u1 - u0) * i / kRigorParts;
-      const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
+    for (uint32_t i = 0; i < np && ok; ++i) {
+      const double ua = u0 + (u1 - u0) * i / np;
+      const double ub = i + 1u == np ? u1 : u0 + (u1 - u0) * (i + 1u) / np;
       if (!same(a.u, ua)) a = bezier_end(poly, ua);
       const BezierEnd b = bezier_end(poly, ub);
       double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
@@ -1909,12 +1917,13 @@ Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
     if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
     // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
     const RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    for (uint32_t i = 0; i < kRigorParts; ++i) {
+    const uint32_t np = ctx->pieces->rigor_parts;
+    for (uint32_t i = 0; i < np; ++i) {
       if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
-      const double end = i + 1u < kRigorParts && part[i + 1u].s0 < HUGE_VAL
+      const double end = i + 1u < np && part[i + 1u].s0 < HUGE_VAL
                              ? part[i + 1u].s0 + 2.0 * kRigorSlackS
                              : HUGE_VAL;
-      if (end < sa && i + 1u < kRigorParts) continue;
+      if (end < sa && i + 1u < np) continue;
       c.k = dmax(c.k, part[i].k);
       c.up = dmax(c.up, part[i].up);
       c.down = dmax(c.down, part[i].down);
@@ -2199,11 +2208,17 @@ double pieces_clearance(const tdo_traj_input* in, double cap) {
 bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
                    tdo_feasibility* rep, double* energy) {
   if (ctx->moving) return false;  // the entry ramp lies off the path: the samples check it
-  if (!ctx->pieces->rigor_ready) rigorous_curvature(ctx, in->path);
-  ctx->pieces->rigor_ready = 1;
+  PiecesState* ps = ctx->pieces;
+  if (!ps->rigor_ready) rigorous_curvature(ctx, in->path, kRigorCoarse);
+  ps->rigor_ready = 1;
   Bound3 worst;
   uint32_t m = 0;
-  if (!pieces_dynamic(ctx, in, lim, n, &worst, &m)) return false;
+  bool dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
+  if (!dyn && ps->rigor_parts < kRigorParts) {  // the coarse bounds miss: the fine ones decide
+    rigorous_curvature(ctx, in->path, kRigorParts);
+    dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
+  }
+  if (!dyn) return false;
   double clear = HUGE_VAL;
   if (in->grid != nullptr) {
     clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
@@ -2216,7 +2231,9 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
   rep->max_acc = worst.a;
   rep->max_jerk = worst.j;
   double k = 0.0;
-  for (uint32_t i = 0; i < ctx->n_plateaus * kRigorParts; ++i) k = dmax(k, ctx->pieces->parts[i].k);
+  for (uint32_t q = 0; q < ctx->n_plateaus; ++q)
+    for (uint32_t i = 0; i < ps->rigor_parts; ++i)
+      k = dmax(k, ps->parts[static_cast<size_t>(q) * kRigorParts + i].k);
   rep->min_turn_radius = k > 0.0 ? 1.0 / k : HUGE_VAL;
   rep->min_clearance = clear;
   *energy = pieces_energy(ctx, in->path, m);
@@ -2445,6 +2462,7 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
         static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
     ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
     ps->rigor_ready = 0;
+    ps->rigor_parts = kRigorParts;
     if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     ctx->pieces = ps;
