@@ -164,6 +164,13 @@ struct JointJump {
   double t, k;
 };
 
+/** Pieces mode, per plateau of a Bezier: the parameter at its start and end and the segment's
+ *  arclength at the first, as the curve summary's cursor found them (rigorous_curvature starts
+ *  from them instead of inverting the arclength again). */
+struct PlateauSpan {
+  double u_start, u_end, s_start;
+};
+
 struct Junction;  // a delta of the trajectory (pieces mode)
 struct RigorPart;
 
@@ -171,6 +178,7 @@ struct RigorPart;
 struct PiecesState {
   Junction* junctions;   // plateau_cap + max_profile + 2
   JointJump* jumps;      // plateau_cap + 1
+  PlateauSpan* spans;    // plateau_cap
   RigorPart* parts;      // kRigorParts per plateau (plateau_cap of them)
   int rigor_ready;       // `parts` is set for this run
   uint32_t rigor_parts;  // parts per plateau in use: kRigorCoarse, then kRigorParts if it misses
@@ -535,11 +543,12 @@ struct Limits {
   double v_max, a_max, j_max, a_lat, dt;
 };
 
-/** Curvature and curvature-rate bounds of the part [a, a + len] of a curved segment from
- *  `stations` + 1 stations (the segment's kStations shared by its parts: the same evaluations
- *  as for the whole segment; what they miss, the verification finds and refinement corrects). */
+/** Curvature and curvature-rate bounds (p's kappa, dk_up, dk_down) of the part [a, a + len] of a
+ *  curved segment from `stations` + 1 stations (the segment's kStations shared by its parts: the
+ *  same evaluations as for the whole segment; what they miss, the verification finds and
+ *  refinement corrects); on Beziers also *span (when not null: its cursor's parameters). */
 tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
-                           double* kappa, double* dk_up, double* dk_down) {
+                           Plateau* p, PlateauSpan* span) {
   double km = 0.0, hi = -HUGE_VAL, lo = HUGE_VAL, prev = 0.0;
   const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
@@ -552,6 +561,11 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
     if (bez) {
       cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
+      if (span != nullptr && i == 0u) {
+        span->u_start = cursor.u;
+        span->s_start = cursor.s;
+      }
+      if (span != nullptr && i == stations) span->u_end = cursor.u;
     } else if (!tdo_segment_eval(&seg, s, &st)) {
       return TDO_ERR_INVALID_ARGUMENT;
     }
@@ -567,9 +581,9 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
   }
   // The margin of the largest |dkappa/ds| widens both ends of [lo, hi].
   const double margin = (kDKappaMargin - 1.0) * dmax(fabs(hi), fabs(lo));
-  *kappa = km * kKappaMargin;
-  *dk_up = hi + margin;
-  *dk_down = margin - lo;
+  p->kappa = km * kKappaMargin;
+  p->dk_up = hi + margin;
+  p->dk_down = margin - lo;
   return TDO_OK;
 }
 
@@ -693,7 +707,8 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
         const tdo_status st =
-            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dk_up, &p.dk_down);
+            summarise_curve(seg, p.off, p.len, kStations / m, &p,
+                            ctx->pieces != nullptr ? &ctx->pieces->spans[n] : nullptr);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];
@@ -1865,11 +1880,11 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path, uint32_t np) {
       }
     }
     if (!planar) continue;
-    cursor_seek(&cur, p.off);
-    const double u0 = dmax(0.0, cur.u - kRigorSlackU);
-    double u_at = cur.u, s_local = cur.s;  // the cursor's arclength, carried part to part
-    cursor_seek(&cur, p.off + p.len);
-    const double u1 = dmin(1.0, cur.u + kRigorSlackU);
+    // The plateau's parameters as the curve summary found them (the cursor's inversions).
+    const PlateauSpan& sp = ctx->pieces->spans[q];
+    const double u0 = dmax(0.0, sp.u_start - kRigorSlackU);
+    double u_at = sp.u_start, s_local = sp.s_start;  // the arclength, carried part to part
+    const double u1 = dmin(1.0, sp.u_end + kRigorSlackU);
     bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
     // The start of part i: the end of part i - 1 (the same expression), else evaluated.
     BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
@@ -2414,10 +2429,11 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   const bool pieces = cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES;
   const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
   const size_t np = pieces ? nseg * kRigorParts : 0u, nb = pieces ? nseg + 1u : 0u;
+  const size_t nsp = pieces ? nseg : 0u;
   return tdo_arena_round(sizeof(tdo_traj)) + (pieces ? tdo_arena_round(sizeof(PiecesState)) : 0u) +
-         tdo_arena_round(nj * sizeof(Junction)) + tdo_arena_round(np * sizeof(RigorPart)) +
-         tdo_arena_round(nb * sizeof(JointJump)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
-         tdo_arena_round(ns * sizeof(uint32_t)) +
+         tdo_arena_round(nsp * sizeof(PlateauSpan)) + tdo_arena_round(nj * sizeof(Junction)) +
+         tdo_arena_round(np * sizeof(RigorPart)) + tdo_arena_round(nb * sizeof(JointJump)) +
+         tdo_arena_round(ns * sizeof(tdo_sample)) + tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
          tdo_arena_round(nseg) +
@@ -2461,9 +2477,11 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
     ps->parts =
         static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
     ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
+    ps->spans = static_cast<PlateauSpan*>(tdo_arena_alloc(arena, nseg * sizeof(PlateauSpan)));
     ps->rigor_ready = 0;
     ps->rigor_parts = kRigorParts;
-    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr)
+    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr ||
+        ps->spans == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     ctx->pieces = ps;
   }
