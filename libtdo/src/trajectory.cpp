@@ -164,15 +164,24 @@ struct JointJump {
   double t, k;
 };
 
+/** Pieces mode, per plateau of a Bezier: the parameter at its start and end and the segment's
+ *  arclength at the first, as the curve summary's cursor found them (rigorous_curvature starts
+ *  from them instead of inverting the arclength again). */
+struct PlateauSpan {
+  double u_start, u_end, s_start;
+};
+
 struct Junction;  // a delta of the trajectory (pieces mode)
 struct RigorPart;
 
 /** Pieces mode's arrays (arena). */
 struct PiecesState {
-  Junction* junctions;  // plateau_cap + max_profile + 2
-  JointJump* jumps;     // plateau_cap + 1
-  RigorPart* parts;     // kRigorParts per plateau (plateau_cap of them)
-  int rigor_ready;      // `parts` is set for this run
+  Junction* junctions;   // plateau_cap + max_profile + 2
+  JointJump* jumps;      // plateau_cap + 1
+  PlateauSpan* spans;    // plateau_cap
+  RigorPart* parts;      // kRigorParts per plateau (plateau_cap of them)
+  int rigor_ready;       // `parts` is set for this run
+  uint32_t rigor_parts;  // parts per plateau in use: kRigorCoarse, then kRigorParts if it misses
 };
 /** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
 struct RigorPart {
@@ -534,11 +543,12 @@ struct Limits {
   double v_max, a_max, j_max, a_lat, dt;
 };
 
-/** Curvature and curvature-rate bounds of the part [a, a + len] of a curved segment from
- *  `stations` + 1 stations (the segment's kStations shared by its parts: the same evaluations
- *  as for the whole segment; what they miss, the verification finds and refinement corrects). */
+/** Curvature and curvature-rate bounds (p's kappa, dk_up, dk_down) of the part [a, a + len] of a
+ *  curved segment from `stations` + 1 stations (the segment's kStations shared by its parts: the
+ *  same evaluations as for the whole segment; what they miss, the verification finds and
+ *  refinement corrects); on Beziers also *span (when not null: its cursor's parameters). */
 tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
-                           double* kappa, double* dk_up, double* dk_down) {
+                           Plateau* p, PlateauSpan* span) {
   double km = 0.0, hi = -HUGE_VAL, lo = HUGE_VAL, prev = 0.0;
   const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
@@ -551,6 +561,11 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
     if (bez) {
       cursor_seek(&cursor, s);  // only the curvature is needed here
       cursor_curvature(cursor, &st);
+      if (span != nullptr && i == 0u) {
+        span->u_start = cursor.u;
+        span->s_start = cursor.s;
+      }
+      if (span != nullptr && i == stations) span->u_end = cursor.u;
     } else if (!tdo_segment_eval(&seg, s, &st)) {
       return TDO_ERR_INVALID_ARGUMENT;
     }
@@ -566,9 +581,9 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
   }
   // The margin of the largest |dkappa/ds| widens both ends of [lo, hi].
   const double margin = (kDKappaMargin - 1.0) * dmax(fabs(hi), fabs(lo));
-  *kappa = km * kKappaMargin;
-  *dk_up = hi + margin;
-  *dk_down = margin - lo;
+  p->kappa = km * kKappaMargin;
+  p->dk_up = hi + margin;
+  p->dk_down = margin - lo;
   return TDO_OK;
 }
 
@@ -692,7 +707,8 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
         const tdo_status st =
-            summarise_curve(seg, p.off, p.len, kStations / m, &p.kappa, &p.dk_up, &p.dk_down);
+            summarise_curve(seg, p.off, p.len, kStations / m, &p,
+                            ctx->pieces != nullptr ? &ctx->pieces->spans[n] : nullptr);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];
@@ -1641,8 +1657,9 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 // x''' = (s''' - kappa^2 s'^3) T + (3 kappa s' s'' + kappa_s s'^3) N, each is bounded on an
 // interval from the exact range of the piece's s' (quadratic) and s'' (linear) and proven bounds
 // of kappa and kappa_s over it (rigorous_curvature: lines 0, arcs 1/r, Beziers by interval
-// arithmetic per sixteenth of a plateau; not the profile's station summary, which can miss a
-// peak between its stations: test peaked_path); rounding of the
+// arithmetic per eighth of a plateau, per sixteenth when a bound misses with those; not the
+// profile's station summary, which can miss a peak between its stations: test peaked_path);
+// rounding of the
 // positions (e_P) adds 2 e_P/dt, 4 e_P/dt^2, 8 e_P/dt^3. A stencil without a delta lies in pieces
 // whose bounds cover it; one with deltas lies within 3 dt of its first one, whose window (the
 // pieces' bounds over it and every delta in it) covers it. Turn radius: verify() flags radius
@@ -1662,6 +1679,11 @@ constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's in
 constexpr double kPieceClearSlack = 0.5 * kClearanceSlack;
 constexpr double kPieceClearHint = 0.05;  // m above the clearance: pieces_clearance's hint
 constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Bezier (bezier_bounds)
+// The first try's parts per plateau (pieces_verify): the bounds' cost per part against a second
+// try where they miss (MovingAI Simple, first 60 queries, trajectory stage: 16 parts only 25.3 M
+// instructions, 4 then 16 23.9 M with a larger median, 8 then 16 24.6 M and the median 314 K ->
+// 300 K; fallbacks to the samples unchanged)
+constexpr uint32_t kRigorCoarse = 8;
 constexpr double kRigorSlackU = 1e-9;
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
                                        // plateau's parameter range (inversion)
@@ -1827,11 +1849,12 @@ bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
   return true;
 }
 
-/** Pieces mode: the rigorous curvature bounds of every plateau (its kRigorParts parts), once
- *  per run. Lines and arcs: the summary's (kappa constant, within its margin); planar Beziers:
- *  bezier_bounds over kRigorParts parts of the plateau's parameter range; a non-planar Bezier
- *  gets infinite bounds, and so a fallback. */
-void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
+/** Pieces mode: the rigorous curvature bounds of every plateau in `np` parts (np <= kRigorParts,
+ *  the stride of `parts`). Lines and arcs: the summary's (kappa constant, within its margin);
+ *  planar Beziers: bezier_bounds over np parts of the plateau's parameter range; a non-planar
+ *  Bezier gets infinite bounds, and so a fallback. */
+void rigorous_curvature(tdo_traj* ctx, const tdo_path& path, uint32_t np) {
+  ctx->pieces->rigor_parts = np;
   BezierCursor cur;
   memset(&cur, 0, sizeof(cur));
   cur.seg = UINT32_MAX;
@@ -1843,10 +1866,10 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
     Plateau& p = ctx->plateaus[q];
     const tdo_path_segment& seg = path.seg[p.seg];
     RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    for (uint32_t i = 0; i < kRigorParts; ++i)
+    for (uint32_t i = 0; i < np; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
     if (seg.kind != TDO_SEGMENT_BEZIER) continue;
-    for (uint32_t i = 0; i < kRigorParts; ++i)
+    for (uint32_t i = 0; i < np; ++i)
       part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
     if (plane_seg != p.seg) {  // the plane and the polynomials once per segment
       plane_seg = p.seg;
@@ -1857,17 +1880,17 @@ void rigorous_curvature(tdo_traj* ctx, const tdo_path& path) {
       }
     }
     if (!planar) continue;
-    cursor_seek(&cur, p.off);
-    const double u0 = dmax(0.0, cur.u - kRigorSlackU);
-    double u_at = cur.u, s_local = cur.s;  // the cursor's arclength, carried part to part
-    cursor_seek(&cur, p.off + p.len);
-    const double u1 = dmin(1.0, cur.u + kRigorSlackU);
+    // The plateau's parameters as the curve summary found them (the cursor's inversions).
+    const PlateauSpan& sp = ctx->pieces->spans[q];
+    const double u0 = dmax(0.0, sp.u_start - kRigorSlackU);
+    double u_at = sp.u_start, s_local = sp.s_start;  // the arclength, carried part to part
+    const double u1 = dmin(1.0, sp.u_end + kRigorSlackU);
     bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
     // The start of part i: the end of part i - 1 (the same expression), else evaluated.
     BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
-    for (uint32_t i = 0; i < kRigorParts && ok; ++i) {
-      const double ua = u0 + (u1 - u0) * i / kRigorParts;
-      const double ub = i + 1u == kRigorParts ? u1 : u0 + (u1 - u0) * (i + 1u) / kRigorParts;
+    for (uint32_t i = 0; i < np && ok; ++i) {
+      const double ua = u0 + (u1 - u0) * i / np;
+      const double ub = i + 1u == np ? u1 : u0 + (u1 - u0) * (i + 1u) / np;
       if (!same(a.u, ua)) a = bezier_end(poly, ua);
       const BezierEnd b = bezier_end(poly, ub);
       double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
@@ -1909,12 +1932,13 @@ Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
     if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
     // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
     const RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    for (uint32_t i = 0; i < kRigorParts; ++i) {
+    const uint32_t np = ctx->pieces->rigor_parts;
+    for (uint32_t i = 0; i < np; ++i) {
       if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
-      const double end = i + 1u < kRigorParts && part[i + 1u].s0 < HUGE_VAL
+      const double end = i + 1u < np && part[i + 1u].s0 < HUGE_VAL
                              ? part[i + 1u].s0 + 2.0 * kRigorSlackS
                              : HUGE_VAL;
-      if (end < sa && i + 1u < kRigorParts) continue;
+      if (end < sa && i + 1u < np) continue;
       c.k = dmax(c.k, part[i].k);
       c.up = dmax(c.up, part[i].up);
       c.down = dmax(c.down, part[i].down);
@@ -2199,11 +2223,17 @@ double pieces_clearance(const tdo_traj_input* in, double cap) {
 bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
                    tdo_feasibility* rep, double* energy) {
   if (ctx->moving) return false;  // the entry ramp lies off the path: the samples check it
-  if (!ctx->pieces->rigor_ready) rigorous_curvature(ctx, in->path);
-  ctx->pieces->rigor_ready = 1;
+  PiecesState* ps = ctx->pieces;
+  if (!ps->rigor_ready) rigorous_curvature(ctx, in->path, kRigorCoarse);
+  ps->rigor_ready = 1;
   Bound3 worst;
   uint32_t m = 0;
-  if (!pieces_dynamic(ctx, in, lim, n, &worst, &m)) return false;
+  bool dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
+  if (!dyn && ps->rigor_parts < kRigorParts) {  // the coarse bounds miss: the fine ones decide
+    rigorous_curvature(ctx, in->path, kRigorParts);
+    dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
+  }
+  if (!dyn) return false;
   double clear = HUGE_VAL;
   if (in->grid != nullptr) {
     clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
@@ -2216,7 +2246,9 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
   rep->max_acc = worst.a;
   rep->max_jerk = worst.j;
   double k = 0.0;
-  for (uint32_t i = 0; i < ctx->n_plateaus * kRigorParts; ++i) k = dmax(k, ctx->pieces->parts[i].k);
+  for (uint32_t q = 0; q < ctx->n_plateaus; ++q)
+    for (uint32_t i = 0; i < ps->rigor_parts; ++i)
+      k = dmax(k, ps->parts[static_cast<size_t>(q) * kRigorParts + i].k);
   rep->min_turn_radius = k > 0.0 ? 1.0 / k : HUGE_VAL;
   rep->min_clearance = clear;
   *energy = pieces_energy(ctx, in->path, m);
@@ -2397,10 +2429,11 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   const bool pieces = cfg->stream_samples == TDO_TRAJ_SAMPLES_PIECES;
   const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
   const size_t np = pieces ? nseg * kRigorParts : 0u, nb = pieces ? nseg + 1u : 0u;
+  const size_t nsp = pieces ? nseg : 0u;
   return tdo_arena_round(sizeof(tdo_traj)) + (pieces ? tdo_arena_round(sizeof(PiecesState)) : 0u) +
-         tdo_arena_round(nj * sizeof(Junction)) + tdo_arena_round(np * sizeof(RigorPart)) +
-         tdo_arena_round(nb * sizeof(JointJump)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
-         tdo_arena_round(ns * sizeof(uint32_t)) +
+         tdo_arena_round(nsp * sizeof(PlateauSpan)) + tdo_arena_round(nj * sizeof(Junction)) +
+         tdo_arena_round(np * sizeof(RigorPart)) + tdo_arena_round(nb * sizeof(JointJump)) +
+         tdo_arena_round(ns * sizeof(tdo_sample)) + tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
          tdo_arena_round(nseg) +
@@ -2444,8 +2477,11 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
     ps->parts =
         static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
     ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
+    ps->spans = static_cast<PlateauSpan*>(tdo_arena_alloc(arena, nseg * sizeof(PlateauSpan)));
     ps->rigor_ready = 0;
-    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr)
+    ps->rigor_parts = kRigorParts;
+    if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr ||
+        ps->spans == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     ctx->pieces = ps;
   }
