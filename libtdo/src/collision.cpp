@@ -660,6 +660,8 @@ inline double brick_axis_gap(double o, double res, int64_t b, double mn, double 
   return (blo - mx > 0.0 ? blo - mx : 0.0) + (mn - bhi > 0.0 ? mn - bhi : 0.0);
 }
 
+constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
+
 // for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
 // (lim > 0), which a caller skipping those never looks at; the others in the same order with the
 // same gap2. A brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick
@@ -725,7 +727,7 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
   if (!g->bricks_valid) return -1;
   const double lim = c + brick_tol(g, p0, p1, c);
   const SpanBox sb = span_box(p0, p1);
-  const bool ok = for_each_brick_within(g, p0, p1, c, lim, [&](const BrickCand& k) {
+  const auto visit = [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
     return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
@@ -734,7 +736,11 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
       *hit = cube_index(g, lo);
       return false;
     });
-  });
+  };
+  // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
+  const bool ok = c > kWithinMinVoxels * g->desc.res
+                      ? for_each_brick_within(g, p0, p1, c, lim, visit)
+                      : for_each_brick_near(g, p0, p1, c, visit);
   return ok ? 1 : 0;
 }
 
