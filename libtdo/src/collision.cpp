@@ -650,15 +650,84 @@ inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
   return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
 }
 
+// Gap (m) on one axis between the span [mn, mx] and the whole brick number `b` of that axis, by
+// for_each_brick_near's expressions with the brick's own faces (local voxels 0 and 4) in place of
+// its tight box's (local voxels ci >= 0 and cj <= 4): the products and sums are monotone in the
+// voxel index, so this face pair lies outside the tight one and the gap is at most the tight gap.
+inline double brick_axis_gap(double o, double res, int64_t b, double mn, double mx) {
+  const double blo = o + static_cast<double>(b * kBrickVoxels) * res;
+  const double bhi = o + static_cast<double>(b * kBrickVoxels + kBrickVoxels) * res;
+  return (blo - mx > 0.0 ? blo - mx : 0.0) + (mn - bhi > 0.0 ? mn - bhi : 0.0);
+}
+
+constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
+
+// for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
+// (lim > 0), which a caller skipping those never looks at; the others in the same order with the
+// same gap2. A brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick
+// gaps of brick_axis_gap (each at most the tight one) the same sums are no larger (rounded
+// addition and squaring of non-negative numbers are monotone), and fl(gy^2 + gz^2) is no larger
+// still (gx^2 >= 0). So a row of bricks whose whole-brick fl(gy^2 + gz^2) reaches lim^2, or a
+// brick whose whole-brick sum does, has gap2 >= lim^2 > 0 (the library builds with
+// -ffp-contract=off: no fused multiply-add changes these roundings).
+template <class F>
+bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                           double lim, F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t lo[3], hi[3];
+  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
+  const double lim2 = lim * lim;
+  if (!(lim2 > 0.0)) return for_each_brick_near(g, p0, p1, r, f);
+  double mn[3], mx[3];
+  for (int a = 0; a < 3; ++a) {
+    mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
+    mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
+    lo[a] /= kBrickVoxels;
+    hi[a] /= kBrickVoxels;
+  }
+  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+    const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
+    const double gz2 = gz * gz;
+    for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+      const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
+      const double gy2 = gy * gy;
+      if (gy2 + gz2 >= lim2) continue;  // the whole row
+      const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+        const uint32_t b = static_cast<uint32_t>(row + x);
+        if (g->brick_mask[b] == 0u) continue;
+        const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
+        if ((gx * gx + gy2) + gz2 >= lim2) continue;
+        const uint32_t pk = g->brick_box[b];
+        const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
+        double gap2 = 0.0;  // for_each_brick_near's expressions
+        for (int a = 0; a < 3; ++a) {
+          const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
+          const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
+          const double blo = o[a] + static_cast<double>(ci) * d.res;
+          const double bhi = o[a] + static_cast<double>(cj) * d.res;
+          const double gp =
+              (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
+          gap2 += gp * gp;
+        }
+        if (!f(BrickCand{gap2, b})) return false;
+      }
+    }
+  }
+  return true;
+}
+
 // 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not (the cube that
 // fails it goes to *hit), -1 without an index. Only bricks closer than c (or touching) are visited,
-// in any order.
+// in any order; for_each_brick_within leaves out only bricks this skips by their gap.
 int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], double c,
                      uint32_t* hit) {
   if (!g->bricks_valid) return -1;
   const double lim = c + brick_tol(g, p0, p1, c);
   const SpanBox sb = span_box(p0, p1);
-  const bool ok = for_each_brick_near(g, p0, p1, c, [&](const BrickCand& k) {
+  const auto visit = [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
     return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
       if (far_apart(p0, p1, lo, hi, c)) return true;
@@ -667,7 +736,11 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
       *hit = cube_index(g, lo);
       return false;
     });
-  });
+  };
+  // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
+  const bool ok = c > kWithinMinVoxels * g->desc.res
+                      ? for_each_brick_within(g, p0, p1, c, lim, visit)
+                      : for_each_brick_near(g, p0, p1, c, visit);
   return ok ? 1 : 0;
 }
 
