@@ -46,3 +46,23 @@ endif()
 if(out MATCHES "MISSED")
   message(FATAL_ERROR "a planner missed a query A* solved\n${out}")
 endif()
+# --depth search: tdo's search alone, its grid path checked as A*'s (every Simple query solved);
+# an unknown depth is refused with exit status 2.
+execute_process(COMMAND ${BENCH} --workload simple --limit 20 --warmup 1 --no-rrt-movingai
+                        --depth search
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "tdo-bench-scale --depth search exited with ${rc}\n${out}\n${err}")
+endif()
+foreach(row IN ITEMS "| simple | tdo | 20/20 |" "| simple | astar | 20/20 |" "depth search"
+                     "check simple tdo: solved every query astar solved (20)")
+  string(FIND "${out}${err}" "${row}" pos)
+  if(pos EQUAL -1)
+    message(FATAL_ERROR "--depth search: missing in the output: '${row}'\n${out}\n${err}")
+  endif()
+endforeach()
+execute_process(COMMAND ${BENCH} --workload simple --limit 1 --depth smooth
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "--depth smooth: expected exit 2, got ${rc}\n${out}\n${err}")
+endif()
