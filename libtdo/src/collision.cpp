@@ -680,12 +680,7 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
   const double lim2 = lim * lim;
   if (!(lim2 > 0.0)) return for_each_brick_near(g, p0, p1, r, f);
   double mn[3], mx[3];
-  for (int a = 0; a < 3; ++a) {
-    mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
-    mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
-    lo[a] /= kBrickVoxels;
-    hi[a] /= kBrickVoxels;
-  }
+  brick_span(p0, p1, lo, hi, mn, mx);
   const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
   for (int64_t z = lo[2]; z <= hi[2]; ++z) {
     const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
@@ -700,19 +695,7 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
         if (g->brick_mask[b] == 0u) continue;
         const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
         if ((gx * gx + gy2) + gz2 >= lim2) continue;
-        const uint32_t pk = g->brick_box[b];
-        const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
-        double gap2 = 0.0;  // for_each_brick_near's expressions
-        for (int a = 0; a < 3; ++a) {
-          const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
-          const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
-          const double blo = o[a] + static_cast<double>(ci) * d.res;
-          const double bhi = o[a] + static_cast<double>(cj) * d.res;
-          const double gp =
-              (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
-          gap2 += gp * gp;
-        }
-        if (!f(BrickCand{gap2, b})) return false;
+        if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
       }
     }
   }

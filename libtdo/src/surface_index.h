@@ -62,44 +62,58 @@ struct BrickCand {
   uint32_t brick;
 };
 
-// Call f(BrickCand) for every non-empty brick that holds a voxel of the span box of [p0, p1]
-// grown by r plus one voxel (the voxel range the scan of collision.cpp visits), in index order;
-// stop when f returns false (then return false). Bounded by the bricks of that range.
-template <class F>
-bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
-                         F&& f) {
-  const tdo_grid_desc& d = g->desc;
-  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
-  int64_t lo[3], hi[3];
-  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
-  double mn[3], mx[3];
+// The span box [mn, mx] (m) of [p0, p1], and the voxel range [lo, hi] turned into bricks.
+inline void brick_span(const double p0[3], const double p1[3], int64_t lo[3], int64_t hi[3],
+                       double mn[3], double mx[3]) {
   for (int a = 0; a < 3; ++a) {
     mn[a] = p0[a] < p1[a] ? p0[a] : p1[a];
     mx[a] = p0[a] < p1[a] ? p1[a] : p0[a];
     lo[a] /= kBrickVoxels;
     hi[a] /= kBrickVoxels;
   }
+}
+
+// gap^2 (m^2) between the span box [mn, mx] and the tight box of the non-empty brick b, at brick
+// coordinates (x, y, z): per axis the gap between the box's faces and the span, squared and summed
+// in axis order.
+inline double brick_gap2(const tdo_grid* g, uint32_t b, int64_t x, int64_t y, int64_t z,
+                         const double mn[3], const double mx[3]) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const uint32_t pk = g->brick_box[b];
+  const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
+  double gap2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    // The tight box's faces, by the same expressions as the cube bounds.
+    const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
+    const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
+    const double blo = o[a] + static_cast<double>(ci) * d.res;
+    const double bhi = o[a] + static_cast<double>(cj) * d.res;
+    const double gp =
+        (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
+    gap2 += gp * gp;
+  }
+  return gap2;
+}
+
+// Call f(BrickCand) for every non-empty brick that holds a voxel of the span box of [p0, p1]
+// grown by r plus one voxel (the voxel range the scan of collision.cpp visits), in index order;
+// stop when f returns false (then return false). Bounded by the bricks of that range.
+template <class F>
+bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                         F&& f) {
+  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  int64_t lo[3], hi[3];
+  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
+  double mn[3], mx[3];
+  brick_span(p0, p1, lo, hi, mn, mx);
   for (int64_t z = lo[2]; z <= hi[2]; ++z)
     for (int64_t y = lo[1]; y <= hi[1]; ++y) {
       const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
       for (int64_t x = lo[0]; x <= hi[0]; ++x) {
         const uint32_t b = static_cast<uint32_t>(row + x);
         if (g->brick_mask[b] == 0u) continue;
-        const uint32_t pk = g->brick_box[b];
-        const int64_t base[3] = {x * kBrickVoxels, y * kBrickVoxels, z * kBrickVoxels};
-        double gap2 = 0.0;
-        for (int a = 0; a < 3; ++a) {
-          // The tight box's faces, by the same expressions as the cube bounds.
-          const int64_t ci = base[a] + ((pk >> (2 * a)) & 3u);
-          const int64_t cj = base[a] + ((pk >> (6 + 2 * a)) & 3u) + 1;
-          const double blo = o[a] + static_cast<double>(ci) * d.res;
-          const double bhi = o[a] + static_cast<double>(cj) * d.res;
-          const double gp =
-              (blo - mx[a] > 0.0 ? blo - mx[a] : 0.0) + (mn[a] - bhi > 0.0 ? mn[a] - bhi : 0.0);
-          gap2 += gp * gp;
-        }
-        if (!f(BrickCand{gap2, b})) return false;
+        if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
       }
     }
   return true;
