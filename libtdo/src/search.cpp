@@ -1008,6 +1008,15 @@ tdo_status write_path(tdo_search* ctx, const Query& q, tdo_search_output* out) {
   return TDO_OK;
 }
 
+// ctx->unit[d]: the unit vector of direction d.
+inline void set_unit(tdo_search* ctx, int d) {
+  const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
+  const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
+  ctx->unit[d][0] = dx / n;
+  ctx->unit[d][1] = dy / n;
+  ctx->unit[d][2] = dz / n;
+}
+
 void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double theta_max) {
   for (int k = 0; k < 9; ++k)
     ctx->block_row[k] = (k / 3 - 1) * g->stride_z + (k % 3 - 1) * g->stride_y;
@@ -1017,10 +1026,7 @@ void prepare_tables(tdo_search* ctx, const tdo_grid* g, double lambda, double th
     ctx->step_len[d] = g->desc.res * (order == 3 ? kSqrt3 : order == 2 ? kSqrt2 : 1.0);
     ctx->step_q[d] = order == 3 ? kSqrt3Q : order == 2 ? kSqrt2Q : 1.0;
     ctx->offset[d] = dx + dy * g->stride_y + dz * g->stride_z;
-    const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
-    ctx->unit[d][0] = dx / n;
-    ctx->unit[d][1] = dy / n;
-    ctx->unit[d][2] = dz / n;
+    set_unit(ctx, d);
   }
   if (ctx->cand_theta < theta_max || theta_max < ctx->cand_theta) {
     for (int a = 0; a < kNumDirs; ++a) {
@@ -1097,16 +1103,13 @@ bool dj_in_pool(const tdo_search_config& cfg) {
          static_cast<uint64_t>(cfg.max_voxels) * kDjBytes;
 }
 
-// VoxelTurnTables.dev and .reflect, and the unit vectors they are made of (the same arithmetic as
-// prepare_tables).
+// VoxelTurnTables.dev and .reflect, and the unit vectors they are made of (set_unit, as
+// prepare_tables sets them).
 void dev_table_fill(tdo_search* ctx) {
   VoxelTurnTables* t = ctx->vtt;
   for (int d = 0; d < kNumDirs; ++d) {
     const int dx = dir_dx(d), dy = dir_dy(d), dz = dir_dz(d);
-    const double n = sqrt(static_cast<double>(dx * dx + dy * dy + dz * dz));
-    ctx->unit[d][0] = dx / n;
-    ctx->unit[d][1] = dy / n;
-    ctx->unit[d][2] = dz / n;
+    set_unit(ctx, d);
     for (int m = 0; m < 8; ++m)
       t->reflect[m][d] = static_cast<uint8_t>(dir_of_cell(
           cell_of((m & 1) != 0 ? -dx : dx, (m & 2) != 0 ? -dy : dy, (m & 4) != 0 ? -dz : dz)));
