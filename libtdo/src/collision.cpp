@@ -651,7 +651,7 @@ inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
 }
 
 // Gap (m) on one axis between the span [mn, mx] and the whole brick number `b` of that axis, by
-// for_each_brick_near's expressions with the brick's own faces (local voxels 0 and 4) in place of
+// brick_gap2's expressions with the brick's own faces (local voxels 0 and 4) in place of
 // its tight box's (local voxels ci >= 0 and cj <= 4): the products and sums are monotone in the
 // voxel index, so this face pair lies outside the tight one and the gap is at most the tight gap.
 inline double brick_axis_gap(double o, double res, int64_t b, double mn, double mx) {
