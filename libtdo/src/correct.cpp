@@ -1,10 +1,11 @@
 // Stage 2: multi-scale inflection correction of the grid path (docs/design.md s.2, correct.h).
 //
 // 1. Every input segment is verified with tdo_collision_segment_clear at the clearance; one that
-//    fails makes the run TDO_ERR_NO_PATH.
+//    fails makes the run TDO_ERR_NO_PATH. The segments of a collinear run (step 2's) are proven
+//    together by one check of the merged segment with a margin (run_clear), else one by one.
 // 2. Collinear interior points (turn below kCollinearRad) and repeated points are dropped; the
-//    merged segment of a run of collinear points is verified once, and when it fails (rounding
-//    at the limit) the run's points stay.
+//    merged segment of a run of collinear points is verified once (known when run_clear proved
+//    the run), and when it fails (rounding at the limit) the run's points stay.
 // 3. MULTISCALE (TDO-MSF): passes over the scales s = 3, 5, 7 until a pass removes nothing. At
 //    each scale two sweeps run left to right over the windows of s consecutive points:
 //      sweep A tries only "gentle" windows, whose interior turns are all below turn_threshold
