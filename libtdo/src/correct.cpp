@@ -1,10 +1,11 @@
 // Stage 2: multi-scale inflection correction of the grid path (docs/design.md s.2, correct.h).
 //
 // 1. Every input segment is verified with tdo_collision_segment_clear at the clearance; one that
-//    fails makes the run TDO_ERR_NO_PATH.
+//    fails makes the run TDO_ERR_NO_PATH. The segments of a collinear run (step 2's) are proven
+//    together by one check of the merged segment with a margin (run_clear), else one by one.
 // 2. Collinear interior points (turn below kCollinearRad) and repeated points are dropped; the
-//    merged segment of a run of collinear points is verified once, and when it fails (rounding
-//    at the limit) the run's points stay.
+//    merged segment of a run of collinear points is verified once (known when run_clear proved
+//    the run), and when it fails (rounding at the limit) the run's points stay.
 // 3. MULTISCALE (TDO-MSF): passes over the scales s = 3, 5, 7 until a pass removes nothing. At
 //    each scale two sweeps run left to right over the windows of s consecutive points:
 //      sweep A tries only "gentle" windows, whose interior turns are all below turn_threshold
@@ -40,6 +41,10 @@ constexpr double kCollinearRad = 1e-9;  // rad, turns below this are "collinear"
 constexpr uint32_t kMemo = 8;           // failed chords remembered per start point
 constexpr uint32_t kNone = 0xFFFFFFFFu;
 constexpr uint32_t kScales[3] = {3u, 5u, 7u};
+// Of 1 + the clearance + the largest coordinate magnitude (m): a margin far above the rounding of
+// a clearance check's verdict, a distance and the points (~1e-15 of the coordinates), far below
+// any clearance that matters.
+constexpr double kMarginRel = 1e-7;
 
 bool same(const tdo_vec3& a, const tdo_vec3& b) {
   return !(a.x < b.x || a.x > b.x || a.y < b.y || a.y > b.y || a.z < b.z || a.z > b.z);
@@ -89,6 +94,87 @@ int check_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double clearance) {
 // [a, b] at the run's clearance.
 int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) { return check_at(r, a, b, r.clearance); }
 
+// A check whose answer is known to be "clear", counted as check() counts it: -1 when the budget
+// is spent, else 1.
+int known_clear(Run& r) {
+  if (r.checks >= r.budget) return -1;
+  ++r.checks;
+  return 1;
+}
+
+// The point drop_collinear keeps after the kept input point s: e, the first later point that is
+// neither a repeat nor collinear (turn below kCollinearRad at it, seen from s), or the last.
+// *run: a collinear point lies between (drop_collinear then checks the merged segment [s, e]).
+uint32_t next_kept(const tdo_vec3* p, uint32_t n, uint32_t s, bool* run) {
+  *run = false;
+  for (uint32_t i = s + 1u; i + 1u < n; ++i) {
+    if (same(p[i], p[s]) || same(p[i], p[i + 1u])) continue;
+    if (!(turn_angle(p[s], p[i], p[i + 1u]) < kCollinearRad)) return i;
+    *run = true;
+  }
+  return n - 1u;
+}
+
+// True when p lies in the closed grid bounds, by the expressions of the checks' own bounds test.
+bool in_bounds(const tdo_grid_desc& d, const tdo_vec3& p) {
+  const double q[3] = {p.x, p.y, p.z}, o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const int32_t nv[3] = {d.nx, d.ny, d.nz};
+  for (int i = 0; i < 3; ++i)
+    if (!(q[i] >= o[i]) || !(q[i] <= o[i] + static_cast<double>(nv[i]) * d.res)) return false;
+  return true;
+}
+
+// Proof that every input segment of the collinear run s .. e, and the merged segment [s, e], is
+// clear at the run's clearance c (step 1 and step 2 would find them so), from one check: [s, e]
+// clear at c + h + margin, h the largest distance of the run's points from [s, e]. Each point of
+// a piece [p_k, p_k+1] is a convex combination of the two, so it lies within h of the convex
+// [s, e]: its distance to the obstacles is at least [s, e]'s less h, so every piece (and [s, e]
+// itself) keeps c plus the margin, and their checks, whose verdicts are exact up to rounding far
+// below it, say clear. A piece's end points must also pass the checks' bounds test (exact, so
+// tested here by the same expressions). False: no claim (the pieces are checked one by one).
+bool run_clear(Run& r, const tdo_vec3* p, uint32_t s, uint32_t e) {
+  const tdo_grid_desc d = tdo_grid_get_desc(r.grid);
+  double h = 0.0, mag = 1.0 + r.clearance;
+  const tdo_vec3 a = p[s], ab = sub(p[e], a);
+  const double ll = dot(ab, ab);
+  for (uint32_t k = s; k <= e; ++k) {
+    const double v[3] = {p[k].x, p[k].y, p[k].z};
+    for (double x : v) mag = fabs(x) > mag ? fabs(x) : mag;
+    if (k == s || k == e) continue;
+    if (!in_bounds(d, p[k])) return false;
+    const tdo_vec3 w = sub(p[k], a);
+    double t = ll > 0.0 ? dot(w, ab) / ll : 0.0;
+    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+    const double dk = norm(sub(w, mul(ab, t)));
+    h = dk > h ? dk : h;
+  }
+  const double need = r.clearance + h + kMarginRel * mag;
+  return tdo_internal::segment_clear_steered(r.grid, p[s], p[e], need, &r.hint, &r.cube) != 0;
+}
+
+// Step 1: every input segment checked at the clearance, in order; TDO_ERR_NO_PATH at the first
+// that fails. A collinear run that run_clear proves is counted check by check, as checking each
+// would (the same answers, the same count, so the same status at every budget), and marked in
+// memo_at[s] for drop_collinear.
+tdo_status verify_input(Run& r, const tdo_vec3* p, uint32_t n) {
+  tdo_correct* ctx = r.ctx;
+  for (uint32_t i = 0; i < n; ++i) ctx->memo_at[i] = 0;
+  // Bounded: s grows every iteration.
+  for (uint32_t s = 0; s + 1u < n;) {
+    bool run = false;
+    const uint32_t e = next_kept(p, n, s, &run);
+    const bool known = run && run_clear(r, p, s, e);
+    ctx->memo_at[s] = known ? 1u : 0u;
+    for (uint32_t i = s + 1u; i <= e; ++i) {
+      const int ok = known ? known_clear(r) : check(r, p[i - 1u], p[i]);
+      if (ok < 0) return TDO_ERR_BUDGET;
+      if (ok == 0) return TDO_ERR_NO_PATH;
+    }
+    s = e;
+  }
+  return TDO_OK;
+}
+
 bool memo_failed(const tdo_correct* ctx, uint32_t oi, uint32_t oj) {
   const uint32_t* m = ctx->memo + static_cast<size_t>(oi) * kMemo;
   for (uint32_t k = 0; k < kMemo; ++k)
@@ -132,7 +218,8 @@ tdo_status drop_collinear(Run& r, uint32_t n, uint32_t* m_out) {
     const tdo_vec3 keep = p[i];
     const uint32_t keep_o = o[i];
     if (pending != kNone) {
-      const int ok = check(r, p[w - 1u], keep);
+      // A run verify_input proved: its merged segment is clear (run_clear).
+      const int ok = r.ctx->memo_at[o[w - 1u]] != 0u ? known_clear(r) : check(r, p[w - 1u], keep);
       if (ok < 0) return TDO_ERR_BUDGET;
       if (ok == 0) {  // the merged segment fails at the limit: the run's points stay
         for (uint32_t k = pending; k < i; ++k) {
@@ -419,12 +506,51 @@ bool count_distance(Run& r, Capped* c) {
   return true;
 }
 
-// The clearance the replacement of segment [a, b] (distance *c, counted) must keep:
-// max(distance, the run's clearance), the distance computed when pending.
+// The capped distance of a waypoint (tdo_collision_point_distance), computed when first asked for.
+struct EndDist {
+  bool known;
+  double d;  // m, min(cap, distance of the point) when known
+};
+
+double end_distance(const Run& r, EndDist* e, const tdo_vec3& p, double cap) {
+  if (!e->known) {
+    e->d = tdo_collision_point_distance(r.grid, p, cap);
+    e->known = true;
+  }
+  return e->d;
+}
+
+// tdo_collision_segment_distance(a, b, cap), the same value bit for bit, with a tighter cap when
+// the end points give one. The result of a capped distance is min(cap, M), M the minimum of the
+// exact distances over the leaves of the segment's pieces (and over its box pieces): a piece is
+// dropped only when its bound shows it cannot lower the minimum found, so a smaller cap changes
+// which pieces are looked at but not M (cubes_min, boxes_min). The segment's distance is at most
+// that of each end point, so with u = min(end distances) plus a margin far above the rounding of
+// both, M < u: then min(u, M) = M = min(cap, M) for every cap above u, and the cheap query with cap
+// u (nearly every piece dropped at once) answers. A result of u (the margin's claim failed, by
+// rounding) or u >= cap: the query with cap itself.
+double capped_distance(const Run& r, const tdo_vec3& a, const tdo_vec3& b, EndDist* ea, EndDist* eb,
+                       double cap) {
+  const double da = end_distance(r, ea, a, cap), db = end_distance(r, eb, b, cap);
+  if (da >= 0.0 && db >= 0.0) {
+    double mag = 1.0 + cap;
+    const double v[6] = {a.x, a.y, a.z, b.x, b.y, b.z};
+    for (double x : v) mag = fabs(x) > mag ? fabs(x) : mag;
+    const double u = (da < db ? da : db) + kMarginRel * mag;
+    if (u < cap) {
+      const double d = tdo_collision_segment_distance(r.grid, a, b, u);
+      if (d >= 0.0 && d < u) return d;
+    }
+  }
+  return tdo_collision_segment_distance(r.grid, a, b, cap);
+}
+
+// The clearance the replacement of segment [a, b] (distance *c, counted; end distances *ea, *eb)
+// must keep: max(distance, the run's clearance), the distance computed when pending.
 double replacement_clearance(const Run& r, Capped* c, const tdo_vec3& a, const tdo_vec3& b,
-                             double cap) {
+                             EndDist* ea, EndDist* eb, double cap) {
   if (c->state == Capped::kPending) {
-    c->d = tdo_collision_segment_distance(r.grid, a, b, cap);
+    c->d = capped_distance(r, a, b, ea, eb, cap);
     c->state = Capped::kKnown;
   }
   return c->d > r.clearance ? c->d : r.clearance;
@@ -436,11 +562,18 @@ bool tighten(Run& r, uint32_t m) {
   const double res = tdo_grid_get_desc(r.grid).res;
   const double cap = r.clearance + kRoomMargin;
   constexpr Capped kNotAsked{Capped::kUnknown, 0.0};
+  constexpr EndDist kNoEnd{false, 0.0};
   Capped carried = kNotAsked;  // capped distance of [p[k-1], p[k]] when already asked for
+  EndDist ends[3] = {kNoEnd, kNoEnd, kNoEnd};  // distances of p[k-1], p[k], p[k+1] when known
   for (uint32_t k = 1; k + 1u < m; ++k) {
     const tdo_vec3 a = p[k - 1u], c = p[k + 1u];
     Capped d1 = carried, d2 = kNotAsked;  // capped distances of the current segments
     carried = kNotAsked;
+    if (k > 1u) {  // the window moves on by one point
+      ends[0] = ends[1];
+      ends[1] = ends[2];
+      ends[2] = kNoEnd;
+    }
     uint32_t failed = 0u;  // bit per direction whose clearance check failed
     bool moved = true;
     // Bounded: kTightMoves moves, each of at most 3 x 6 candidates.
@@ -468,8 +601,9 @@ bool tighten(Run& r, uint32_t m) {
           if (turns > turns0 || room > room0 * (1.0 + kRoomTol)) continue;
           // The old segments' distances, only for a candidate that got this far.
           if (!count_distance(r, &d1) || !count_distance(r, &d2)) return false;
-          int ok = check_at(r, a, q, replacement_clearance(r, &d1, a, b, cap));
-          if (ok == 1) ok = check_at(r, q, c, replacement_clearance(r, &d2, b, c, cap));
+          int ok = check_at(r, a, q, replacement_clearance(r, &d1, a, b, &ends[0], &ends[1], cap));
+          if (ok == 1)
+            ok = check_at(r, q, c, replacement_clearance(r, &d2, b, c, &ends[1], &ends[2], cap));
           if (ok < 0) return false;
           if (ok == 0) {
             failed |= 1u << dir;
@@ -479,6 +613,7 @@ bool tighten(Run& r, uint32_t m) {
           r.ctx->orig[k] = kNone;
           moved = true;
           d1 = d2 = kNotAsked;  // both segments changed
+          ends[1] = kNoEnd;
         }
         if (moved) break;
       }
@@ -577,23 +712,18 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
         ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu,
         0u,
         0u};
-  tdo_status st = TDO_OK;
   // 1. The input itself must keep clearance.
-  for (uint32_t i = 1; i < n && st == TDO_OK; ++i) {
-    const int ok = check(r, in->points[i - 1u], in->points[i]);
-    if (ok < 0) st = TDO_ERR_BUDGET;
-    if (ok == 0) st = TDO_ERR_NO_PATH;
-  }
+  tdo_status st = verify_input(r, in->points, n);
   uint32_t m = 0, critical = 0;
   if (st == TDO_OK) {
     for (uint32_t i = 0; i < n; ++i) {
       ctx->pts[i] = in->points[i];
       ctx->orig[i] = i;
-      ctx->memo_at[i] = 0;
     }
     for (size_t k = 0; k < static_cast<size_t>(n) * kMemo; ++k) ctx->memo[k] = kNone;
     // 2. Collinear and repeated points.
     st = drop_collinear(r, n, &m);
+    for (uint32_t i = 0; i < n; ++i) ctx->memo_at[i] = 0;  // the memo's ring positions
   }
   // 3. The variant.
   if (st == TDO_OK && in->mode == TDO_CORRECT_MULTISCALE) {

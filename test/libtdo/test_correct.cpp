@@ -297,6 +297,54 @@ TEST(Correct, GivenAnInputSegmentThroughAnObstacle_WhenCorrected_ThenNoPathAndNo
   }
 }
 
+// A collinear run is verified as its merged segment when that keeps the clearance with a margin;
+// otherwise segment by segment. Either way the status, the check count and the output are those
+// of checking every input segment in order.
+TEST(Correct,
+     GivenACollinearRunThroughAnObstacle_WhenCorrected_ThenNoPathAtItsFirstBlockedSegment) {
+  TestPlanner pl(tdo_test::make_cap(20 * 20 * 4, 100, 100));
+  Map mp;
+  mp.m = VoxelMap(20, 20, 4, 1.0, v3(0, 0, 0));
+  mp.boxes.push_back(tdo_box{v3(9, 9, -1), v3(9.05, 11, 5)});  // a thin wall across y = 10
+  ASSERT_EQ(load_boxes(pl.grid(), mp, 0.5), TDO_OK);
+  std::vector<tdo_vec3> pts;
+  for (int x = 2; x <= 15; ++x) pts.push_back(v3(x, 10, 2));  // one collinear run
+  pts.push_back(v3(15, 15, 2));
+  // Segments 1-6 end at x <= 8, a metre from the wall; segment 7, [8, 9], touches it.
+  for (uint32_t budget : {6u, 7u, 1000u}) {
+    TestCorrector corr(correct_cfg(100, budget));
+    for (tdo_correct_mode mode : kModes) {
+      const tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.5);
+      tdo_correct_output out{};
+      const tdo_status st = tdo_correct_run(corr.ctx(), &in, &out);
+      EXPECT_EQ(st, budget < 7u ? TDO_ERR_BUDGET : TDO_ERR_NO_PATH) << mode_name(mode);
+      EXPECT_EQ(out.checks, budget < 7u ? budget : 7u) << mode_name(mode);
+      EXPECT_EQ(out.n_waypoints, 0u);
+    }
+  }
+}
+
+TEST(Correct,
+     GivenACollinearRunExactlyAtTheClearance_WhenCorrected_ThenItIsMergedAsCheckedOneByOne) {
+  TestPlanner pl(tdo_test::make_cap(20 * 20 * 4, 100, 100));
+  Map mp;
+  mp.m = VoxelMap(20, 20, 4, 1.0, v3(0, 0, 0));
+  mp.boxes.push_back(tdo_box{v3(0, 0, -1), v3(20, 9.5, 5)});  // face at y = 9.5
+  ASSERT_EQ(load_boxes(pl.grid(), mp, 0.5), TDO_OK);
+  std::vector<tdo_vec3> pts;
+  for (int x = 2; x <= 15; ++x) pts.push_back(v3(x, 10, 2));  // 0.5 m from the face
+  const uint32_t n = static_cast<uint32_t>(pts.size());
+  ASSERT_TRUE(mp.segment_ok(pts.front(), pts.back(), 0.5));
+  TestCorrector corr(correct_cfg(100, 0));
+  const tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_NONE, 0.5);
+  tdo_correct_output out{};
+  ASSERT_EQ(tdo_correct_run(corr.ctx(), &in, &out), TDO_OK);
+  ASSERT_EQ(out.n_waypoints, 2u);
+  EXPECT_TRUE(same(out.waypoints[0], pts.front()));
+  EXPECT_TRUE(same(out.waypoints[1], pts.back()));
+  EXPECT_EQ(out.checks, n) << "n - 1 input segments and the merged one";
+}
+
 TEST(Correct, GivenASmallCheckBudget_WhenCorrected_ThenBudgetStatusAndNoOutput) {
   TestPlanner pl(tdo_test::make_cap(20 * 20 * 4, 100, 100));
   Map mp;
