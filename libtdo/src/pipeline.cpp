@@ -36,6 +36,12 @@ double verify_clearance(double clearance) {
 // Without this, a start off its voxel's centre could cut past an obstacle corner to the next
 // centre and the correction stage would reject the whole path (TDO_ERR_NO_PATH) although the
 // search found one.
+// tdo_collision_segment_clear's answer for [a, b] at `clearance` (m), by segment_clear_steered:
+// cheaper on voxel maps.
+bool clear_at(const tdo_grid* g, tdo_vec3 a, tdo_vec3 b, double clearance) {
+  return segment_clear_steered(g, a, b, clearance, nullptr, nullptr) != 0;
+}
+
 void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_output& s,
                 double clearance) {
   clearance = verify_clearance(clearance);
@@ -44,18 +50,18 @@ void world_path(tdo_planner* pl, const tdo_plan_request& req, const tdo_search_o
   uint32_t m = 0;
   w[m++] = req.start;
   if (n == 1) {  // start and goal share a voxel
-    if (tdo_collision_segment_clear(pl->grid, req.start, req.goal, clearance) == 0)
+    if (!clear_at(pl->grid, req.start, req.goal, clearance))
       w[m++] = tdo_grid_voxel_center(pl->grid, s.path[0]);
     w[m++] = req.goal;
     pl->n_grid_path = m;
     return;
   }
   const tdo_vec3 c1 = tdo_grid_voxel_center(pl->grid, s.path[1]);
-  if (tdo_collision_segment_clear(pl->grid, req.start, c1, clearance) == 0)
+  if (!clear_at(pl->grid, req.start, c1, clearance))
     w[m++] = tdo_grid_voxel_center(pl->grid, s.path[0]);
   for (uint32_t i = 1; i + 1 < n; ++i) w[m++] = tdo_grid_voxel_center(pl->grid, s.path[i]);
   const tdo_vec3 cl = tdo_grid_voxel_center(pl->grid, s.path[n - 2]);
-  if (tdo_collision_segment_clear(pl->grid, cl, req.goal, clearance) == 0)
+  if (!clear_at(pl->grid, cl, req.goal, clearance))
     w[m++] = tdo_grid_voxel_center(pl->grid, s.path[n - 1]);
   w[m++] = req.goal;
   pl->n_grid_path = m;
@@ -72,10 +78,7 @@ bool direct_path(tdo_planner* pl, const tdo_plan_request& req, double clearance,
   const tdo_grid* g = pl->grid;
   tdo_voxel ends[2];
   if (search_ends_ok(g, req.start, req.goal, ends) != TDO_OK) return false;
-  // segment_clear_steered: tdo_collision_segment_clear's answer, cheaper on voxel maps.
-  if (segment_clear_steered(g, req.start, req.goal, verify_clearance(clearance), nullptr,
-                            nullptr) == 0)
-    return false;
+  if (!clear_at(g, req.start, req.goal, verify_clearance(clearance))) return false;
   memset(s, 0, sizeof(*s));
   s->cost = s->penalized_cost = norm(sub(req.goal, req.start));
   s->direct = 1;
