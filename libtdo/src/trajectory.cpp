@@ -1686,7 +1686,11 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 
 constexpr double kPieceReserve = 0.5;  // of kTolerance: the closed form keeps limit * 1.005
 constexpr uint32_t kPieceSplits = 6;   // halvings of an interval whose bound misses (64 parts)
-constexpr int kCrossBisections = 64;   // the time a piece crosses a segment joint
+// The same with the coarse curvature parts (kRigorCoarse): where 16 parts of an interval still
+// miss, the sixteenths decide (with kPieceSplits) instead of the last halvings, which cost 7/8 of
+// them (on 300 Simple plans the coarse tries that pass need at most 4 halvings).
+constexpr uint32_t kCoarseSplits = 4;
+constexpr int kCrossBisections = 64;  // the time a piece crosses a segment joint
 constexpr double kPositionNoise = 64.0 * 2.220446049250313e-16;  // rounding, relative to |P|
 constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's inversion tolerance
 // m: the path's distance must keep clearance - this (half the slack: the samples lie on the path
@@ -2004,12 +2008,12 @@ Bound3 sub_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb) {
   return b;
 }
 
-/** sub_bound over [ta, tb], in 2, 4, ..., 2^kPieceSplits parts while it misses `allowed` (each a
+/** sub_bound over [ta, tb], in 2, 4, ..., 2^splits parts while it misses `allowed` (each a
  *  bound: the least of them per quantity is one). */
-Bound3 span_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb,
-                  const Bound3& allowed) {
+Bound3 span_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb, const Bound3& allowed,
+                  uint32_t splits) {
   Bound3 b = sub_bound(ctx, f, ta, tb);
-  for (uint32_t d = 1; d <= kPieceSplits && !fits(b, allowed); ++d) {
+  for (uint32_t d = 1; d <= splits && !fits(b, allowed); ++d) {
     const uint32_t parts = 1u << d;
     const double h = (tb - ta) / parts;
     Bound3 m{0.0, 0.0, 0.0};
@@ -2125,10 +2129,11 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   const double f = 1.0 + kTolerance * kPieceReserve;
   const Bound3 noise{2.0 * e / dt, 4.0 * e / (dt * dt), 8.0 * e / (dt * dt * dt)};
   const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
+  const uint32_t splits = ctx->pieces->rigor_parts < kRigorParts ? kCoarseSplits : kPieceSplits;
   Bound3 top{0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < ctx->n_phases; ++k) {
     const Phase& ph = ctx->phases[k];
-    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed);
+    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed, splits);
     if (!fits(b, allowed)) return false;
     top = bmax(top, b);
   }
@@ -2153,8 +2158,8 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
     for (uint32_t k = piece_after(ctx, ta); k < ctx->n_phases; ++k) {
       const Phase& ph = ctx->phases[k];
       if (ph.t0 >= tb) break;
-      smooth =
-          bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0), left));
+      smooth = bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0),
+                                       left, splits));
     }
     if (!fits(smooth, left)) return false;
     top = bmax(top, Bound3{smooth.v + delta.v, smooth.a + delta.a, smooth.j + delta.j});
