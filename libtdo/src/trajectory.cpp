@@ -575,9 +575,15 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
       return TDO_ERR_INVALID_ARGUMENT;
     }
     if (!isfinite(st.kappa) || !isfinite(st.dkappa_ds)) return TDO_ERR_INVALID_ARGUMENT;
-    if (out != nullptr)
-      out[i] = StationK{st.kappa,     st.dkappa_ds, cursor.u, cursor.s, cursor.spu,
-                        cursor.curvu, 0.0,          0.0,      0.0,      1};
+    if (out != nullptr) {  // the cursor's numbers on Beziers only (arcs do not use them)
+      out[i] = StationK{st.kappa, st.dkappa_ds, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1};
+      if (bez) {
+        out[i].u = cursor.u;
+        out[i].s = cursor.s;
+        out[i].sp = cursor.spu;
+        out[i].dsp = cursor.curvu;
+      }
+    }
     km = dmax(km, st.kappa);
     hi = dmax(hi, st.dkappa_ds);
     lo = dmin(lo, st.dkappa_ds);
