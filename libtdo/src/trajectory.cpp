@@ -2189,11 +2189,10 @@ inline double hermite(double k0, double d0, double k1, double d1, double w, doub
 /** Pieces mode: at the middle parameter of every station interval of the Beziers' plateaus the
  *  exact curvature and its rate, and the arclength there from the stations' |B'| and its
  *  derivative (corrected trapezoid rule, error O(du^5): no inversion, no quadrature); and whether
- *  the stations' cubic Hermite fits that curvature (kStationFit). */
-void station_mids(const tdo_traj* ctx, const tdo_path& path) {
+ *  the stations' cubic Hermite fits that curvature (kStationFit). `c`: scratch cursor. */
+void station_mids(const tdo_traj* ctx, const tdo_path& path, BezierCursor* c) {
   const uint32_t stations = kStations / ctx->pieces->curve_parts;
-  BezierCursor cur;
-  memset(&cur, 0, sizeof(cur));
+  BezierCursor& cur = *c;
   cur.seg = UINT32_MAX;
   for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
     const Plateau& p = ctx->plateaus[q];
@@ -2289,9 +2288,9 @@ double span_energy(const tdo_traj* ctx, const Phase& f, double ta, double tb,
 
 /** The energy of the profile: every piece split at the segment joints it crosses. */
 double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
-  station_mids(ctx, path);
-  BezierCursor cur;
+  BezierCursor cur;  // station_mids', then the inversions' where the stations' cubics miss
   memset(&cur, 0, sizeof(cur));
+  station_mids(ctx, path, &cur);
   cur.seg = UINT32_MAX;
   const Junction* jn = ctx->pieces->junctions;
   double total = 0.0;
