@@ -169,6 +169,19 @@ struct JointJump {
  *  from them instead of inverting the arclength again). */
 struct PlateauSpan {
   double u_start, u_end, s_start;
+  uint32_t first;  // its first station in PiecesState::stations (curved plateaus)
+};
+
+/** Pieces mode: one station of the curve summary (summarise_curve) of a Bezier, handed down to the
+ *  energy integral: the curvature and its rate along s there, the cursor's parameter and
+ *  arclength; and the same at the middle of the interval to the next station (station_mids), or
+ *  `exact` when the cubic from the two stations misses the middle's curvature. */
+struct StationK {
+  double k, dk;        // 1/m, 1/m^2
+  double u, s;         // -, m (segment-local)
+  double sp, dsp;      // m, m: |B'(u)| and its derivative in u
+  double mk, mdk, ms;  // 1/m, 1/m^2, m: at the middle parameter of the interval to the next one
+  int exact;           // the interval's nodes invert the arclength instead (station_kappa)
 };
 
 struct Junction;  // a delta of the trajectory (pieces mode)
@@ -179,6 +192,8 @@ struct PiecesState {
   Junction* junctions;   // plateau_cap + max_profile + 2
   JointJump* jumps;      // plateau_cap + 1
   PlateauSpan* spans;    // plateau_cap
+  StationK* stations;    // (kStations + kSubMax) per path segment: the curves' summary stations
+  uint32_t curve_parts;  // plateaus per curved segment in this run (curve_parts)
   RigorPart* parts;      // kRigorParts per plateau (plateau_cap of them)
   int rigor_ready;       // `parts` is set for this run
   uint32_t rigor_parts;  // parts per plateau in use: kRigorCoarse, then kRigorParts if it misses
@@ -501,16 +516,6 @@ void cursor_eval(BezierCursor* c, double s, tdo_segment_state* st) {
   cursor_state(*c, st);
 }
 
-/** 1/m, kappa at the cursor's parameter, as cursor_curvature computes it (without dkappa_ds). */
-double cursor_kappa(const BezierCursor& c) {
-  const double u = c.u;
-  const tdo_vec3 d1 = c.have ? c.d1u : bez_d1(c, u), d2 = c.have ? c.d2u : bez_d2(c, u);
-  const double sp = c.have ? c.spu : norm(d1);
-  if (!(sp > 0.0)) return 0.0;
-  const double cn = norm(cross(d1, d2));
-  return cn / (sp * sp * sp);
-}
-
 /** kappa and dkappa_ds at the cursor's parameter, as tdo_segment_eval computes them. */
 void cursor_curvature(const BezierCursor& c, tdo_segment_state* st) {
   st->kappa = 0.0;
@@ -548,7 +553,7 @@ struct Limits {
  *  same evaluations as for the whole segment; what they miss, the verification finds and
  *  refinement corrects); on Beziers also *span (when not null: its cursor's parameters). */
 tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, uint32_t stations,
-                           Plateau* p, PlateauSpan* span) {
+                           Plateau* p, PlateauSpan* span, StationK* out) {
   double km = 0.0, hi = -HUGE_VAL, lo = HUGE_VAL, prev = 0.0;
   const double h = len / stations;
   // Beziers: the stations come in order, so a cursor walks them.
@@ -570,6 +575,15 @@ tdo_status summarise_curve(const tdo_path_segment& seg, double a, double len, ui
       return TDO_ERR_INVALID_ARGUMENT;
     }
     if (!isfinite(st.kappa) || !isfinite(st.dkappa_ds)) return TDO_ERR_INVALID_ARGUMENT;
+    if (out != nullptr) {  // the cursor's numbers on Beziers only (arcs do not use them)
+      out[i] = StationK{st.kappa, st.dkappa_ds, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1};
+      if (bez) {
+        out[i].u = cursor.u;
+        out[i].s = cursor.s;
+        out[i].sp = cursor.spu;
+        out[i].dsp = cursor.curvu;
+      }
+    }
     km = dmax(km, st.kappa);
     hi = dmax(hi, st.dkappa_ds);
     lo = dmin(lo, st.dkappa_ds);
@@ -684,7 +698,8 @@ tdo_status joint_cap(const tdo_path_segment& prev, const tdo_path_segment& seg, 
 tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
   const tdo_path& path = in->path;
   const uint32_t parts = curve_parts(ctx, path);
-  uint32_t n = 0;
+  if (ctx->pieces != nullptr) ctx->pieces->curve_parts = parts;
+  uint32_t n = 0, stations = 0;
   double s0 = 0.0;
   int stop_pending = 0;  // a zero-length segment with stop_at_end before the next plateau
   for (uint32_t i = 0; i < path.n; ++i) {
@@ -706,9 +721,15 @@ tdo_status analyse(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim) {
       p.cap = dmin(lim.v_max, seg.v_limit);
       p.scale = 1.0;
       if (seg.kind != TDO_SEGMENT_LINE) {
-        const tdo_status st =
-            summarise_curve(seg, p.off, p.len, kStations / m, &p,
-                            ctx->pieces != nullptr ? &ctx->pieces->spans[n] : nullptr);
+        PlateauSpan* span = nullptr;
+        StationK* out = nullptr;
+        if (ctx->pieces != nullptr) {  // the stations' curvatures go on to the energy integral
+          span = &ctx->pieces->spans[n];
+          span->first = stations;
+          out = ctx->pieces->stations + stations;
+          stations += kStations / m + 1u;  // at most kStations + m per curve: the array's stride
+        }
+        const tdo_status st = summarise_curve(seg, p.off, p.len, kStations / m, &p, span, out);
         if (st != TDO_OK) return st;
       }
       Boundary& b = ctx->bounds[n];
@@ -1671,7 +1692,11 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 
 constexpr double kPieceReserve = 0.5;  // of kTolerance: the closed form keeps limit * 1.005
 constexpr uint32_t kPieceSplits = 6;   // halvings of an interval whose bound misses (64 parts)
-constexpr int kCrossBisections = 64;   // the time a piece crosses a segment joint
+// The same with the coarse curvature parts (kRigorCoarse): where 16 parts of an interval still
+// miss, the sixteenths decide (with kPieceSplits) instead of the last halvings, which cost 7/8 of
+// them (on 300 Simple plans the coarse tries that pass need at most 4 halvings).
+constexpr uint32_t kCoarseSplits = 4;
+constexpr int kCrossBisections = 64;  // the time a piece crosses a segment joint
 constexpr double kPositionNoise = 64.0 * 2.220446049250313e-16;  // rounding, relative to |P|
 constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's inversion tolerance
 // m: the path's distance must keep clearance - this (half the slack: the samples lie on the path
@@ -1989,12 +2014,12 @@ Bound3 sub_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb) {
   return b;
 }
 
-/** sub_bound over [ta, tb], in 2, 4, ..., 2^kPieceSplits parts while it misses `allowed` (each a
+/** sub_bound over [ta, tb], in 2, 4, ..., 2^splits parts while it misses `allowed` (each a
  *  bound: the least of them per quantity is one). */
-Bound3 span_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb,
-                  const Bound3& allowed) {
+Bound3 span_bound(const tdo_traj* ctx, const Phase& f, double ta, double tb, const Bound3& allowed,
+                  uint32_t splits) {
   Bound3 b = sub_bound(ctx, f, ta, tb);
-  for (uint32_t d = 1; d <= kPieceSplits && !fits(b, allowed); ++d) {
+  for (uint32_t d = 1; d <= splits && !fits(b, allowed); ++d) {
     const uint32_t parts = 1u << d;
     const double h = (tb - ta) / parts;
     Bound3 m{0.0, 0.0, 0.0};
@@ -2110,10 +2135,11 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   const double f = 1.0 + kTolerance * kPieceReserve;
   const Bound3 noise{2.0 * e / dt, 4.0 * e / (dt * dt), 8.0 * e / (dt * dt * dt)};
   const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
+  const uint32_t splits = ctx->pieces->rigor_parts < kRigorParts ? kCoarseSplits : kPieceSplits;
   Bound3 top{0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < ctx->n_phases; ++k) {
     const Phase& ph = ctx->phases[k];
-    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed);
+    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed, splits);
     if (!fits(b, allowed)) return false;
     top = bmax(top, b);
   }
@@ -2138,8 +2164,8 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
     for (uint32_t k = piece_after(ctx, ta); k < ctx->n_phases; ++k) {
       const Phase& ph = ctx->phases[k];
       if (ph.t0 >= tb) break;
-      smooth =
-          bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0), left));
+      smooth = bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0),
+                                       left, splits));
     }
     if (!fits(smooth, left)) return false;
     top = bmax(top, Bound3{smooth.v + delta.v, smooth.a + delta.a, smooth.j + delta.j});
@@ -2148,11 +2174,88 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   return true;
 }
 
-/** m^2/s^3, integral of |x''|^2 = s''^2 + s'^4 kappa^2 over [ta, tb] of piece f on segment `seg`
- *  (s''^2 exactly; kappa^2 s'^4 exactly on arcs by 5-point Gauss-Legendre, on Beziers by it in
- *  panels of at most 1/kEnergyPanels of the segment's length: a corner's curvature peaks). */
-double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment& seg,
-                   uint32_t index, double seg_s0, BezierCursor* cur) {
+/** Of the larger |kappa| at an interval's ends and middle: the most the cubic Hermite of the two
+ *  stations may miss the middle's curvature by for the interval to use the two half cubics
+ *  (station_kappa). */
+constexpr double kStationFit = 1e-3;
+
+/** 1/m, the cubic Hermite at t in [0, 1] of (k0, d0) and (k1, d1) over width w. */
+inline double hermite(double k0, double d0, double k1, double d1, double w, double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return (2.0 * t3 - 3.0 * t2 + 1.0) * k0 + (t3 - 2.0 * t2 + t) * w * d0 +
+         (3.0 * t2 - 2.0 * t3) * k1 + (t3 - t2) * w * d1;
+}
+
+/** Pieces mode: at the middle parameter of every station interval of the Beziers' plateaus the
+ *  exact curvature and its rate, and the arclength there from the stations' |B'| and its
+ *  derivative (corrected trapezoid rule, error O(du^5): no inversion, no quadrature); and whether
+ *  the stations' cubic Hermite fits that curvature (kStationFit). `c`: scratch cursor. */
+void station_mids(const tdo_traj* ctx, const tdo_path& path, BezierCursor* c) {
+  const uint32_t stations = kStations / ctx->pieces->curve_parts;
+  BezierCursor& cur = *c;
+  cur.seg = UINT32_MAX;
+  for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
+    const Plateau& p = ctx->plateaus[q];
+    const tdo_path_segment& seg = path.seg[p.seg];
+    if (seg.kind != TDO_SEGMENT_BEZIER) continue;
+    if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
+    StationK* st = ctx->pieces->stations + ctx->pieces->spans[q].first;
+    for (uint32_t i = 0; i < stations; ++i) {
+      StationK& a = st[i];
+      const StationK& b = st[i + 1u];
+      const double du = 0.5 * (b.u - a.u);
+      cur.u = a.u + du;
+      cur.d1u = bez_d1(cur, cur.u);
+      cur.d2u = bez_d2(cur, cur.u);
+      cur.spu = norm(cur.d1u);
+      cur.curvu = cur.spu > 0.0 ? dot(cur.d1u, cur.d2u) / cur.spu : 0.0;
+      cur.have = 1;
+      tdo_segment_state m;
+      cursor_curvature(cur, &m);
+      a.mk = m.kappa;
+      a.mdk = m.dkappa_ds;
+      a.ms = a.s + 0.5 * du * (a.sp + cur.spu) + du * du / 12.0 * (a.dsp - cur.curvu);
+      const double w = b.s - a.s, t = w > 0.0 ? (a.ms - a.s) / w : 0.0;
+      const double fit = hermite(a.k, a.dk, b.k, b.dk, w, t);
+      const double scale = dmax(fabs(m.kappa), dmax(fabs(a.k), fabs(b.k)));
+      a.exact = !(fabs(fit - m.kappa) <= kStationFit * scale) || !(a.ms > a.s && a.ms < b.s) ||
+                !isfinite(m.kappa) || !isfinite(m.dkappa_ds);
+    }
+  }
+}
+
+/** 1/m, |kappa| of the Bezier `seg` at its local arclength s; q0 is its first plateau. Between two
+ *  stations of the curve summary (handed down, with the middle from station_mids) the two half
+ *  cubic Hermites, instead of inverting the arclength at each of the energy integral's nodes;
+ *  where they do not fit, the arclength inverted (cursor `cur`). */
+double station_kappa(const tdo_traj* ctx, uint32_t q0, const tdo_path_segment& seg, double s,
+                     BezierCursor* cur) {
+  const uint32_t m = ctx->pieces->curve_parts, stations = kStations / m;
+  uint32_t j = 0;
+  while (j + 1u < m && ctx->plateaus[q0 + j + 1u].off <= s) ++j;  // bounded by m
+  const Plateau& p = ctx->plateaus[q0 + j];
+  const StationK* st = ctx->pieces->stations + ctx->pieces->spans[q0 + j].first;
+  double fi = floor((s - p.off) / (p.len / stations));
+  fi = fi < 0.0 ? 0.0 : (fi > stations - 1.0 ? stations - 1.0 : fi);
+  const StationK& a = st[static_cast<uint32_t>(fi)];
+  const StationK& b = (&a)[1];
+  if (a.exact) {
+    if (cur->seg != p.seg) cursor_reset(cur, seg, p.seg);
+    cursor_seek(cur, s);
+    tdo_segment_state e;
+    cursor_curvature(*cur, &e);
+    return e.kappa;
+  }
+  if (s <= a.ms) return hermite(a.k, a.dk, a.mk, a.mdk, a.ms - a.s, (s - a.s) / (a.ms - a.s));
+  return hermite(a.mk, a.mdk, b.k, b.dk, b.s - a.ms, (s - a.ms) / (b.s - a.ms));
+}
+
+/** m^2/s^3, integral of |x''|^2 = s''^2 + s'^4 kappa^2 over [ta, tb] of piece f on the segment of
+ *  plateau q0 (its first): s''^2 exactly; kappa^2 s'^4 by 5-point Gauss-Legendre, exactly on arcs,
+ *  on Beziers in panels of at most 1/kEnergyPanels of the segment's length (a corner's curvature
+ *  peaks) with the curvature from the summary's stations (station_kappa). */
+double span_energy(const tdo_traj* ctx, const Phase& f, double ta, double tb,
+                   const tdo_path_segment& seg, uint32_t q0, BezierCursor* cur) {
   const double h = tb - ta, a = ph_a(f, ta);
   const double e = h * (a * a + h * f.j * (a + f.j * h / 3.0));
   if (seg.kind == TDO_SEGMENT_LINE || !(h > 0.0)) return e;
@@ -2163,6 +2266,7 @@ double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment&
         share >= kEnergyPanels ? kEnergyPanels : (share > 1.0 ? static_cast<uint32_t>(share) : 1u);
   }
   const double kr = 1.0 / norm(sub(seg.p[0], seg.p[2]));  // arcs: constant curvature
+  const double seg_s0 = ctx->plateaus[q0].s0;
   const double w = h / panels;
   double sum = 0.0;
   for (uint32_t pn = 0; pn < panels; ++pn) {
@@ -2173,11 +2277,8 @@ double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment&
       const double t = ta + w * (pn + 0.5 * (1.0 + x));
       const double v = ph_v(f, t), v2 = v * v;
       double k = kr;
-      if (seg.kind == TDO_SEGMENT_BEZIER) {
-        if (cur->seg != index) cursor_reset(cur, seg, index);
-        cursor_seek(cur, dmin(seg.length, dmax(0.0, ph_s(f, t) - seg_s0)));
-        k = cursor_kappa(*cur);
-      }
+      if (seg.kind == TDO_SEGMENT_BEZIER)
+        k = station_kappa(ctx, q0, seg, dmin(seg.length, dmax(0.0, ph_s(f, t) - seg_s0)), cur);
       part += kGl5W[g] * k * k * v2 * v2;
     }
     sum += 0.5 * w * part;
@@ -2187,8 +2288,9 @@ double span_energy(const Phase& f, double ta, double tb, const tdo_path_segment&
 
 /** The energy of the profile: every piece split at the segment joints it crosses. */
 double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
-  BezierCursor cur;
+  BezierCursor cur;  // station_mids', then the inversions' where the stations' cubics miss
   memset(&cur, 0, sizeof(cur));
+  station_mids(ctx, path, &cur);
   cur.seg = UINT32_MAX;
   const Junction* jn = ctx->pieces->junctions;
   double total = 0.0;
@@ -2199,9 +2301,9 @@ double pieces_energy(const tdo_traj* ctx, const tdo_path& path, uint32_t m) {
     for (uint32_t step = 0; step <= m; ++step) {  // each step but the last consumes a junction
       while (r < m && (jn[r].seg == UINT32_MAX || jn[r].t - f.t0 <= ta)) ++r;
       const double tb = r < m && jn[r].t - f.t0 < f.dur ? jn[r].t - f.t0 : f.dur;
-      const uint32_t q = plateau_of(ctx, ph_s(f, 0.5 * (ta + tb)));
-      const Plateau& p = ctx->plateaus[q];
-      total += span_energy(f, ta, tb, path.seg[p.seg], p.seg, p.s0 - p.off, &cur);
+      uint32_t q = plateau_of(ctx, ph_s(f, 0.5 * (ta + tb)));
+      while (q > 0u && ctx->plateaus[q - 1u].seg == ctx->plateaus[q].seg) --q;  // its first part
+      total += span_energy(ctx, f, ta, tb, path.seg[ctx->plateaus[q].seg], q, &cur);
       if (!(tb < f.dur)) break;
       ta = tb;
     }
@@ -2429,10 +2531,12 @@ extern "C" size_t tdo_traj_footprint(const tdo_traj_config* cfg) {
   const size_t nj = pieces ? nseg + cfg->max_profile + 2u : 0u;
   const size_t np = pieces ? nseg * kRigorParts : 0u, nb = pieces ? nseg + 1u : 0u;
   const size_t nsp = pieces ? nseg : 0u;
+  const size_t nst = pieces ? static_cast<size_t>(kStations + kSubMax) * cfg->max_segments : 0u;
   return tdo_arena_round(sizeof(tdo_traj)) + (pieces ? tdo_arena_round(sizeof(PiecesState)) : 0u) +
-         tdo_arena_round(nsp * sizeof(PlateauSpan)) + tdo_arena_round(nj * sizeof(Junction)) +
-         tdo_arena_round(np * sizeof(RigorPart)) + tdo_arena_round(nb * sizeof(JointJump)) +
-         tdo_arena_round(ns * sizeof(tdo_sample)) + tdo_arena_round(ns * sizeof(uint32_t)) +
+         tdo_arena_round(nsp * sizeof(PlateauSpan)) + tdo_arena_round(nst * sizeof(StationK)) +
+         tdo_arena_round(nj * sizeof(Junction)) + tdo_arena_round(np * sizeof(RigorPart)) +
+         tdo_arena_round(nb * sizeof(JointJump)) + tdo_arena_round(ns * sizeof(tdo_sample)) +
+         tdo_arena_round(ns * sizeof(uint32_t)) +
          tdo_arena_round(static_cast<size_t>(cfg->max_violations) * sizeof(tdo_violation)) +
          tdo_arena_round(nseg * sizeof(Plateau)) + tdo_arena_round((nseg + 1u) * sizeof(Boundary)) +
          tdo_arena_round(nseg) +
@@ -2477,10 +2581,13 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
         static_cast<RigorPart*>(tdo_arena_alloc(arena, nseg * kRigorParts * sizeof(RigorPart)));
     ps->jumps = static_cast<JointJump*>(tdo_arena_alloc(arena, (nseg + 1u) * sizeof(JointJump)));
     ps->spans = static_cast<PlateauSpan*>(tdo_arena_alloc(arena, nseg * sizeof(PlateauSpan)));
+    ps->stations = static_cast<StationK*>(tdo_arena_alloc(
+        arena, static_cast<size_t>(kStations + kSubMax) * cfg->max_segments * sizeof(StationK)));
+    ps->curve_parts = 1u;
     ps->rigor_ready = 0;
     ps->rigor_parts = kRigorParts;
     if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr ||
-        ps->spans == nullptr)
+        ps->spans == nullptr || ps->stations == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
     ctx->pieces = ps;
   }

@@ -1087,6 +1087,54 @@ TEST(TrajectoryPieces, GivenAProfileTheClosedFormRejects_WhenRun_ThenItFallsBack
   }
 }
 
+/** m^2/s^3, the integral of |x''|^2 = s''^2 + s'^4 kappa^2 over the profile's pieces, by Simpson's
+ *  rule on `steps` intervals per piece with kappa from tdo_segment_eval (this test's own). */
+double profile_energy(const tdo_traj* ctx, const std::vector<tdo_path_segment>& segs, int steps) {
+  double total = 0.0;
+  for (const tdo_traj_piece& f : pieces_of(ctx)) {
+    if (!(f.dur > 0.0)) continue;
+    const double h = f.dur / steps;
+    for (int i = 0; i <= steps; ++i) {
+      const double t = h * i, v = f.v0 + t * (f.a0 + 0.5 * t * f.j), a = f.a0 + t * f.j;
+      double s = f.s0 + t * (f.v0 + t * (0.5 * f.a0 + t * f.j / 6.0)), kappa = 0.0;
+      for (const tdo_path_segment& seg : segs) {
+        if (s <= seg.length || &seg == &segs.back()) {
+          tdo_segment_state st;
+          EXPECT_TRUE(tdo_segment_eval(&seg, std::fmin(std::fmax(s, 0.0), seg.length), &st));
+          kappa = st.kappa;
+          break;
+        }
+        s -= seg.length;
+      }
+      const double w = (i == 0 || i == steps) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      total += w * h / 3.0 * (a * a + v * v * v * v * kappa * kappa);
+    }
+  }
+  return total;
+}
+
+TEST(TrajectoryPieces, GivenBezierCorners_WhenVerifiedByPieces_ThenTheEnergyIsTheProfilesIntegral) {
+  // GIVEN L paths with G2 Bezier corners of three sizes (the curvature peaks in the corner's
+  // middle, between the curve summary's stations)
+  const std::vector<std::vector<tdo_path_segment>> paths{l_path_bezier(3.0), l_path_bezier(4.0),
+                                                         l_path_bezier(6.0)};
+  for (const auto& segs : paths) {
+    const tdo_path path = make_path(segs);
+    const tdo_traj_input in = make_input(path);
+    tdo_traj_config cfg = default_config();
+    cfg.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+    Traj pieces(cfg);
+    tdo_traj_output out{};
+    // WHEN the closed form accepts the last round's profile
+    ASSERT_EQ(tdo_traj_run(pieces.ctx(), &in, &out), TDO_OK);
+    ASSERT_LE(out.sample_passes, out.refinements);
+    // THEN its energy is the integral of the profile's |x''|^2 along the path (relative 1e-4:
+    // the curvature between the summary's stations is interpolated where that fits to 1e-3)
+    const double e = profile_energy(pieces.ctx(), segs, 2000);
+    EXPECT_NEAR(out.energy, e, 1e-4 * e);
+  }
+}
+
 TEST_F(TrajectoryClearance, GivenPiecesMode_WhenThePathPassesABox_ThenThePathsExactDistance) {
   // GIVEN a straight path 1.2 m from a box, then one 0.3 m from it at a clearance of 0.5 m
   load_box(1.2, 0.5);
