@@ -31,6 +31,13 @@ void g2_shape(double beta, double gf, double hf, double* tau, double* rate);
  */
 double g2_rate_lower(double beta, double gf, double hf);
 
+/**
+ * A looser lower bound of the same rate, bit for bit as sound: the rate samples at t = 0 and 1
+ * over the curvature bound on 2 intervals instead of 16. About a sixth of g2_rate_lower's cost;
+ * it decides where the rate lies far above what the caller asks (the common case).
+ */
+double g2_rate_lower_quick(double beta, double gf, double hf);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_G2_SHAPE_H

@@ -211,14 +211,16 @@ void g2_choose(const tdo_smooth_input& in, double theta, double r8, double v_c, 
   const double j_design = kTimeJerkShare * in.j_max;
   // A shape whose rate puts its jerk radius above r8 has r_des = that radius, so its speed is at
   // most min(.., cbrt(j_design r_des^2 / rate)) = v_c up to rounding: once the best speed is v_c,
-  // such a blend cannot pass the comparison below (it needs 1e-9 more) and is not computed.
+  // such a blend cannot pass the comparison below (it needs 1e-9 more) and is not computed. Its
+  // rate is bounded from below, by the quick bound first (it mostly decides), then the tight one.
   const double rate_r8 = r8 * r8 * j_design / (v_c * v_c * v_c);  // rate whose jerk radius is r8
+  const double rate_skip = rate_r8 * (1.0 + 1e-9);
   double best_v = -1.0;
   for (int b = 0; b <= kShapeBlends; ++b) {
     const double lam = in.corner_time * b / kShapeBlends;
     const double gf = ys_g + lam * (kGentleG - ys_g), hf = ys_h + lam * (kGentleH - ys_h);
     if (b > 0 && best_v >= v_c * (1.0 - 1e-10) &&
-        g2_rate_lower(beta, gf, hf) > rate_r8 * (1.0 + 1e-9))
+        (g2_rate_lower_quick(beta, gf, hf) > rate_skip || g2_rate_lower(beta, gf, hf) > rate_skip))
       continue;
     double tau, rate;
     if (b == 0) {
