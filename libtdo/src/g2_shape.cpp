@@ -227,6 +227,15 @@ double rate_lower(double beta, double gf, double hf, int pieces, int step) {
   return (f * kRateMargin) / (k * k);
 }
 
+// The curvature (sk) and curvature-rate (sf) samples of z that g2_shape refines.
+void shape_samples(const PlanarBez& z, UnitSamples* sk, UnitSamples* sf) {
+  for (int i = 0; i <= kRateSamples; ++i) {
+    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
+    sk->add(i, g2_kappa_of(d));
+    sf->add(i, g2_rate_of(z, d));
+  }
+}
+
 }  // namespace
 
 /** Tangent length per metre of radius of the G2 corner with half-deflection beta. */
@@ -262,11 +271,7 @@ double g2_rate(double beta) {
 void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
   const PlanarBez z = unit_bez(beta, gf, hf);
   UnitSamples sk, sf;
-  for (int i = 0; i <= kRateSamples; ++i) {
-    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
-    sk.add(i, g2_kappa_of(d));
-    sf.add(i, g2_rate_of(z, d));
-  }
+  shape_samples(z, &sk, &sf);
   const double k = refine_on_unit([&](double t) { return g2_kappa_at(z, t); }, sk) * kRateMargin;
   const double f = refine_on_unit([&](double t) { return g2_rate_at(z, t); }, sf) * kRateMargin;
   *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
@@ -275,6 +280,15 @@ void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
 
 double g2_rate_lower(double beta, double gf, double hf) {
   return rate_lower(beta, gf, hf, kBoundPieces, kBoundSampleStep);
+}
+
+void g2_shape_lower(double beta, double gf, double hf, double* tau_lower, double* f_lower) {
+  const PlanarBez z = unit_bez(beta, gf, hf);
+  UnitSamples sk, sf;
+  shape_samples(z, &sk, &sf);
+  // g2_shape refines from these samples: its maxima are at least the best ones.
+  *tau_lower = sk.best_v * kRateMargin;
+  *f_lower = sf.best_v * kRateMargin;
 }
 
 double g2_rate_lower_quick(double beta, double gf, double hf) {
