@@ -11,9 +11,11 @@ namespace {
 
 constexpr int kRateSamples = 32;  // t samples of the curvature-rate maximum search
 constexpr int kRateGolden = 40;   // golden-section steps refining it (bracket 1/16 -> 1e-10)
-constexpr double kRateMargin = 1.0 + 1e-6;  // safety factor on the found maximum
-constexpr int kBoundPieces = 16;            // t intervals of the curvature bound
-constexpr int kBoundSampleStep = 4;         // every 4th rate sample for the rate's lower bound
+constexpr double kRateMargin = 1.0 + 1e-6;      // safety factor on the found maximum
+constexpr int kBoundPieces = 16;                // t intervals of the curvature bound
+constexpr int kBoundSampleStep = 4;             // every 4th rate sample for the rate's lower bound
+constexpr int kQuickPieces = 2;                 // the same for the quick bound: 2 intervals and the
+constexpr int kQuickSampleStep = kRateSamples;  // rate samples at t = 0 and 1 only
 
 /**
  * The first Bezier of the unit-radius G2 corner in the plane (u_in = x axis, turning left by
@@ -180,13 +182,13 @@ Iv quad_range(double p0, double p1, double p2, double ta, double tb, double slac
 
 // Upper bound of the true curvature (signed, left turn) of z over [0, 1], with a relative margin
 // far above the rounding with which g2_kappa_of evaluates it at any t; HUGE_VAL when the speed
-// may vanish. On each of kBoundPieces intervals: ranges of the first derivative (quadratic in t)
+// may vanish. On each of `pieces` intervals: ranges of the first derivative (quadratic in t)
 // and second (linear) per axis, interval arithmetic for the cross product and the speed.
-double kappa_upper(const PlanarBez& z) {
+double kappa_upper(const PlanarBez& z, int pieces) {
   double best = 0.0;
-  for (int k = 0; k < kBoundPieces; ++k) {
-    const double ta = static_cast<double>(k) / kBoundPieces;
-    const double tb = static_cast<double>(k + 1) / kBoundPieces;
+  for (int k = 0; k < pieces; ++k) {
+    const double ta = static_cast<double>(k) / pieces;
+    const double tb = static_cast<double>(k + 1) / pieces;
     Iv d1[2], d2[2];
     for (int i = 0; i < 2; ++i) {
       // d1 = 3 (a + 2 (b - a) t + (a - 2 b + e) t^2), d2 = 6 ((b - a) + (e - 2 b + a) t).
@@ -208,6 +210,30 @@ double kappa_upper(const PlanarBez& z) {
     best = dmax(best, cross / (sp2 * sqrt(sp2)));
   }
   return best * (1.0 + 1e-9);
+}
+
+// A lower bound of g2_shape's rate: its rate samples every `step`, over kappa_upper on `pieces`.
+double rate_lower(double beta, double gf, double hf, int pieces, int step) {
+  const PlanarBez z = unit_bez(beta, gf, hf);
+  // g2_shape's rate is f / (k k): f its refined rate maximum (at least its best sample) times
+  // kRateMargin, k its refined curvature maximum (at most the true maximum, up to the rounding
+  // kappa_upper covers) times kRateMargin. Every operation below rounds the same way or towards a
+  // smaller result.
+  double f = 0.0;
+  for (int i = 0; i <= kRateSamples; i += step)
+    f = dmax(f, g2_rate_of(z, planar_deriv(z, static_cast<double>(i) / kRateSamples)));
+  const double k = kappa_upper(z, pieces) * kRateMargin;
+  if (!(k < HUGE_VAL) || !(k > 0.0)) return 0.0;
+  return (f * kRateMargin) / (k * k);
+}
+
+// The curvature (sk) and curvature-rate (sf) samples of z that g2_shape refines.
+void shape_samples(const PlanarBez& z, UnitSamples* sk, UnitSamples* sf) {
+  for (int i = 0; i <= kRateSamples; ++i) {
+    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
+    sk->add(i, g2_kappa_of(d));
+    sf->add(i, g2_rate_of(z, d));
+  }
 }
 
 }  // namespace
@@ -245,11 +271,7 @@ double g2_rate(double beta) {
 void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
   const PlanarBez z = unit_bez(beta, gf, hf);
   UnitSamples sk, sf;
-  for (int i = 0; i <= kRateSamples; ++i) {
-    const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
-    sk.add(i, g2_kappa_of(d));
-    sf.add(i, g2_rate_of(z, d));
-  }
+  shape_samples(z, &sk, &sf);
   const double k = refine_on_unit([&](double t) { return g2_kappa_at(z, t); }, sk) * kRateMargin;
   const double f = refine_on_unit([&](double t) { return g2_rate_at(z, t); }, sf) * kRateMargin;
   *tau = k;             // d = 1 has peak curvature k: radius 1/k, so d = k r
@@ -257,17 +279,20 @@ void g2_shape(double beta, double gf, double hf, double* tau, double* rate) {
 }
 
 double g2_rate_lower(double beta, double gf, double hf) {
+  return rate_lower(beta, gf, hf, kBoundPieces, kBoundSampleStep);
+}
+
+void g2_shape_lower(double beta, double gf, double hf, double* tau_lower, double* f_lower) {
   const PlanarBez z = unit_bez(beta, gf, hf);
-  // g2_shape's rate is f / (k k): f its refined rate maximum (at least its best sample) times
-  // kRateMargin, k its refined curvature maximum (at most the true maximum, up to the rounding
-  // kappa_upper covers) times kRateMargin. Every operation below rounds the same way or towards a
-  // smaller result.
-  double f = 0.0;
-  for (int i = 0; i <= kRateSamples; i += kBoundSampleStep)
-    f = dmax(f, g2_rate_of(z, planar_deriv(z, static_cast<double>(i) / kRateSamples)));
-  const double k = kappa_upper(z) * kRateMargin;
-  if (!(k < HUGE_VAL) || !(k > 0.0)) return 0.0;
-  return (f * kRateMargin) / (k * k);
+  UnitSamples sk, sf;
+  shape_samples(z, &sk, &sf);
+  // g2_shape refines from these samples: its maxima are at least the best ones.
+  *tau_lower = sk.best_v * kRateMargin;
+  *f_lower = sf.best_v * kRateMargin;
+}
+
+double g2_rate_lower_quick(double beta, double gf, double hf) {
+  return rate_lower(beta, gf, hf, kQuickPieces, kQuickSampleStep);
 }
 
 }  // namespace tdo_internal

@@ -25,11 +25,24 @@ double g2_rate(double beta);
 void g2_shape(double beta, double gf, double hf, double* tau, double* rate);
 
 /**
+ * Lower bounds of g2_shape(beta, gf, hf)'s tau and of tau^2 rate (its max|dkappa/ds| at tangent
+ * length 1), up to rounding: the best of the samples it refines. About a third of its cost.
+ */
+void g2_shape_lower(double beta, double gf, double hf, double* tau_lower, double* f_lower);
+
+/**
  * A lower bound of the rate g2_shape(beta, gf, hf) gives, bit for bit (its *rate is never
  * smaller): a few of its own curvature-rate samples over an interval bound of the peak curvature.
  * Costs about a third of g2_shape. 0 when no bound is found.
  */
 double g2_rate_lower(double beta, double gf, double hf);
+
+/**
+ * A looser lower bound of the same rate, bit for bit as sound: the rate samples at t = 0 and 1
+ * over the curvature bound on 2 intervals instead of 16. About a sixth of g2_rate_lower's cost;
+ * it decides where the rate lies far above what the caller asks (the common case).
+ */
+double g2_rate_lower_quick(double beta, double gf, double hf);
 
 }  // namespace tdo_internal
 

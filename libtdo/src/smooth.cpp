@@ -32,6 +32,7 @@
 #include "arena_typed.h"
 #include "g2_shape.h"
 #include "scalar.h"
+#include "smooth_clear.h"
 #include "tdo/collision.h"
 #include "vec3.h"
 
@@ -150,11 +151,14 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   if (in.mode == TDO_SMOOTHING_G2) {
     tdo_path_segment b[2];
     g2_corner(c.w, prev.u, c.u, c.gf, c.hf, c.t, entry, exit, b);
-    // Both halves must be clear: the one that failed the corner's last check goes first.
+    // Both halves must be clear: the one that failed the corner's last check goes first. The
+    // certificates answer as the exact check would; it runs when neither decides.
     for (int q = 0; q < 2; ++q) {
       const int i = q == 0 ? *first : 1 - *first;
       ++*checks;
-      if (!tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) {
+      if (bezier_surely_clear(in.grid, b[i].p, clearance, kClearTolerance)) continue;
+      if (bezier_surely_blocked(in.grid, b[i].p, clearance, i == 0 ? 1 : 0) ||
+          !tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) {
         *first = i;
         return 0;
       }
@@ -184,6 +188,51 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
   return 1;
 }
 
+/** What g2_choose's blends share. */
+struct Blends {
+  const tdo_smooth_input* in;
+  double beta, r8, v_c, half_room, j_design;
+};
+
+// Inner fractions of blend b (0: Yang-Sukkarieh, kShapeBlends: corner_time of the way to gentle).
+void blend_fractions(const Blends& s, int b, double* gf, double* hf) {
+  const double ys_g = kC2 * kC3, ys_h = kC3;
+  const double lam = s.in->corner_time * b / kShapeBlends;
+  *gf = ys_g + lam * (kGentleG - ys_g);
+  *hf = ys_h + lam * (kGentleH - ys_h);
+}
+
+// Speed of a blend's curve with the tangent length it can surely have, and its wanted radius.
+double blend_speed(const Blends& s, double tau, double rate, double* r_des) {
+  const double v_c = s.v_c;
+  *r_des = dmax(s.r8, sqrt(v_c * v_c * v_c * rate / s.j_design));
+  const double r = dmin(*r_des, s.half_room / tau);  // the radius it surely fits with
+  return dmin(sqrt(s.in->a_lat_max * r), cbrt(s.j_design * r * r / rate));
+}
+
+// True when v_last beats every middle blend's speed (b = 1 .. kShapeBlends - 1) by more than the
+// comparison's 1e-9. A blend's speed is at most its speed at r = half_room / tau, that is
+// min(sqrt(a_lat half_room / tau), cbrt(j_design half_room^2 / f)) with f = tau^2 rate, and its
+// tau and f are at least g2_shape_lower's (a 1e-6 margin covers the rounding).
+bool middle_blends_slower(const Blends& s, double v_last) {
+  for (int b = kShapeBlends - 1; b >= 1; --b) {
+    double gf, hf, tau_lower, f_lower;
+    blend_fractions(s, b, &gf, &hf);
+    g2_shape_lower(s.beta, gf, hf, &tau_lower, &f_lower);
+    const double upper = dmin(sqrt(s.in->a_lat_max * s.half_room / tau_lower),
+                              cbrt(s.j_design * s.half_room * s.half_room / f_lower));
+    if (!(v_last > upper * (1.0 + 1e-6) * (1.0 + 1e-9))) return false;
+  }
+  return true;
+}
+
+void take_blend(const Blends& s, int b, double tau, double rate, double r_des, Corner* k) {
+  blend_fractions(s, b, &k->gf, &k->hf);
+  k->tau = tau;
+  k->rate = rate;
+  k->r_des = r_des;
+}
+
 /**
  * Shape, tau, rate and wanted radius of a G2 corner. corner_time 0: the Yang-Sukkarieh shape, the
  * radius the larger of eq. 8's and the jerk radius for j_max. Otherwise the blends of it with the
@@ -195,44 +244,54 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
 void g2_choose(const tdo_smooth_input& in, double theta, double r8, double v_c, double half_room,
                Corner* k) {
   const double beta = 0.5 * theta;
-  const double ys_g = kC2 * kC3, ys_h = kC3;
   if (!(in.corner_time > 0.0)) {
-    k->gf = ys_g;
-    k->hf = ys_h;
+    k->gf = kC2 * kC3;
+    k->hf = kC3;
     k->tau = g2_tau(beta);
     k->rate = g2_rate(beta);
     k->r_des = dmax(r8, sqrt(v_c * v_c * v_c * k->rate / in.j_max));
     return;
   }
-  const double j_design = kTimeJerkShare * in.j_max;
+  const Blends s{&in, beta, r8, v_c, half_room, kTimeJerkShare * in.j_max};
   // A shape whose rate puts its jerk radius above r8 has r_des = that radius, so its speed is at
   // most min(.., cbrt(j_design r_des^2 / rate)) = v_c up to rounding: once the best speed is v_c,
-  // such a blend cannot pass the comparison below (it needs 1e-9 more) and is not computed.
-  const double rate_r8 = r8 * r8 * j_design / (v_c * v_c * v_c);  // rate whose jerk radius is r8
+  // such a blend cannot pass the comparison below (it needs 1e-9 more) and is not computed. Its
+  // rate is bounded from below, by the quick bound first (it mostly decides), then the tight one.
+  const double rate_r8 = r8 * r8 * s.j_design / (v_c * v_c * v_c);  // rate whose jerk radius is r8
+  const double rate_skip = rate_r8 * (1.0 + 1e-9);
+  double r_des;
   double best_v = -1.0;
-  for (int b = 0; b <= kShapeBlends; ++b) {
-    const double lam = in.corner_time * b / kShapeBlends;
-    const double gf = ys_g + lam * (kGentleG - ys_g), hf = ys_h + lam * (kGentleH - ys_h);
-    if (b > 0 && best_v >= v_c * (1.0 - 1e-10) &&
-        g2_rate_lower(beta, gf, hf) > rate_r8 * (1.0 + 1e-9))
-      continue;
-    double tau, rate;
-    if (b == 0) {
-      tau = g2_tau(beta);
-      rate = g2_rate(beta);
-    } else {
-      g2_shape(beta, gf, hf, &tau, &rate);
+  const double tau0 = g2_tau(beta), rate0 = g2_rate(beta);
+  const double v0 = blend_speed(s, tau0, rate0, &r_des);
+  if (v0 > best_v * (1.0 + 1e-9)) {
+    best_v = v0;
+    take_blend(s, 0, tau0, rate0, r_des, k);
+  }
+  // Below v_c the last blend is computed next: when it beats bounds of the middle ones' speeds,
+  // it is the one the comparisons would pick (skips drop only blends that cannot win).
+  double last_tau = 0.0, last_rate = 0.0;
+  if (best_v < v_c * (1.0 - 1e-10)) {
+    double gf, hf;
+    blend_fractions(s, kShapeBlends, &gf, &hf);
+    g2_shape(beta, gf, hf, &last_tau, &last_rate);
+    const double v = blend_speed(s, last_tau, last_rate, &r_des);
+    if (v > best_v * (1.0 + 1e-9) && middle_blends_slower(s, v)) {
+      take_blend(s, kShapeBlends, last_tau, last_rate, r_des, k);
+      return;
     }
-    const double r_des = dmax(r8, sqrt(v_c * v_c * v_c * rate / j_design));
-    const double r = dmin(r_des, half_room / tau);  // the radius it surely fits with
-    const double v = dmin(sqrt(in.a_lat_max * r), cbrt(j_design * r * r / rate));
+  }
+  for (int b = 1; b <= kShapeBlends; ++b) {
+    double gf, hf;
+    blend_fractions(s, b, &gf, &hf);
+    if (best_v >= v_c * (1.0 - 1e-10) &&
+        (g2_rate_lower_quick(beta, gf, hf) > rate_skip || g2_rate_lower(beta, gf, hf) > rate_skip))
+      continue;
+    double tau = last_tau, rate = last_rate;
+    if (b < kShapeBlends || !(last_tau > 0.0)) g2_shape(beta, gf, hf, &tau, &rate);
+    const double v = blend_speed(s, tau, rate, &r_des);
     if (v > best_v * (1.0 + 1e-9)) {
       best_v = v;
-      k->gf = gf;
-      k->hf = hf;
-      k->tau = tau;
-      k->rate = rate;
-      k->r_des = r_des;
+      take_blend(s, b, tau, rate, r_des, k);
     }
   }
 }

@@ -13,7 +13,9 @@
 namespace {
 
 using tdo_internal::g2_rate_lower;
+using tdo_internal::g2_rate_lower_quick;
 using tdo_internal::g2_shape;
+using tdo_internal::g2_shape_lower;
 using tdo_internal::kC2;
 using tdo_internal::kC3;
 
@@ -43,6 +45,46 @@ TEST(G2Shape, GivenRandomShapes_WhenRateBounded_ThenBoundNeverExceedsTheShapesRa
   }
   // The bound is useful (within a factor 2) for most deflections, not only valid.
   EXPECT_GT(bounded, 2000);
+}
+
+// The quick bound is as sound (so the skip below holds with it too) and, though looser, useful:
+// it serves where the rate lies far above the threshold, the common case in the smoothing.
+TEST(G2Shape, GivenRandomShapes_WhenQuickBound_ThenNeverAboveTheShapesRateAndOftenWithin16x) {
+  tdo_test::Rng rng(99);
+  int useful = 0;
+  for (int n = 0; n < 4000; ++n) {
+    const double beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
+    double gf = 0.0, hf = 0.0;
+    blend(rng.uniform(0.0, 1.0), &gf, &hf);
+    double tau = 0.0, rate = 0.0;
+    g2_shape(beta, gf, hf, &tau, &rate);
+    const double quick = g2_rate_lower_quick(beta, gf, hf);
+    ASSERT_GE(quick, 0.0);
+    ASSERT_LE(quick, rate) << "beta " << beta << " gf " << gf << " hf " << hf;
+    if (quick > rate / 16.0) ++useful;
+  }
+  EXPECT_GT(useful, 2000);  // more than half of the shapes
+}
+
+// g2_shape_lower bounds what the smoothing's last-blend shortcut needs (g2_choose): tau and
+// tau^2 rate (the rate at tangent length 1) from below, and mostly closely (its samples are the
+// ones g2_shape refines).
+TEST(G2Shape, GivenRandomShapes_WhenShapeLowerBounds_ThenBelowTauAndTau2RateAndMostlyClose) {
+  tdo_test::Rng rng(1207);
+  int close = 0;
+  for (int n = 0; n < 4000; ++n) {
+    const double beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
+    double gf = 0.0, hf = 0.0;
+    blend(rng.uniform(0.0, 1.0), &gf, &hf);
+    double tau = 0.0, rate = 0.0, tau_lower = 0.0, f_lower = 0.0;
+    g2_shape(beta, gf, hf, &tau, &rate);
+    g2_shape_lower(beta, gf, hf, &tau_lower, &f_lower);
+    const double f = tau * tau * rate;
+    ASSERT_LE(tau_lower, tau) << "beta " << beta << " gf " << gf << " hf " << hf;
+    ASSERT_LE(f_lower, f * (1.0 + 1e-12)) << "beta " << beta << " gf " << gf << " hf " << hf;
+    if (tau_lower > 0.98 * tau && f_lower > 0.9 * f) ++close;
+  }
+  EXPECT_GT(close, 3000);  // three quarters of the shapes
 }
 
 // smooth.cpp's speed of a blend with tau and rate (g2_choose).
