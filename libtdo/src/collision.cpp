@@ -702,6 +702,70 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
   return true;
 }
 
+// Bits of a brick's mask whose local coordinate on axis a (x: bit & 3, y: (bit >> 2) & 3,
+// z: bit >> 4) is in the 4-bit set m: kAxisBits[a][m].
+struct AxisBits {
+  uint64_t m[3][16];
+};
+constexpr AxisBits make_axis_bits() {
+  AxisBits t{};
+  const uint64_t one[3] = {0x1111111111111111u, 0x000F000F000F000Fu, 0xFFFFu};
+  const int shift[3] = {1, 4, 16};
+  for (int a = 0; a < 3; ++a)
+    for (unsigned m = 0; m < 16u; ++m)
+      for (int l = 0; l < 4; ++l)
+        if ((m >> l) & 1u) t.m[a][m] |= one[a] << (shift[a] * l);
+  return t;
+}
+constexpr AxisBits kAxisBits = make_axis_bits();
+
+// The cube loop of bricks_clear_hit for brick `brick`: for each cube in bit order far_apart at c,
+// then span_gap2 against lim^2, then the exact distance, by the same expressions, with the
+// per-axis parts computed once per brick. A cube's bounds are f[a][l] and f[a][l + 1] (l its
+// local coordinate: for_each_brick_cube's o + i res and o + (i + 1) res); far_apart holds when
+// one axis is far, so the cubes of far coordinates are left out of the mask (they pass); the
+// squared axis gaps are summed in span_gap2's order (0 + x, + y, + z). 0 and *hit: the first
+// cube closer than c.
+bool brick_cubes_clear(const tdo_grid* g, uint32_t brick, const double p0[3], const double p1[3],
+                       const SpanBox& sb, double c, double lim, uint32_t* hit) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
+  const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
+  const int64_t base[3] = {
+      static_cast<int64_t>(bx) * kBrickVoxels,
+      static_cast<int64_t>(rest % static_cast<uint32_t>(g->nby)) * kBrickVoxels,
+      static_cast<int64_t>(rest / static_cast<uint32_t>(g->nby)) * kBrickVoxels};
+  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  uint64_t m = g->brick_mask[brick];
+  for (int a = 0; a < 3; ++a) {
+    for (int l = 0; l <= kBrickVoxels; ++l)
+      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
+    unsigned near = 0u;
+    for (int l = 0; l < kBrickVoxels; ++l) {
+      const double lo = f[a][l], hi = f[a][l + 1];
+      if (!(lo - c > sb.mx[a] || hi + c < sb.mn[a])) near |= 1u << l;
+      const double gp = dmax(lo - sb.mx[a], 0.0) + dmax(sb.mn[a] - hi, 0.0);
+      g2[a][l] = gp * gp;
+    }
+    m &= kAxisBits.m[a][near];
+  }
+  while (m != 0u) {
+    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
+    m &= m - 1u;
+    const uint32_t l[3] = {b & 3u, (b >> 2) & 3u, b >> 4};
+    double s = 0.0;
+    for (int a = 0; a < 3; ++a) s += g2[a][l[a]];
+    if (s >= lim * lim) continue;  // box_clear's quick test
+    const double lo[3] = {f[0][l[0]], f[1][l[1]], f[2][l[2]]};
+    const double hi[3] = {f[0][l[0] + 1], f[1][l[1] + 1], f[2][l[2] + 1]};
+    if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) continue;
+    *hit = cube_index(g, lo);
+    return false;
+  }
+  return true;
+}
+
 // 1 when every surface cube keeps clearance c from [p0, p1], 0 when one does not (the cube that
 // fails it goes to *hit), -1 without an index. Only bricks closer than c (or touching) are visited,
 // in any order; for_each_brick_within leaves out only bricks this skips by their gap.
@@ -712,13 +776,7 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
   const SpanBox sb = span_box(p0, p1);
   const auto visit = [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
-    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
-      if (far_apart(p0, p1, lo, hi, c)) return true;
-      if (span_gap2(sb, lo, hi) >= lim * lim) return true;  // box_clear's quick test
-      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
-      *hit = cube_index(g, lo);
-      return false;
-    });
+    return brick_cubes_clear(g, k.brick, p0, p1, sb, c, lim, hit);
   };
   // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
   const bool ok = c > kWithinMinVoxels * g->desc.res
