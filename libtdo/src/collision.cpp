@@ -580,34 +580,49 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // it (*bst only falls during the brick).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
                       const SpanBox& sb, double tol, bool point, double* bst) {
-  uint64_t keep = ~uint64_t{0};
   const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
+  const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
+                           static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
+                           static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
+  uint64_t m = g->brick_mask[c.brick];
   if (*bst < 64.0 * d.res) {
-    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-    const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
-    const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
-                             static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
-                             static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
     int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       lo[a] = static_cast<int64_t>(floor((sb.mn[a] - *bst - o[a]) / d.res)) - 1 - base[a];
       hi[a] = static_cast<int64_t>(floor((sb.mx[a] + *bst - o[a]) / d.res)) + 1 - base[a];
     }
-    keep = brick_local_mask(lo, hi);
+    m &= brick_local_mask(lo, hi);
   }
-  for_each_brick_cube(
-      g, c.brick,
-      [&](const double* lo, const double* hi) {
-        if (far_apart(p0, p1, lo, hi, *bst)) return true;
-        if (!point) {
-          const double bt = *bst + tol;
-          if (span_gap2(sb, lo, hi) >= bt * bt) return true;
-        }
-        const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
-        if (d2 < *bst * *bst) *bst = sqrt(d2);
-        return *bst > 0.0;
-      },
-      keep);
+  // The cube faces (for_each_brick_cube's expressions) and squared span gaps (span_gap2's) per
+  // axis and local coordinate, once per brick; per cube the same tests in the same order.
+  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  for (int a = 0; a < 3; ++a) {
+    for (int l = 0; l <= kBrickVoxels; ++l)
+      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
+    for (int l = 0; l < kBrickVoxels && !point; ++l) {
+      const double gp = dmax(f[a][l] - sb.mx[a], 0.0) + dmax(sb.mn[a] - f[a][l + 1], 0.0);
+      g2[a][l] = gp * gp;
+    }
+  }
+  while (m != 0u) {
+    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
+    m &= m - 1u;
+    const uint32_t l[3] = {b & 3u, (b >> 2) & 3u, b >> 4};
+    const double lo[3] = {f[0][l[0]], f[1][l[1]], f[2][l[2]]};
+    const double hi[3] = {f[0][l[0] + 1], f[1][l[1] + 1], f[2][l[2] + 1]};
+    if (far_apart(p0, p1, lo, hi, *bst)) continue;
+    if (!point) {
+      const double bt = *bst + tol;
+      double s2 = 0.0;
+      for (int a = 0; a < 3; ++a) s2 += g2[a][l[a]];
+      if (s2 >= bt * bt) continue;
+    }
+    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+    if (d2 < *bst * *bst) *bst = sqrt(d2);
+    if (!(*bst > 0.0)) return;
+  }
 }
 
 // min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
