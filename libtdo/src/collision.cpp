@@ -676,6 +676,7 @@ inline double brick_axis_gap(double o, double res, int64_t b, double mn, double 
 }
 
 constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
+constexpr int64_t kWithinAxisCache = 8;   // x and y bricks whose gaps a walk computes once
 
 // for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
 // (lim > 0), which a caller skipping those never looks at; the others in the same order with the
@@ -697,19 +698,40 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
   double mn[3], mx[3];
   brick_span(p0, p1, lo, hi, mn, mx);
   const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  // The squared whole-brick gaps of the first kWithinAxisCache x and y bricks, once per walk.
+  double gx2c[kWithinAxisCache], gy2c[kWithinAxisCache];
+  for (int64_t x = lo[0]; x <= hi[0] && x - lo[0] < kWithinAxisCache; ++x) {
+    const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
+    gx2c[x - lo[0]] = gx * gx;
+  }
+  for (int64_t y = lo[1]; y <= hi[1] && y - lo[1] < kWithinAxisCache; ++y) {
+    const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
+    gy2c[y - lo[1]] = gy * gy;
+  }
   for (int64_t z = lo[2]; z <= hi[2]; ++z) {
     const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
     const double gz2 = gz * gz;
     for (int64_t y = lo[1]; y <= hi[1]; ++y) {
-      const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
-      const double gy2 = gy * gy;
+      double gy2 = 0.0;
+      if (y - lo[1] < kWithinAxisCache) {
+        gy2 = gy2c[y - lo[1]];
+      } else {
+        const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
+        gy2 = gy * gy;
+      }
       if (gy2 + gz2 >= lim2) continue;  // the whole row
       const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
       for (int64_t x = lo[0]; x <= hi[0]; ++x) {
         const uint32_t b = static_cast<uint32_t>(row + x);
         if (g->brick_mask[b] == 0u) continue;
-        const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
-        if ((gx * gx + gy2) + gz2 >= lim2) continue;
+        double gx2 = 0.0;
+        if (x - lo[0] < kWithinAxisCache) {
+          gx2 = gx2c[x - lo[0]];
+        } else {
+          const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
+          gx2 = gx * gx;
+        }
+        if ((gx2 + gy2) + gz2 >= lim2) continue;
         if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
       }
     }
