@@ -80,7 +80,7 @@ uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const doub
                                double lim, BrickCand* cand) {
   const double lim2 = lim * lim;
   uint32_t count = 0;
-  const bool fits = for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
+  const auto keep = [&](const BrickCand& c) {
     if (c.gap2 > 0.0 && c.gap2 >= lim2) return true;
     if (count == kMaxBrickCands) return false;
     // Insertion by (gap2, brick): the bricks come in increasing index already.
@@ -91,7 +91,11 @@ uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const doub
     }
     cand[at] = c;
     return true;
-  });
+  };
+  // The pruned walk leaves out only bricks `keep` skips: the same bricks in the same order.
+  const bool fits = r > kWithinMinVoxels * g->desc.res
+                        ? for_each_brick_within(g, p0, p1, r, lim, keep)
+                        : for_each_brick_near(g, p0, p1, r, keep);
   return fits ? count : kMaxBrickCands + 1u;
 }
 
