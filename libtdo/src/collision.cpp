@@ -742,7 +742,7 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
     return brick_cubes_clear(g, k.brick, p0, p1, sb, c, lim, hit);
   };
   // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
-  const bool ok = c > kWithinMinVoxels * g->desc.res
+  const bool ok = c > kWithinMinVoxels * g->desc.res && lim * lim > 0.0
                       ? for_each_brick_within(g, p0, p1, c, lim, visit)
                       : for_each_brick_near(g, p0, p1, c, visit);
   return ok ? 1 : 0;

@@ -133,13 +133,14 @@ constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each
 constexpr int64_t kWithinAxisCache = 8;   // x and y bricks whose gaps a walk computes once
 
 // for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
-// (lim > 0), which a caller skipping those never looks at; the others in the same order with the
-// same gap2. A brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick
-// gaps of brick_axis_gap (each at most the tight one) the same sums are no larger (rounded
-// addition and squaring of non-negative numbers are monotone), and fl(gy^2 + gz^2) is no larger
-// still (gx^2 >= 0). So a row of bricks whose whole-brick fl(gy^2 + gz^2) reaches lim^2, or a
-// brick whose whole-brick sum does, has gap2 >= lim^2 > 0 (the library builds with
-// -ffp-contract=off: no fused multiply-add changes these roundings).
+// (lim^2 > 0: the callers check it; it calls no other walk, which keeps the stack chain short),
+// which a caller skipping those never looks at; the others in the same order with the same gap2. A
+// brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick gaps of
+// brick_axis_gap (each at most the tight one) the same sums are no larger (rounded addition and
+// squaring of non-negative numbers are monotone), and fl(gy^2 + gz^2) is no larger still (gx^2 >=
+// 0). So a row of bricks whose whole-brick fl(gy^2 + gz^2) reaches lim^2, or a brick whose
+// whole-brick sum does, has gap2 >= lim^2 > 0 (the library builds with -ffp-contract=off: no fused
+// multiply-add changes these roundings).
 template <class F>
 bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p1[3], double r,
                            double lim, F&& f) {
@@ -148,7 +149,6 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
   int64_t lo[3], hi[3];
   if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
   const double lim2 = lim * lim;
-  if (!(lim2 > 0.0)) return for_each_brick_near(g, p0, p1, r, f);
   double mn[3], mx[3];
   brick_span(p0, p1, lo, hi, mn, mx);
   const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
