@@ -132,6 +132,15 @@ inline double brick_axis_gap(double o, double res, int64_t b, double mn, double 
 constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
 constexpr int64_t kWithinAxisCache = 8;   // x and y bricks whose gaps a walk computes once
 
+// brick_axis_gap(o, res, b, mn, mx)^2, read from cache[b - lo] for the first kWithinAxisCache
+// bricks from lo (filled with the same expression).
+inline double axis_gap2(const double* cache, int64_t lo, double o, double res, int64_t b, double mn,
+                        double mx) {
+  if (b - lo < kWithinAxisCache) return cache[b - lo];
+  const double gp = brick_axis_gap(o, res, b, mn, mx);
+  return gp * gp;
+}
+
 // for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
 // (lim^2 > 0: the callers check it; it calls no other walk, which keeps the stack chain short),
 // which a caller skipping those never looks at; the others in the same order with the same gap2. A
@@ -166,25 +175,13 @@ bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p
     const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
     const double gz2 = gz * gz;
     for (int64_t y = lo[1]; y <= hi[1]; ++y) {
-      double gy2 = 0.0;
-      if (y - lo[1] < kWithinAxisCache) {
-        gy2 = gy2c[y - lo[1]];
-      } else {
-        const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
-        gy2 = gy * gy;
-      }
+      const double gy2 = axis_gap2(gy2c, lo[1], o[1], d.res, y, mn[1], mx[1]);
       if (gy2 + gz2 >= lim2) continue;  // the whole row
       const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
       for (int64_t x = lo[0]; x <= hi[0]; ++x) {
         const uint32_t b = static_cast<uint32_t>(row + x);
         if (g->brick_mask[b] == 0u) continue;
-        double gx2 = 0.0;
-        if (x - lo[0] < kWithinAxisCache) {
-          gx2 = gx2c[x - lo[0]];
-        } else {
-          const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
-          gx2 = gx * gx;
-        }
+        const double gx2 = axis_gap2(gx2c, lo[0], o[0], d.res, x, mn[0], mx[0]);
         if ((gx2 + gy2) + gz2 >= lim2) continue;
         if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
       }
