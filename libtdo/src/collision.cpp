@@ -580,34 +580,49 @@ double brick_tol(const tdo_grid* g, const double p0[3], const double p1[3], doub
 // it (*bst only falls during the brick).
 inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3], const double p1[3],
                       const SpanBox& sb, double tol, bool point, double* bst) {
-  uint64_t keep = ~uint64_t{0};
   const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
+  const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
+                           static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
+                           static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
+  uint64_t m = g->brick_mask[c.brick];
   if (*bst < 64.0 * d.res) {
-    const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-    const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
-    const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
-                             static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
-                             static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
     int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       lo[a] = static_cast<int64_t>(floor((sb.mn[a] - *bst - o[a]) / d.res)) - 1 - base[a];
       hi[a] = static_cast<int64_t>(floor((sb.mx[a] + *bst - o[a]) / d.res)) + 1 - base[a];
     }
-    keep = brick_local_mask(lo, hi);
+    m &= brick_local_mask(lo, hi);
   }
-  for_each_brick_cube(
-      g, c.brick,
-      [&](const double* lo, const double* hi) {
-        if (far_apart(p0, p1, lo, hi, *bst)) return true;
-        if (!point) {
-          const double bt = *bst + tol;
-          if (span_gap2(sb, lo, hi) >= bt * bt) return true;
-        }
-        const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
-        if (d2 < *bst * *bst) *bst = sqrt(d2);
-        return *bst > 0.0;
-      },
-      keep);
+  // The cube faces (for_each_brick_cube's expressions) and squared span gaps (span_gap2's) per
+  // axis and local coordinate, once per brick; per cube the same tests in the same order.
+  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  for (int a = 0; a < 3; ++a) {
+    for (int l = 0; l <= kBrickVoxels; ++l)
+      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
+    for (int l = 0; l < kBrickVoxels && !point; ++l) {
+      const double gp = dmax(f[a][l] - sb.mx[a], 0.0) + dmax(sb.mn[a] - f[a][l + 1], 0.0);
+      g2[a][l] = gp * gp;
+    }
+  }
+  while (m != 0u) {
+    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
+    m &= m - 1u;
+    const uint32_t l[3] = {b & 3u, (b >> 2) & 3u, b >> 4};
+    const double lo[3] = {f[0][l[0]], f[1][l[1]], f[2][l[2]]};
+    const double hi[3] = {f[0][l[0] + 1], f[1][l[1] + 1], f[2][l[2] + 1]};
+    if (far_apart(p0, p1, lo, hi, *bst)) continue;
+    if (!point) {
+      const double bt = *bst + tol;
+      double s2 = 0.0;
+      for (int a = 0; a < 3; ++a) s2 += g2[a][l[a]];
+      if (s2 >= bt * bt) continue;
+    }
+    const double d2 = point ? point_box_d2(p0, lo, hi) : segment_box_d2(p0, p1, lo, hi);
+    if (d2 < *bst * *bst) *bst = sqrt(d2);
+    if (!(*bst > 0.0)) return;
+  }
 }
 
 // min(*best, distance from [p0, p1] to the surface cubes within r of it) through the brick
@@ -650,54 +665,66 @@ inline uint32_t cube_index(const tdo_grid* g, const double lo[3]) {
   return static_cast<uint32_t>(v[0] + v[1] * g->stride_y + v[2] * g->stride_z);
 }
 
-// Gap (m) on one axis between the span [mn, mx] and the whole brick number `b` of that axis, by
-// brick_gap2's expressions with the brick's own faces (local voxels 0 and 4) in place of
-// its tight box's (local voxels ci >= 0 and cj <= 4): the products and sums are monotone in the
-// voxel index, so this face pair lies outside the tight one and the gap is at most the tight gap.
-inline double brick_axis_gap(double o, double res, int64_t b, double mn, double mx) {
-  const double blo = o + static_cast<double>(b * kBrickVoxels) * res;
-  const double bhi = o + static_cast<double>(b * kBrickVoxels + kBrickVoxels) * res;
-  return (blo - mx > 0.0 ? blo - mx : 0.0) + (mn - bhi > 0.0 ? mn - bhi : 0.0);
+// Bits of a brick's mask whose local coordinate on axis a (x: bit & 3, y: (bit >> 2) & 3,
+// z: bit >> 4) is in the 4-bit set m: kAxisBits[a][m].
+struct AxisBits {
+  uint64_t m[3][16];
+};
+constexpr AxisBits make_axis_bits() {
+  AxisBits t{};
+  const uint64_t one[3] = {0x1111111111111111u, 0x000F000F000F000Fu, 0xFFFFu};
+  const int shift[3] = {1, 4, 16};
+  for (int a = 0; a < 3; ++a)
+    for (unsigned m = 0; m < 16u; ++m)
+      for (int l = 0; l < 4; ++l)
+        if ((m >> l) & 1u) t.m[a][m] |= one[a] << (shift[a] * l);
+  return t;
 }
+constexpr AxisBits kAxisBits = make_axis_bits();
 
-constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
-
-// for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
-// (lim > 0), which a caller skipping those never looks at; the others in the same order with the
-// same gap2. A brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick
-// gaps of brick_axis_gap (each at most the tight one) the same sums are no larger (rounded
-// addition and squaring of non-negative numbers are monotone), and fl(gy^2 + gz^2) is no larger
-// still (gx^2 >= 0). So a row of bricks whose whole-brick fl(gy^2 + gz^2) reaches lim^2, or a
-// brick whose whole-brick sum does, has gap2 >= lim^2 > 0 (the library builds with
-// -ffp-contract=off: no fused multiply-add changes these roundings).
-template <class F>
-bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p1[3], double r,
-                           double lim, F&& f) {
+// The cube loop of bricks_clear_hit for brick `brick`: for each cube in bit order far_apart at c,
+// then span_gap2 against lim^2, then the exact distance, by the same expressions, with the
+// per-axis parts computed once per brick. A cube's bounds are f[a][l] and f[a][l + 1] (l its
+// local coordinate: for_each_brick_cube's o + i res and o + (i + 1) res); far_apart holds when
+// one axis is far, so the cubes of far coordinates are left out of the mask (they pass); the
+// squared axis gaps are summed in span_gap2's order (0 + x, + y, + z). 0 and *hit: the first
+// cube closer than c.
+bool brick_cubes_clear(const tdo_grid* g, uint32_t brick, const double p0[3], const double p1[3],
+                       const SpanBox& sb, double c, double lim, uint32_t* hit) {
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  int64_t lo[3], hi[3];
-  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
-  const double lim2 = lim * lim;
-  if (!(lim2 > 0.0)) return for_each_brick_near(g, p0, p1, r, f);
-  double mn[3], mx[3];
-  brick_span(p0, p1, lo, hi, mn, mx);
-  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
-  for (int64_t z = lo[2]; z <= hi[2]; ++z) {
-    const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
-    const double gz2 = gz * gz;
-    for (int64_t y = lo[1]; y <= hi[1]; ++y) {
-      const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
-      const double gy2 = gy * gy;
-      if (gy2 + gz2 >= lim2) continue;  // the whole row
-      const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
-      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
-        const uint32_t b = static_cast<uint32_t>(row + x);
-        if (g->brick_mask[b] == 0u) continue;
-        const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
-        if ((gx * gx + gy2) + gz2 >= lim2) continue;
-        if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
-      }
+  const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
+  const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
+  const int64_t base[3] = {
+      static_cast<int64_t>(bx) * kBrickVoxels,
+      static_cast<int64_t>(rest % static_cast<uint32_t>(g->nby)) * kBrickVoxels,
+      static_cast<int64_t>(rest / static_cast<uint32_t>(g->nby)) * kBrickVoxels};
+  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  uint64_t m = g->brick_mask[brick];
+  for (int a = 0; a < 3; ++a) {
+    for (int l = 0; l <= kBrickVoxels; ++l)
+      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
+    unsigned near = 0u;
+    for (int l = 0; l < kBrickVoxels; ++l) {
+      const double lo = f[a][l], hi = f[a][l + 1];
+      if (!(lo - c > sb.mx[a] || hi + c < sb.mn[a])) near |= 1u << l;
+      const double gp = dmax(lo - sb.mx[a], 0.0) + dmax(sb.mn[a] - hi, 0.0);
+      g2[a][l] = gp * gp;
     }
+    m &= kAxisBits.m[a][near];
+  }
+  while (m != 0u) {
+    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
+    m &= m - 1u;
+    const uint32_t l[3] = {b & 3u, (b >> 2) & 3u, b >> 4};
+    double s = 0.0;
+    for (int a = 0; a < 3; ++a) s += g2[a][l[a]];
+    if (s >= lim * lim) continue;  // box_clear's quick test
+    const double lo[3] = {f[0][l[0]], f[1][l[1]], f[2][l[2]]};
+    const double hi[3] = {f[0][l[0] + 1], f[1][l[1] + 1], f[2][l[2] + 1]};
+    if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) continue;
+    *hit = cube_index(g, lo);
+    return false;
   }
   return true;
 }
@@ -712,16 +739,10 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
   const SpanBox sb = span_box(p0, p1);
   const auto visit = [&](const BrickCand& k) {
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
-    return for_each_brick_cube(g, k.brick, [&](const double* lo, const double* hi) {
-      if (far_apart(p0, p1, lo, hi, c)) return true;
-      if (span_gap2(sb, lo, hi) >= lim * lim) return true;  // box_clear's quick test
-      if (!violates(segment_box_d2(p0, p1, lo, hi, c * c), c)) return true;
-      *hit = cube_index(g, lo);
-      return false;
-    });
+    return brick_cubes_clear(g, k.brick, p0, p1, sb, c, lim, hit);
   };
   // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
-  const bool ok = c > kWithinMinVoxels * g->desc.res
+  const bool ok = c > kWithinMinVoxels * g->desc.res && lim * lim > 0.0
                       ? for_each_brick_within(g, p0, p1, c, lim, visit)
                       : for_each_brick_near(g, p0, p1, c, visit);
   return ok ? 1 : 0;

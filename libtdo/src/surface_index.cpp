@@ -76,11 +76,14 @@ void surface_index_set(tdo_grid* g, int64_t i, int64_t j, int64_t k, bool on) {
   g->brick_box[b] = pack_box(m);
 }
 
-uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const double p1[3], double r,
-                               double lim, BrickCand* cand) {
-  const double lim2 = lim * lim;
-  uint32_t count = 0;
-  const bool fits = for_each_brick_near(g, p0, p1, r, [&](const BrickCand& c) {
+namespace {
+
+// surface_bricks_sorted's insertion of one brick (gap2 below lim2 or 0) into cand.
+struct SortedKeep {
+  BrickCand* cand;
+  double lim2;
+  uint32_t count;
+  bool operator()(const BrickCand& c) {
     if (c.gap2 > 0.0 && c.gap2 >= lim2) return true;
     if (count == kMaxBrickCands) return false;
     // Insertion by (gap2, brick): the bricks come in increasing index already.
@@ -91,8 +94,30 @@ uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const doub
     }
     cand[at] = c;
     return true;
-  });
-  return fits ? count : kMaxBrickCands + 1u;
+  }
+};
+
+// The two walks in frames of their own, side by side on the stack (not nested).
+__attribute__((noinline)) bool sorted_near(const tdo_grid* g, const double p0[3],
+                                           const double p1[3], double r, SortedKeep* k) {
+  return for_each_brick_near(g, p0, p1, r, *k);
+}
+__attribute__((noinline)) bool sorted_within(const tdo_grid* g, const double p0[3],
+                                             const double p1[3], double r, double lim,
+                                             SortedKeep* k) {
+  return for_each_brick_within(g, p0, p1, r, lim, *k);
+}
+
+}  // namespace
+
+uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                               double lim, BrickCand* cand) {
+  SortedKeep keep{cand, lim * lim, 0u};
+  // The pruned walk leaves out only bricks `keep` skips: the same bricks in the same order.
+  const bool fits = r > kWithinMinVoxels * g->desc.res && keep.lim2 > 0.0
+                        ? sorted_within(g, p0, p1, r, lim, &keep)
+                        : sorted_near(g, p0, p1, r, &keep);
+  return fits ? keep.count : kMaxBrickCands + 1u;
 }
 
 }  // namespace tdo_internal

@@ -119,6 +119,77 @@ bool for_each_brick_near(const tdo_grid* g, const double p0[3], const double p1[
   return true;
 }
 
+// Gap (m) on one axis between the span [mn, mx] and the whole brick number `b` of that axis, by
+// brick_gap2's expressions with the brick's own faces (local voxels 0 and 4) in place of
+// its tight box's (local voxels ci >= 0 and cj <= 4): the products and sums are monotone in the
+// voxel index, so this face pair lies outside the tight one and the gap is at most the tight gap.
+inline double brick_axis_gap(double o, double res, int64_t b, double mn, double mx) {
+  const double blo = o + static_cast<double>(b * kBrickVoxels) * res;
+  const double bhi = o + static_cast<double>(b * kBrickVoxels + kBrickVoxels) * res;
+  return (blo - mx > 0.0 ? blo - mx : 0.0) + (mn - bhi > 0.0 ? mn - bhi : 0.0);
+}
+
+constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
+constexpr int64_t kWithinAxisCache = 8;   // x and y bricks whose gaps a walk computes once
+
+// brick_axis_gap(o, res, b, mn, mx)^2, read from cache[b - lo] for the first kWithinAxisCache
+// bricks from lo (filled with the same expression).
+inline double axis_gap2(const double* cache, int64_t lo, double o, double res, int64_t b, double mn,
+                        double mx) {
+  if (b - lo < kWithinAxisCache) return cache[b - lo];
+  const double gp = brick_axis_gap(o, res, b, mn, mx);
+  return gp * gp;
+}
+
+// for_each_brick_near(g, p0, p1, r, f) without the bricks whose gap2 certainly reaches lim^2
+// (lim^2 > 0: the callers check it; it calls no other walk, which keeps the stack chain short),
+// which a caller skipping those never looks at; the others in the same order with the same gap2. A
+// brick's gap2 is fl(fl(gx^2 + gy^2) + gz^2) of its tight gaps; with the whole-brick gaps of
+// brick_axis_gap (each at most the tight one) the same sums are no larger (rounded addition and
+// squaring of non-negative numbers are monotone), and fl(gy^2 + gz^2) is no larger still (gx^2 >=
+// 0). So a row of bricks whose whole-brick fl(gy^2 + gz^2) reaches lim^2, or a brick whose
+// whole-brick sum does, has gap2 >= lim^2 > 0 (the library builds with -ffp-contract=off: no fused
+// multiply-add changes these roundings).
+template <class F>
+bool for_each_brick_within(const tdo_grid* g, const double p0[3], const double p1[3], double r,
+                           double lim, F&& f) {
+  const tdo_grid_desc& d = g->desc;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  int64_t lo[3], hi[3];
+  if (!span_voxels(g, p0, p1, r, lo, hi)) return true;
+  const double lim2 = lim * lim;
+  double mn[3], mx[3];
+  brick_span(p0, p1, lo, hi, mn, mx);
+  const int32_t nb[3] = {g->nbx, g->nby, g->nbz};
+  // The squared whole-brick gaps of the first kWithinAxisCache x and y bricks, once per walk.
+  double gx2c[kWithinAxisCache], gy2c[kWithinAxisCache];
+  for (int64_t x = lo[0]; x <= hi[0] && x - lo[0] < kWithinAxisCache; ++x) {
+    const double gx = brick_axis_gap(o[0], d.res, x, mn[0], mx[0]);
+    gx2c[x - lo[0]] = gx * gx;
+  }
+  for (int64_t y = lo[1]; y <= hi[1] && y - lo[1] < kWithinAxisCache; ++y) {
+    const double gy = brick_axis_gap(o[1], d.res, y, mn[1], mx[1]);
+    gy2c[y - lo[1]] = gy * gy;
+  }
+  for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+    const double gz = brick_axis_gap(o[2], d.res, z, mn[2], mx[2]);
+    const double gz2 = gz * gz;
+    for (int64_t y = lo[1]; y <= hi[1]; ++y) {
+      const double gy2 = axis_gap2(gy2c, lo[1], o[1], d.res, y, mn[1], mx[1]);
+      if (gy2 + gz2 >= lim2) continue;  // the whole row
+      const int64_t row = nb[0] * (y + static_cast<int64_t>(nb[1]) * z);
+      for (int64_t x = lo[0]; x <= hi[0]; ++x) {
+        const uint32_t b = static_cast<uint32_t>(row + x);
+        if (g->brick_mask[b] == 0u) continue;
+        const double gx2 = axis_gap2(gx2c, lo[0], o[0], d.res, x, mn[0], mx[0]);
+        if ((gx2 + gy2) + gz2 >= lim2) continue;
+        if (!f(BrickCand{brick_gap2(g, b, x, y, z, mn, mx), b})) return false;
+      }
+    }
+  }
+  return true;
+}
+
 // The bricks of for_each_brick_near whose gap is below lim (m) or 0, sorted by gap2 then index,
 // into cand[kMaxBrickCands]. Returns their number, or kMaxBrickCands + 1 when there are more
 // (cand is then unusable).
