@@ -242,6 +242,17 @@ inline SpanBox span_box(const double p0[3], const double p1[3]) {
   return s;
 }
 
+// Squared gap (m^2) per axis and local coordinate between the span box and a brick's cubes
+// (brick_faces): span_gap2's per-axis terms, which it sums in axis order.
+inline void brick_gaps2(const double f[3][kBrickVoxels + 1], const SpanBox& sb,
+                        double g2[3][kBrickVoxels]) {
+  for (int a = 0; a < 3; ++a)
+    for (int l = 0; l < kBrickVoxels; ++l) {
+      const double gp = dmax(f[a][l] - sb.mx[a], 0.0) + dmax(sb.mn[a] - f[a][l + 1], 0.0);
+      g2[a][l] = gp * gp;
+    }
+}
+
 // far_apart of box b and the span box with distance r, read from the box itself (the same
 // comparisons, without copying the bounds first: most boxes stop here).
 inline bool span_far(const tdo_box& b, const SpanBox& sb, double r) {
@@ -582,10 +593,12 @@ inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3],
                       const SpanBox& sb, double tol, bool point, double* bst) {
   const tdo_grid_desc& d = g->desc;
   const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
-  const int64_t base[3] = {static_cast<int64_t>(c.brick % nbx) * kBrickVoxels,
-                           static_cast<int64_t>(c.brick / nbx % nby) * kBrickVoxels,
-                           static_cast<int64_t>(c.brick / nbx / nby) * kBrickVoxels};
+  // The cube faces and squared span gaps per axis and local coordinate, once per brick; per cube
+  // the same tests in the same order.
+  int64_t base[3];
+  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  brick_faces(g, c.brick, base, f);
+  if (!point) brick_gaps2(f, sb, g2);
   uint64_t m = g->brick_mask[c.brick];
   if (*bst < 64.0 * d.res) {
     int64_t lo[3], hi[3];
@@ -594,17 +607,6 @@ inline void brick_min(const tdo_grid* g, const BrickCand& c, const double p0[3],
       hi[a] = static_cast<int64_t>(floor((sb.mx[a] + *bst - o[a]) / d.res)) + 1 - base[a];
     }
     m &= brick_local_mask(lo, hi);
-  }
-  // The cube faces (for_each_brick_cube's expressions) and squared span gaps (span_gap2's) per
-  // axis and local coordinate, once per brick; per cube the same tests in the same order.
-  double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
-  for (int a = 0; a < 3; ++a) {
-    for (int l = 0; l <= kBrickVoxels; ++l)
-      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
-    for (int l = 0; l < kBrickVoxels && !point; ++l) {
-      const double gp = dmax(f[a][l] - sb.mx[a], 0.0) + dmax(sb.mn[a] - f[a][l + 1], 0.0);
-      g2[a][l] = gp * gp;
-    }
   }
   while (m != 0u) {
     const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
@@ -685,32 +687,21 @@ constexpr AxisBits kAxisBits = make_axis_bits();
 // The cube loop of bricks_clear_hit for brick `brick`: for each cube in bit order far_apart at c,
 // then span_gap2 against lim^2, then the exact distance, by the same expressions, with the
 // per-axis parts computed once per brick. A cube's bounds are f[a][l] and f[a][l + 1] (l its
-// local coordinate: for_each_brick_cube's o + i res and o + (i + 1) res); far_apart holds when
+// local coordinate: brick_faces); far_apart holds when
 // one axis is far, so the cubes of far coordinates are left out of the mask (they pass); the
 // squared axis gaps are summed in span_gap2's order (0 + x, + y, + z). 0 and *hit: the first
 // cube closer than c.
 bool brick_cubes_clear(const tdo_grid* g, uint32_t brick, const double p0[3], const double p1[3],
                        const SpanBox& sb, double c, double lim, uint32_t* hit) {
-  const tdo_grid_desc& d = g->desc;
-  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
-  const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
-  const int64_t base[3] = {
-      static_cast<int64_t>(bx) * kBrickVoxels,
-      static_cast<int64_t>(rest % static_cast<uint32_t>(g->nby)) * kBrickVoxels,
-      static_cast<int64_t>(rest / static_cast<uint32_t>(g->nby)) * kBrickVoxels};
+  int64_t base[3];
   double f[3][kBrickVoxels + 1], g2[3][kBrickVoxels];
+  brick_faces(g, brick, base, f);
+  brick_gaps2(f, sb, g2);
   uint64_t m = g->brick_mask[brick];
   for (int a = 0; a < 3; ++a) {
-    for (int l = 0; l <= kBrickVoxels; ++l)
-      f[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
     unsigned near = 0u;
-    for (int l = 0; l < kBrickVoxels; ++l) {
-      const double lo = f[a][l], hi = f[a][l + 1];
-      if (!(lo - c > sb.mx[a] || hi + c < sb.mn[a])) near |= 1u << l;
-      const double gp = dmax(lo - sb.mx[a], 0.0) + dmax(sb.mn[a] - hi, 0.0);
-      g2[a][l] = gp * gp;
-    }
+    for (int l = 0; l < kBrickVoxels; ++l)
+      if (!(f[a][l] - c > sb.mx[a] || f[a][l + 1] + c < sb.mn[a])) near |= 1u << l;
     m &= kAxisBits.m[a][near];
   }
   while (m != 0u) {
@@ -741,10 +732,8 @@ int bricks_clear_hit(const tdo_grid* g, const double p0[3], const double p1[3], 
     if (k.gap2 > 0.0 && k.gap2 >= lim * lim) return true;
     return brick_cubes_clear(g, k.brick, p0, p1, sb, c, lim, hit);
   };
-  // Within a few voxels the range holds few bricks, nearly all near: the plain walk is cheaper.
-  const bool ok = c > kWithinMinVoxels * g->desc.res && lim * lim > 0.0
-                      ? for_each_brick_within(g, p0, p1, c, lim, visit)
-                      : for_each_brick_near(g, p0, p1, c, visit);
+  const bool ok = within_pays(g, c, lim) ? for_each_brick_within(g, p0, p1, c, lim, visit)
+                                         : for_each_brick_near(g, p0, p1, c, visit);
   return ok ? 1 : 0;
 }
 
@@ -1646,6 +1635,11 @@ bool cubes_clear_steered(const tdo_grid* g, const double a[3], const double b[3]
 }
 
 }  // namespace
+
+bool point_in_bounds(const tdo_grid* grid, tdo_vec3 p) {
+  const double q[3] = {p.x, p.y, p.z};
+  return inside_bounds(grid, q);
+}
 
 int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance,
                           uint32_t* hint, uint32_t* cube_hint) {

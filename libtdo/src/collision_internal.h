@@ -84,6 +84,10 @@ int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double c
  */
 int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
 
+/** True when p lies in the closed grid bounds: the bounds test the segment checks apply to their
+ *  end points (segment_clear_steered, block_clear), by the same expressions. */
+bool point_in_bounds(const tdo_grid* grid, tdo_vec3 p);
+
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_COLLISION_INTERNAL_H

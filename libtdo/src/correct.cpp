@@ -115,15 +115,6 @@ uint32_t next_kept(const tdo_vec3* p, uint32_t n, uint32_t s, bool* run) {
   return n - 1u;
 }
 
-// True when p lies in the closed grid bounds, by the expressions of the checks' own bounds test.
-bool in_bounds(const tdo_grid_desc& d, const tdo_vec3& p) {
-  const double q[3] = {p.x, p.y, p.z}, o[3] = {d.origin.x, d.origin.y, d.origin.z};
-  const int32_t nv[3] = {d.nx, d.ny, d.nz};
-  for (int i = 0; i < 3; ++i)
-    if (!(q[i] >= o[i]) || !(q[i] <= o[i] + static_cast<double>(nv[i]) * d.res)) return false;
-  return true;
-}
-
 // Proof that every input segment of the collinear run s .. e, and the merged segment [s, e], is
 // clear at the run's clearance c (step 1 and step 2 would find them so), from one check: [s, e]
 // clear at c + h + margin, h the largest distance of the run's points from [s, e]. Each point of
@@ -131,9 +122,9 @@ bool in_bounds(const tdo_grid_desc& d, const tdo_vec3& p) {
 // [s, e]: its distance to the obstacles is at least [s, e]'s less h, so every piece (and [s, e]
 // itself) keeps c plus the margin, and their checks, whose verdicts are exact up to rounding far
 // below it, say clear. A piece's end points must also pass the checks' bounds test (exact, so
-// tested here by the same expressions). False: no claim (the pieces are checked one by one).
+// tested here by the same test, point_in_bounds). False: no claim (the pieces are checked one by
+// one).
 bool run_clear(Run& r, const tdo_vec3* p, uint32_t s, uint32_t e) {
-  const tdo_grid_desc d = tdo_grid_get_desc(r.grid);
   double h = 0.0, mag = 1.0 + r.clearance;
   const tdo_vec3 a = p[s], ab = sub(p[e], a);
   const double ll = dot(ab, ab);
@@ -141,7 +132,7 @@ bool run_clear(Run& r, const tdo_vec3* p, uint32_t s, uint32_t e) {
     const double v[3] = {p[k].x, p[k].y, p[k].z};
     for (double x : v) mag = fabs(x) > mag ? fabs(x) : mag;
     if (k == s || k == e) continue;
-    if (!in_bounds(d, p[k])) return false;
+    if (!point_in_bounds(r.grid, p[k])) return false;
     const tdo_vec3 w = sub(p[k], a);
     double t = ll > 0.0 ? dot(w, ab) / ll : 0.0;
     t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);

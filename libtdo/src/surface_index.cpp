@@ -114,9 +114,8 @@ uint32_t surface_bricks_sorted(const tdo_grid* g, const double p0[3], const doub
                                double lim, BrickCand* cand) {
   SortedKeep keep{cand, lim * lim, 0u};
   // The pruned walk leaves out only bricks `keep` skips: the same bricks in the same order.
-  const bool fits = r > kWithinMinVoxels * g->desc.res && keep.lim2 > 0.0
-                        ? sorted_within(g, p0, p1, r, lim, &keep)
-                        : sorted_near(g, p0, p1, r, &keep);
+  const bool fits = within_pays(g, r, lim) ? sorted_within(g, p0, p1, r, lim, &keep)
+                                           : sorted_near(g, p0, p1, r, &keep);
   return fits ? keep.count : kMaxBrickCands + 1u;
 }
 

@@ -130,7 +130,13 @@ inline double brick_axis_gap(double o, double res, int64_t b, double mn, double 
 }
 
 constexpr double kWithinMinVoxels = 2.0;  // limits (voxels) from which for_each_brick_within pays
-constexpr int64_t kWithinAxisCache = 8;   // x and y bricks whose gaps a walk computes once
+// True when a walk of radius r whose caller skips bricks with gap2 >= lim^2 takes
+// for_each_brick_within: lim^2 > 0 (its precondition) and r from kWithinMinVoxels up (within a few
+// voxels the range holds few bricks, nearly all near: the plain walk is cheaper).
+inline bool within_pays(const tdo_grid* g, double r, double lim) {
+  return r > kWithinMinVoxels * g->desc.res && lim * lim > 0.0;
+}
+constexpr int64_t kWithinAxisCache = 8;  // x and y bricks whose gaps a walk computes once
 
 // brick_axis_gap(o, res, b, mn, mx)^2, read from cache[b - lo] for the first kWithinAxisCache
 // bricks from lo (filled with the same expression).
@@ -212,32 +218,21 @@ inline uint64_t brick_local_mask(const int64_t lo[3], const int64_t hi[3]) {
   return m;
 }
 
-// Call f(lo, hi) with the bounds (m) of every surface cube of brick `brick` whose bit is also in
-// `keep`, in bit order; stop when f returns false (then return false).
-template <class F>
-bool for_each_brick_cube(const tdo_grid* g, uint32_t brick, F&& f, uint64_t keep = ~uint64_t{0}) {
+// The cube faces (m) of brick `brick` per axis: faces[a][l] = origin + (base[a] + l) res for
+// l = 0 .. kBrickVoxels, base[a] the brick's first voxel on axis a (the same expressions as every
+// other cube bound of the collision queries). The surface cube of mask bit b, at local coordinates
+// (b & 3, (b >> 2) & 3, b >> 4), spans faces[a][l] .. faces[a][l + 1] on each axis.
+inline void brick_faces(const tdo_grid* g, uint32_t brick, int64_t base[3],
+                        double faces[3][kBrickVoxels + 1]) {
   const tdo_grid_desc& d = g->desc;
-  const uint32_t bx = brick % static_cast<uint32_t>(g->nbx);
-  const uint32_t rest = brick / static_cast<uint32_t>(g->nbx);
-  const uint32_t by = rest % static_cast<uint32_t>(g->nby);
-  const uint32_t bz = rest / static_cast<uint32_t>(g->nby);
-  uint64_t m = g->brick_mask[brick] & keep;
-  while (m != 0u) {
-    const uint32_t b = static_cast<uint32_t>(__builtin_ctzll(m));
-    m &= m - 1u;
-    const int64_t i = static_cast<int64_t>(bx) * kBrickVoxels + (b & 3u);
-    const int64_t j = static_cast<int64_t>(by) * kBrickVoxels + ((b >> 2) & 3u);
-    const int64_t k = static_cast<int64_t>(bz) * kBrickVoxels + (b >> 4);
-    // The same expressions as every other cube bound of the collision queries.
-    const double lo[3] = {d.origin.x + static_cast<double>(i) * d.res,
-                          d.origin.y + static_cast<double>(j) * d.res,
-                          d.origin.z + static_cast<double>(k) * d.res};
-    const double hi[3] = {d.origin.x + static_cast<double>(i + 1) * d.res,
-                          d.origin.y + static_cast<double>(j + 1) * d.res,
-                          d.origin.z + static_cast<double>(k + 1) * d.res};
-    if (!f(lo, hi)) return false;
-  }
-  return true;
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  const uint32_t nbx = static_cast<uint32_t>(g->nbx), nby = static_cast<uint32_t>(g->nby);
+  base[0] = static_cast<int64_t>(brick % nbx) * kBrickVoxels;
+  base[1] = static_cast<int64_t>(brick / nbx % nby) * kBrickVoxels;
+  base[2] = static_cast<int64_t>(brick / nbx / nby) * kBrickVoxels;
+  for (int a = 0; a < 3; ++a)
+    for (int l = 0; l <= kBrickVoxels; ++l)
+      faces[a][l] = o[a] + static_cast<double>(base[a] + l) * d.res;
 }
 
 }  // namespace tdo_internal
