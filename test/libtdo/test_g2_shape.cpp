@@ -28,20 +28,28 @@ void blend(double lam, double* gf, double* hf) {
   *hf = ys_h + lam * (kGentle - ys_h);
 }
 
+// A random corner shape: a half-deflection from tiny (every 4th n) to near pi/2 (stop angles up to
+// ~170 degrees), any blend, and g2_shape's tau and rate of it.
+struct Shape {
+  double beta, gf, hf, tau, rate;
+};
+Shape random_shape(tdo_test::Rng& rng, int n) {
+  Shape s{};
+  s.beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
+  blend(rng.uniform(0.0, 1.0), &s.gf, &s.hf);
+  g2_shape(s.beta, s.gf, s.hf, &s.tau, &s.rate);
+  return s;
+}
+
 TEST(G2Shape, GivenRandomShapes_WhenRateBounded_ThenBoundNeverExceedsTheShapesRate) {
   tdo_test::Rng rng(20261207);
   int bounded = 0;
   for (int n = 0; n < 4000; ++n) {
-    // Half-deflections from tiny to near pi/2 (stop angles up to ~170 degrees), any blend.
-    const double beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
-    double gf = 0.0, hf = 0.0;
-    blend(rng.uniform(0.0, 1.0), &gf, &hf);
-    double tau = 0.0, rate = 0.0;
-    g2_shape(beta, gf, hf, &tau, &rate);
-    const double lower = g2_rate_lower(beta, gf, hf);
+    const Shape z = random_shape(rng, n);
+    const double lower = g2_rate_lower(z.beta, z.gf, z.hf);
     ASSERT_GE(lower, 0.0);
-    ASSERT_LE(lower, rate) << "beta " << beta << " gf " << gf << " hf " << hf;
-    if (lower > 0.5 * rate) ++bounded;
+    ASSERT_LE(lower, z.rate) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+    if (lower > 0.5 * z.rate) ++bounded;
   }
   // The bound is useful (within a factor 2) for most deflections, not only valid.
   EXPECT_GT(bounded, 2000);
@@ -53,15 +61,11 @@ TEST(G2Shape, GivenRandomShapes_WhenQuickBound_ThenNeverAboveTheShapesRateAndOft
   tdo_test::Rng rng(99);
   int useful = 0;
   for (int n = 0; n < 4000; ++n) {
-    const double beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
-    double gf = 0.0, hf = 0.0;
-    blend(rng.uniform(0.0, 1.0), &gf, &hf);
-    double tau = 0.0, rate = 0.0;
-    g2_shape(beta, gf, hf, &tau, &rate);
-    const double quick = g2_rate_lower_quick(beta, gf, hf);
+    const Shape z = random_shape(rng, n);
+    const double quick = g2_rate_lower_quick(z.beta, z.gf, z.hf);
     ASSERT_GE(quick, 0.0);
-    ASSERT_LE(quick, rate) << "beta " << beta << " gf " << gf << " hf " << hf;
-    if (quick > rate / 16.0) ++useful;
+    ASSERT_LE(quick, z.rate) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+    if (quick > z.rate / 16.0) ++useful;
   }
   EXPECT_GT(useful, 2000);  // more than half of the shapes
 }
@@ -73,16 +77,13 @@ TEST(G2Shape, GivenRandomShapes_WhenShapeLowerBounds_ThenBelowTauAndTau2RateAndM
   tdo_test::Rng rng(1207);
   int close = 0;
   for (int n = 0; n < 4000; ++n) {
-    const double beta = n % 4 == 0 ? rng.uniform(1e-7, 1e-3) : rng.uniform(1e-3, 1.49);
-    double gf = 0.0, hf = 0.0;
-    blend(rng.uniform(0.0, 1.0), &gf, &hf);
-    double tau = 0.0, rate = 0.0, tau_lower = 0.0, f_lower = 0.0;
-    g2_shape(beta, gf, hf, &tau, &rate);
-    g2_shape_lower(beta, gf, hf, &tau_lower, &f_lower);
-    const double f = tau * tau * rate;
-    ASSERT_LE(tau_lower, tau) << "beta " << beta << " gf " << gf << " hf " << hf;
-    ASSERT_LE(f_lower, f * (1.0 + 1e-12)) << "beta " << beta << " gf " << gf << " hf " << hf;
-    if (tau_lower > 0.98 * tau && f_lower > 0.9 * f) ++close;
+    const Shape z = random_shape(rng, n);
+    double tau_lower = 0.0, f_lower = 0.0;
+    g2_shape_lower(z.beta, z.gf, z.hf, &tau_lower, &f_lower);
+    const double f = z.tau * z.tau * z.rate;
+    ASSERT_LE(tau_lower, z.tau) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+    ASSERT_LE(f_lower, f * (1.0 + 1e-12)) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+    if (tau_lower > 0.98 * z.tau && f_lower > 0.9 * f) ++close;
   }
   EXPECT_GT(close, 3000);  // three quarters of the shapes
 }
