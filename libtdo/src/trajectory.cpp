@@ -170,6 +170,7 @@ struct JointJump {
 struct PlateauSpan {
   double u_start, u_end, s_start;
   uint32_t first;  // its first station in PiecesState::stations (curved plateaus)
+  uint32_t np;     // its proven curvature parts in PiecesState::parts (rigor_plateau)
 };
 
 /** Pieces mode: one station of the curve summary (summarise_curve) of a Bezier, handed down to the
@@ -196,7 +197,7 @@ struct PiecesState {
   uint32_t curve_parts;  // plateaus per curved segment in this run (curve_parts)
   RigorPart* parts;      // kRigorParts per plateau (plateau_cap of them)
   int rigor_ready;       // `parts` is set for this run
-  uint32_t rigor_parts;  // parts per plateau in use: kRigorCoarse, then kRigorParts if it misses
+  int fine;              // `parts` has the fine bounds (kRigorParts), else the coarse ones
 };
 /** Pieces mode: proven curvature bounds of one part of a plateau, from path arclength s0 on. */
 struct RigorPart {
@@ -1707,7 +1708,7 @@ constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Be
 // The first try's parts per plateau (pieces_verify). Coarser bounds are looser but still proven;
 // where they miss, the kRigorParts bounds decide, so the verdict is the one of kRigorParts alone.
 // 8 costs the least on short plans (most pass with it; 4 misses too often).
-constexpr uint32_t kRigorCoarse = 8;
+constexpr uint32_t kRigorCoarse = 4;
 constexpr double kRigorSlackU = 1e-9;
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range   // widening of a
                                        // plateau's parameter range (inversion)
@@ -1873,62 +1874,86 @@ bool bezier_plane(const tdo_path_segment& seg, tdo_vec3* n) {
   return true;
 }
 
-/** Pieces mode: the rigorous curvature bounds of every plateau in `np` parts (np <= kRigorParts,
- *  the stride of `parts`). Lines and arcs: the summary's (kappa constant, within its margin);
- *  planar Beziers: bezier_bounds over np parts of the plateau's parameter range; a non-planar
- *  Bezier gets infinite bounds, and so a fallback. */
-void rigorous_curvature(tdo_traj* ctx, const tdo_path& path, uint32_t np) {
-  ctx->pieces->rigor_parts = np;
+/** rigor_plateau's per-segment numbers: the plane's polynomials of one Bezier (bezier_poly) and a
+ *  cursor on it (its arclength quadrature), computed once per segment. */
+struct RigorSeg {
+  uint32_t seg;  // UINT32_MAX when unset
+  bool planar;
   BezierCursor cur;
-  memset(&cur, 0, sizeof(cur));
-  cur.seg = UINT32_MAX;
-  BezierPoly poly{};  // of segment plane_seg
-  uint32_t plane_seg = UINT32_MAX;
-  bool planar = false;  // segment plane_seg is planar
+  BezierPoly poly;
+};
+
+void rigor_seg(RigorSeg* r, const tdo_path& path, uint32_t seg) {
+  if (r->seg == seg) return;
+  r->seg = seg;
   tdo_vec3 n{0.0, 0.0, 1.0};
-  for (uint32_t q = 0; q < ctx->n_plateaus; ++q) {
-    Plateau& p = ctx->plateaus[q];
-    const tdo_path_segment& seg = path.seg[p.seg];
-    RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    for (uint32_t i = 0; i < np; ++i)
-      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, p.kappa, p.dk_up, p.dk_down};
-    if (seg.kind != TDO_SEGMENT_BEZIER) continue;
-    for (uint32_t i = 0; i < np; ++i)
-      part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    if (plane_seg != p.seg) {  // the plane and the polynomials once per segment
-      plane_seg = p.seg;
-      planar = bezier_plane(seg, &n);
-      if (planar) {
-        if (cur.seg != p.seg) cursor_reset(&cur, seg, p.seg);
-        poly = bezier_poly(cur, n);
-      }
-    }
-    if (!planar) continue;
-    // The plateau's parameters as the curve summary found them (the cursor's inversions).
-    const PlateauSpan& sp = ctx->pieces->spans[q];
-    const double u0 = dmax(0.0, sp.u_start - kRigorSlackU);
-    double u_at = sp.u_start, s_local = sp.s_start;  // the arclength, carried part to part
-    const double u1 = dmin(1.0, sp.u_end + kRigorSlackU);
-    bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
-    // The start of part i: the end of part i - 1 (the same expression), else evaluated.
-    BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
-    for (uint32_t i = 0; i < np && ok; ++i) {
-      const double ua = u0 + (u1 - u0) * i / np;
-      const double ub = i + 1u == np ? u1 : u0 + (u1 - u0) * (i + 1u) / np;
+  r->planar = bezier_plane(path.seg[seg], &n);
+  cursor_reset(&r->cur, path.seg[seg], seg);
+  if (r->planar) r->poly = bezier_poly(r->cur, n);
+}
+
+/** Parts per plateau of a Bezier for `np` asked: whole parts of each station interval (at least
+ *  one), so at most kRigorParts. */
+uint32_t rigor_count(const tdo_traj* ctx, uint32_t np) {
+  const uint32_t st = kStations / ctx->pieces->curve_parts;
+  return st * (np > st ? np / st : 1u);
+}
+
+/** Pieces mode: the rigorous curvature bounds of plateau q in about `np` parts (rigor_count).
+ *  Lines and arcs: the summary's (kappa constant, within its margin), one part; planar Beziers:
+ *  bezier_bounds over equal parameter parts of each interval between the curve summary's stations
+ *  (whose parameters and arclengths the summary's cursor found: only the parts inside an interval
+ *  integrate the arclength, from its station); a non-planar Bezier gets infinite bounds, and so a
+ *  fallback. */
+void rigor_plateau(tdo_traj* ctx, const tdo_path& path, uint32_t q, uint32_t np, RigorSeg* rs) {
+  const Plateau& p = ctx->plateaus[q];
+  PlateauSpan& sp = ctx->pieces->spans[q];
+  RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
+  if (path.seg[p.seg].kind != TDO_SEGMENT_BEZIER) {
+    sp.np = 1u;
+    part[0] = RigorPart{p.s0, p.kappa, p.dk_up, p.dk_down};
+    return;
+  }
+  const uint32_t st = kStations / ctx->pieces->curve_parts, n = rigor_count(ctx, np), sub = n / st;
+  sp.np = n;
+  for (uint32_t i = 0; i < n; ++i)
+    part[i] = RigorPart{i == 0u ? p.s0 : HUGE_VAL, HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  rigor_seg(rs, path, p.seg);
+  if (!rs->planar) return;
+  const StationK* k = ctx->pieces->stations + sp.first;
+  const BezierPoly& poly = rs->poly;
+  bool ok = true;  // a part whose bounds fail keeps infinite ones, and so do the rest
+  // The start of part i: the end of part i - 1 (the same expression), else evaluated.
+  BezierEnd a{static_cast<double>(NAN), tdo_vec3{0.0, 0.0, 0.0}, 0.0, 0.0, 0.0};
+  for (uint32_t j = 0; j < st && ok; ++j) {
+    // The plateau's ends widened by kRigorSlackU (the inversion's rounding).
+    const double u_lo = k[j].u, u_hi = k[j + 1u].u, w = u_hi - u_lo;
+    const double first = j == 0u ? dmax(0.0, u_lo - kRigorSlackU) : u_lo;
+    const double last = j + 1u == st ? dmin(1.0, u_hi + kRigorSlackU) : u_hi;
+    double u_at = u_lo, s_local = k[j].s;  // the arclength, carried part to part
+    for (uint32_t i = 0; i < sub && ok; ++i) {
+      const double ua = i == 0u ? first : u_lo + w * i / sub;
+      const double ub = i + 1u == sub ? last : u_lo + w * (i + 1u) / sub;
       if (!same(a.u, ua)) a = bezier_end(poly, ua);
       const BezierEnd b = bezier_end(poly, ub);
-      double k = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
-      ok = bezier_bounds(poly, a, b, &k, &lo, &hi);
+      double kk = HUGE_VAL, lo = -HUGE_VAL, hi = HUGE_VAL;
+      ok = bezier_bounds(poly, a, b, &kk, &lo, &hi);
       a = b;
       // Where the part begins along the path (the cursor's arclength), less a rounding allowance.
       if (i > 0u) {
-        s_local += bez_arclen(cur, u_at, ua);
+        s_local += bez_arclen(rs->cur, u_at, ua);
         u_at = ua;
       }
-      const double s_at = i == 0u ? p.s0 : p.s0 - p.off + s_local - kRigorSlackS;
-      part[i] = RigorPart{s_at, k, hi, -lo};
+      const double s_at = i + j == 0u ? p.s0 : p.s0 - p.off + s_local - kRigorSlackS;
+      part[j * sub + i] = RigorPart{s_at, kk, hi, -lo};
     }
   }
+}
+
+/** Pieces mode: the rigorous curvature bounds of every plateau in about `np` parts. */
+void rigorous_curvature(tdo_traj* ctx, const tdo_path& path, uint32_t np, RigorSeg* rs) {
+  ctx->pieces->fine = np >= kRigorParts;
+  for (uint32_t q = 0; q < ctx->n_plateaus; ++q) rigor_plateau(ctx, path, q, np, rs);
 }
 
 /** Curvature bounds of the plateaus that overlap [sa, sb]. */
@@ -1956,7 +1981,7 @@ Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
     if (!(p.s0 < sb - kRigorSlackS) && c.up > -HUGE_VAL) break;
     // The parts of the plateau that overlap [sa, sb]: part i covers [s0_i, s0_{i+1} + slack].
     const RigorPart* part = ctx->pieces->parts + static_cast<size_t>(q) * kRigorParts;
-    const uint32_t np = ctx->pieces->rigor_parts;
+    const uint32_t np = ctx->pieces->spans[q].np;
     for (uint32_t i = 0; i < np; ++i) {
       if (i > 0u && !(part[i].s0 <= sb)) break;  // unused parts (lines, arcs) start at HUGE_VAL
       const double end = i + 1u < np && part[i + 1u].s0 < HUGE_VAL
@@ -2130,16 +2155,26 @@ double position_noise(const tdo_path& path) {
 
 /** The closed-form dynamic check; its bounds into *worst. False when a bound misses. */
 bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
-                    Bound3* worst, uint32_t* m_out) {
+                    Bound3* worst, uint32_t* m_out, RigorSeg* rs) {
   const double dt = lim.dt, e = position_noise(in->path);
   const double f = 1.0 + kTolerance * kPieceReserve;
   const Bound3 noise{2.0 * e / dt, 4.0 * e / (dt * dt), 8.0 * e / (dt * dt * dt)};
   const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
-  const uint32_t splits = ctx->pieces->rigor_parts < kRigorParts ? kCoarseSplits : kPieceSplits;
+  // span_bound with the bounds in place; where the coarse ones miss, every plateau gets the fine
+  // ones (rigorous_curvature) and they decide, from that span on (the spans before it hold with
+  // the coarse bounds, which are proven too).
+  const auto bound = [&](const Phase& ph, double ta, double tb, const Bound3& lim3) {
+    Bound3 b = span_bound(ctx, ph, ta, tb, lim3, ctx->pieces->fine ? kPieceSplits : kCoarseSplits);
+    if (!fits(b, lim3) && !ctx->pieces->fine) {
+      rigorous_curvature(ctx, in->path, kRigorParts, rs);
+      b = span_bound(ctx, ph, ta, tb, lim3, kPieceSplits);
+    }
+    return b;
+  };
   Bound3 top{0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < ctx->n_phases; ++k) {
     const Phase& ph = ctx->phases[k];
-    const Bound3 b = span_bound(ctx, ph, 0.0, ph.dur, allowed, splits);
+    const Bound3 b = bound(ph, 0.0, ph.dur, allowed);
     if (!fits(b, allowed)) return false;
     top = bmax(top, b);
   }
@@ -2164,8 +2199,7 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
     for (uint32_t k = piece_after(ctx, ta); k < ctx->n_phases; ++k) {
       const Phase& ph = ctx->phases[k];
       if (ph.t0 >= tb) break;
-      smooth = bmax(smooth, span_bound(ctx, ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0),
-                                       left, splits));
+      smooth = bmax(smooth, bound(ph, dmax(0.0, ta - ph.t0), dmin(ph.dur, tb - ph.t0), left));
     }
     if (!fits(smooth, left)) return false;
     top = bmax(top, Bound3{smooth.v + delta.v, smooth.a + delta.a, smooth.j + delta.j});
@@ -2325,16 +2359,13 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
                    tdo_feasibility* rep, double* energy) {
   if (ctx->moving) return false;  // the entry ramp lies off the path: the samples check it
   PiecesState* ps = ctx->pieces;
-  if (!ps->rigor_ready) rigorous_curvature(ctx, in->path, kRigorCoarse);
+  RigorSeg rs;
+  rs.seg = UINT32_MAX;
+  if (!ps->rigor_ready) rigorous_curvature(ctx, in->path, kRigorCoarse, &rs);
   ps->rigor_ready = 1;
   Bound3 worst;
   uint32_t m = 0;
-  bool dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
-  if (!dyn && ps->rigor_parts < kRigorParts) {  // the coarse bounds miss: the fine ones decide
-    rigorous_curvature(ctx, in->path, kRigorParts);
-    dyn = pieces_dynamic(ctx, in, lim, n, &worst, &m);
-  }
-  if (!dyn) return false;
+  if (!pieces_dynamic(ctx, in, lim, n, &worst, &m, &rs)) return false;
   double clear = HUGE_VAL;
   if (in->grid != nullptr) {
     clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
@@ -2348,7 +2379,7 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
   rep->max_jerk = worst.j;
   double k = 0.0;
   for (uint32_t q = 0; q < ctx->n_plateaus; ++q)
-    for (uint32_t i = 0; i < ps->rigor_parts; ++i)
+    for (uint32_t i = 0; i < ps->spans[q].np; ++i)
       k = dmax(k, ps->parts[static_cast<size_t>(q) * kRigorParts + i].k);
   rep->min_turn_radius = k > 0.0 ? 1.0 / k : HUGE_VAL;
   rep->min_clearance = clear;
@@ -2585,7 +2616,7 @@ extern "C" tdo_status tdo_traj_init(tdo_traj** out, tdo_arena* arena, const tdo_
         arena, static_cast<size_t>(kStations + kSubMax) * cfg->max_segments * sizeof(StationK)));
     ps->curve_parts = 1u;
     ps->rigor_ready = 0;
-    ps->rigor_parts = kRigorParts;
+    ps->fine = 0;
     if (ps->junctions == nullptr || ps->parts == nullptr || ps->jumps == nullptr ||
         ps->spans == nullptr || ps->stations == nullptr)
       return TDO_ERR_ARENA_TOO_SMALL;
