@@ -1693,9 +1693,11 @@ uint32_t verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint
 
 constexpr double kPieceReserve = 0.5;  // of kTolerance: the closed form keeps limit * 1.005
 constexpr uint32_t kPieceSplits = 6;   // halvings of an interval whose bound misses (64 parts)
-// The same with the coarse curvature parts (kRigorCoarse): where 16 parts of an interval still
-// miss, the fine parts decide (with kPieceSplits) instead of the last halvings.
-constexpr uint32_t kCoarseSplits = 4;
+// The same with the coarse curvature parts (kRigorCoarse); where they miss, the plateaus under
+// the span's 2^kCoarseSplits parts that miss get the fine ones (pieces_dynamic). On the first 60
+// Simple plans (middle third of the trajectory stage): 2 -> 256.1 K instructions, 3 -> 256.5 K,
+// 4 -> 263.2 K, 5 -> 276.4 K.
+constexpr uint32_t kCoarseSplits = 3;
 constexpr int kCrossBisections = 64;  // the time a piece crosses a segment joint
 constexpr double kPositionNoise = 64.0 * 2.220446049250313e-16;  // rounding, relative to |P|
 constexpr double kInversionNoise = 4e-13;  // m per m of Bezier: the cursor's inversion tolerance
@@ -1707,8 +1709,8 @@ constexpr uint32_t kRigorParts = 16;      // parameter parts per plateau of a Be
 // The first try's parts per plateau (pieces_verify): one per interval between the curve summary's
 // stations (their arclengths known: no quadrature). Coarser bounds are looser but still proven;
 // where they miss, the kRigorParts bounds decide from that span on. On the first 60 Simple plans
-// (middle third of the trajectory stage): 4 -> 273 K instructions, 8 -> 284 K (11 of 60 plans
-// need the fine parts with 8, 22 with 4).
+// (middle third of the trajectory stage, before the fine parts went only where they miss): 4 ->
+// 273 K instructions, 8 -> 284 K (11 of 60 plans needed the fine parts with 8, 22 with 4).
 constexpr uint32_t kRigorCoarse = 4;
 constexpr double kRigorSlackU = 1e-9;  // widening of a plateau's parameter range (inversion)
 constexpr double kRigorSlackS = 1e-9;  // m, widening of a part's arclength range
@@ -1996,6 +1998,18 @@ Curv curv_over(const tdo_traj* ctx, double sa, double sb) {
   return c;
 }
 
+/** Gives the fine curvature parts (kRigorParts) to the Bezier plateaus with coarse ones that
+ *  curv_over may read for [sa, sb]. */
+void refine_over(tdo_traj* ctx, const tdo_path& path, double sa, double sb, RigorSeg* rs) {
+  const uint32_t fine = rigor_count(ctx, kRigorParts), q0 = plateau_of(ctx, sa);
+  for (uint32_t q = q0; q < ctx->n_plateaus; ++q) {  // bounded by n_plateaus
+    const Plateau& p = ctx->plateaus[q];
+    if (q > q0 && !(p.s0 < sb)) break;  // curv_over stops there or before
+    if (path.seg[p.seg].kind == TDO_SEGMENT_BEZIER && ctx->pieces->spans[q].np < fine)
+      rigor_plateau(ctx, path, q, kRigorParts, rs);
+  }
+}
+
 /** Path speed, acceleration and arclength of piece f at tau, as the sampler evaluates them. */
 inline double ph_v(const Phase& f, double t) { return f.v0 + t * (f.a0 + 0.5 * t * f.j); }
 inline double ph_a(const Phase& f, double t) { return f.a0 + t * f.j; }
@@ -2160,16 +2174,31 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   const double f = 1.0 + kTolerance * kPieceReserve;
   const Bound3 noise{2.0 * e / dt, 4.0 * e / (dt * dt), 8.0 * e / (dt * dt * dt)};
   const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
-  // span_bound with the bounds in place; where the coarse ones miss, every plateau gets the fine
-  // ones (rigorous_curvature) and they decide, from that span on (the spans before it hold with
-  // the coarse bounds, which are proven too).
+  // span_bound with the bounds in place. Where the coarse ones miss, the plateaus under the
+  // parts of the span that miss (2^kCoarseSplits) get the fine ones (refine_over); where it still
+  // misses, every
+  // plateau gets them (rigorous_curvature) and they decide, as they would alone (the spans before
+  // hold with the bounds they had, which are proven too).
   const auto bound = [&](const Phase& ph, double ta, double tb, const Bound3& lim3) {
     Bound3 b = span_bound(ctx, ph, ta, tb, lim3, ctx->pieces->fine ? kPieceSplits : kCoarseSplits);
-    if (!fits(b, lim3) && !ctx->pieces->fine) {
-      rigorous_curvature(ctx, in->path, kRigorParts, rs);
-      b = span_bound(ctx, ph, ta, tb, lim3, kPieceSplits);
+    if (fits(b, lim3) || ctx->pieces->fine) return b;
+    const uint32_t parts = 1u << kCoarseSplits;
+    const double h = (tb - ta) / parts;
+    bool local = true;  // s rises on the span: each part's plateaus are known
+    for (uint32_t i = 0; i < parts && local; ++i) {
+      const double t0 = ta + h * i, t1 = i + 1u == parts ? tb : ta + h * (i + 1u);
+      if (fits(sub_bound(ctx, ph, t0, t1), lim3)) continue;
+      double v_lo, v_hi;
+      speed_range(ph, t0, t1, &v_lo, &v_hi);
+      local = v_lo >= 0.0;
+      if (local) refine_over(ctx, in->path, ph_s(ph, t0), ph_s(ph, t1), rs);
     }
-    return b;
+    if (local) {
+      b = span_bound(ctx, ph, ta, tb, lim3, kPieceSplits);
+      if (fits(b, lim3)) return b;
+    }
+    rigorous_curvature(ctx, in->path, kRigorParts, rs);
+    return span_bound(ctx, ph, ta, tb, lim3, kPieceSplits);
   };
   Bound3 top{0.0, 0.0, 0.0};
   for (uint32_t k = 0; k < ctx->n_phases; ++k) {
