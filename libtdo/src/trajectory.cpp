@@ -607,6 +607,7 @@ tdo_status validate(const tdo_traj* ctx, const tdo_traj_input* in) {
     return TDO_ERR_INVALID_ARGUMENT;
   if (in->grid != nullptr && !(isfinite(in->clearance) && in->clearance >= 0.0))
     return TDO_ERR_INVALID_ARGUMENT;
+  if (in->clearance_proven != 0 && in->clearance_proven != 1) return TDO_ERR_INVALID_ARGUMENT;
   const tdo_path& path = in->path;
   if (path.seg == nullptr || path.n == 0) return TDO_ERR_INVALID_ARGUMENT;
   if (path.n > ctx->cfg.max_segments) return TDO_ERR_PATH_CAPACITY;
@@ -2382,6 +2383,20 @@ double pieces_clearance(const tdo_traj_input* in, double cap) {
   return path_min_clearance(in->grid, &in->path, nullptr, 0u, cap, in->clearance + kPieceClearHint);
 }
 
+/** Pieces mode: the clearance part of the report, false when the path comes closer than the
+ *  clearance. A path the caller proved (clearance_proven) is not measured again: its bound is the
+ *  proof's, clearance less kClearanceSlack, which no sample of the path falls below. */
+bool pieces_clear(const tdo_traj_input* in, double* clear) {
+  *clear = HUGE_VAL;
+  if (in->grid == nullptr) return true;
+  if (in->clearance_proven) {
+    *clear = dmax(0.0, in->clearance - kClearanceSlack);
+    return true;
+  }
+  *clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
+  return *clear >= in->clearance - kPieceClearSlack;
+}
+
 /** Pieces mode: the closed-form checks of the current profile; true when every one holds (the
  *  report and the energy filled), false to fall back to the samples. */
 bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, uint32_t n,
@@ -2395,11 +2410,8 @@ bool pieces_verify(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, u
   Bound3 worst;
   uint32_t m = 0;
   if (!pieces_dynamic(ctx, in, lim, n, &worst, &m, &rs)) return false;
-  double clear = HUGE_VAL;
-  if (in->grid != nullptr) {
-    clear = pieces_clearance(in, in->clearance + kClearanceCapExtra);
-    if (!(clear >= in->clearance - kPieceClearSlack)) return false;
-  }
+  double clear;
+  if (!pieces_clear(in, &clear)) return false;
   memset(rep, 0, sizeof(*rep));
   rep->ok = 1;
   rep->violations = ctx->violations;

@@ -602,8 +602,10 @@ struct ModeRun {
   std::string error;
   std::size_t arena = 0;
   std::vector<std::vector<uint8_t>> traj, feas;     /**< encoded, wall-clock fields zeroed */
-  std::vector<std::vector<uint8_t>> traj_no_energy; /**< traj with the energy zeroed too */
+  std::vector<std::vector<uint8_t>> traj_no_energy; /**< traj with the energy and the minimum
+                                                         clearance zeroed too */
   std::vector<double> energy;                       /**< m^2/s^3, of each trajectory answer */
+  std::vector<double> min_clearance;                /**< m, of each trajectory answer */
   std::vector<int32_t> n_samples, sample_count;
 };
 
@@ -658,7 +660,9 @@ ModeRun run_mode(int32_t stream_samples) {
     t.plan_time_ms = 0.0;
     out.traj.push_back(bytes_of(t));
     out.energy.push_back(t.energy);
+    out.min_clearance.push_back(t.min_clearance_m);
     t.energy = 0.0;
+    t.min_clearance_m = 0.0;
     out.traj_no_energy.push_back(bytes_of(t));
   }
   for (tdo::feasibility_t f : feas) {
@@ -700,7 +704,9 @@ TEST(PlannerNodeSamples, GivenSamplesStreamedWhenPlannedThenEveryAnswerIsTheStor
 TEST(PlannerNodeSamples, GivenSamplesPiecesThenTheSameAnswersUpToTheEnergyIntegral) {
   // Mode 2 (verified per profile piece, samples regenerated): the same trajectory answers, samples
   // included, except the energy, which that mode integrates instead of summing the samples by the
-  // trapezoid rule (trajectory.h): within 1e-3 relative, the trapezoid's O(dt^2) error.
+  // trapezoid rule (trajectory.h): within 1e-3 relative, the trapezoid's O(dt^2) error; and the
+  // minimum clearance, which is the bound the planner's stages proved (the map's 0.25 m less
+  // 1e-9 m) for a start at rest, at most the samples' measured minimum.
   const ModeRun pieces = run_mode(2);
   ASSERT_TRUE(pieces.started) << pieces.error;
   const ModeRun stored = run_mode(0);
@@ -712,7 +718,12 @@ TEST(PlannerNodeSamples, GivenSamplesPiecesThenTheSameAnswersUpToTheEnergyIntegr
   for (std::size_t i = 0; i < stored.traj.size(); ++i) {
     EXPECT_TRUE(pieces.traj_no_energy[i] == stored.traj_no_energy[i]) << "trajectory answer " << i;
     EXPECT_NEAR(pieces.energy[i], stored.energy[i], 1e-3 * std::fabs(stored.energy[i])) << i;
+    EXPECT_LE(pieces.min_clearance[i], stored.min_clearance[i]) << i;
+    if (stored.sample_count[i] > 0) {  // a flown plan (a refused one carries 0 in both modes)
+      EXPECT_GE(pieces.min_clearance[i], 0.25 - 1e-9) << i;
+    }
   }
+  EXPECT_EQ(pieces.min_clearance[0], 0.25 - 1e-9);  // the first request starts at rest
 }
 }  // namespace
 

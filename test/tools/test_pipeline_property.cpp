@@ -824,15 +824,19 @@ std::vector<tdo_sample> collect_samples(const tdo_planner* pl) {
   return out;
 }
 
-// Every metric of `a` and `b` bit for bit; the energy only `with_energy`.
+// Every metric of `a` and `b` bit for bit; the energy only `with_energy`, the minimum clearance
+// only `with_clearance`.
 void expect_same_metrics(const tdo_metrics& a, const tdo_metrics& b, bool with_energy,
-                         const std::string& what) {
+                         const std::string& what, bool with_clearance = true) {
   EXPECT_EQ(a.turns, b.turns) << what;
   EXPECT_EQ(a.curvature_continuous, b.curvature_continuous) << what;
   for (const auto field :
-       {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::min_clearance_m,
-        &tdo_metrics::avg_curvature, &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
+       {&tdo_metrics::length_m, &tdo_metrics::total_turn_deg, &tdo_metrics::avg_curvature,
+        &tdo_metrics::smoothness, &tdo_metrics::flight_time_s})
     EXPECT_EQ(std::memcmp(&(a.*field), &(b.*field), sizeof(double)), 0) << what;
+  if (with_clearance) {
+    EXPECT_EQ(std::memcmp(&a.min_clearance_m, &b.min_clearance_m, sizeof(double)), 0) << what;
+  }
   if (with_energy) {
     EXPECT_EQ(std::memcmp(&a.energy, &b.energy, sizeof(double)), 0) << what;
   }
@@ -911,7 +915,9 @@ TEST(PipelineStreaming,
 // for bit) and metrics as with stored samples, but for the energy, which is the integral of |a|^2
 // instead of the trapezoid over the samples: relative 1e-3 (the trapezoid's error at dt = 0.01 s,
 // dt^2 / 12 |f''| with |f''| / f up to ~(j_max / a_max)^2 ~ 11 1/s^2, plus its kinks at the jerk
-// switches: well below 1e-3 of the integral on these flights of tens of seconds).
+// switches: well below 1e-3 of the integral on these flights of tens of seconds), and the minimum
+// clearance of a plan the closed form accepted: the bound the stages proved (0.5 m less 1e-9 m),
+// at most the stored plan's measured one.
 TEST(PipelineStreaming, GivenPiecesWhenPlannedThenPlanSamplesAndMetricsAreTheStoredOnes) {
   int compared = 0, closed = 0;
   for_each_mode_pair(TDO_TRAJ_SAMPLES_PIECES, [&](const tdo_plan_result& a,
@@ -937,7 +943,13 @@ TEST(PipelineStreaming, GivenPiecesWhenPlannedThenPlanSamplesAndMetricsAreTheSto
     }
     const tdo_metrics& ma = a.metrics;
     const tdo_metrics& mb = b.metrics;
-    expect_same_metrics(ma, mb, false, what);
+    const bool proven = sb == TDO_OK && b.sample_passes == 0u;  // the closed form took the proof
+    expect_same_metrics(ma, mb, false, what, !proven);
+    if (proven) {
+      EXPECT_EQ(mb.min_clearance_m, 0.5 - 1e-9) << what;
+      EXPECT_EQ(b.feasibility.min_clearance, 0.5 - 1e-9) << what;
+      EXPECT_LE(mb.min_clearance_m, ma.min_clearance_m) << what;
+    }
     if (sa != TDO_OK || a.n_samples == 0u) return;
     ++compared;
     if (b.sample_passes == 0u) ++closed;

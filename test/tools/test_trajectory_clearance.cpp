@@ -259,4 +259,90 @@ TEST(TrajectoryClearance, GivenForestPairsWhenVerifiedThenClearanceEqualsBruteFo
   check_plan(&pl, 0.5, tdo_vec3{-0.910768, 2.729434, 1.0}, tdo_vec3{4.385792, 2.004155, 1.0});
 }
 
+/** `map` at `clearance` in a planner of tdo_io::capacity_for's sizes, the pieces mode forced. */
+TestPlanner pieces_planner(const tdo_io::Map& map, double clearance) {
+  tdo_capacity cap = tdo_io::capacity_for(map, clearance, 27u, 400000u);
+  cap.stream_samples = TDO_TRAJ_SAMPLES_PIECES;
+  return TestPlanner(cap, [&](tdo_grid* g) { return tdo_io::load_into(map, g, clearance); });
+}
+
+/** Plans start -> goal in the pieces mode, where the trajectory takes the clearance the correction
+ *  and the smoothing proved instead of measuring it: the report gives that bound, and the proof
+ *  holds, by brute force over every sample and by tdo_metrics_compute's own path measurement. The
+ *  same path run with clearance_proven 0 is measured (the metric) and with 2 refused. */
+void check_proven(TestPlanner* pl, double clearance, tdo_vec3 start, tdo_vec3 goal) {
+  tdo_plan_request req{};
+  req.start = start;
+  req.goal = goal;
+  tdo_plan_params_default(&req.params);
+  tdo_plan_result res{};
+  ASSERT_EQ(tdo_planner_plan(pl->planner(), &req, &res), TDO_OK);
+  ASSERT_EQ(res.sample_passes, 0u);  // the closed-form check accepted the plan
+  const double bound = std::fmax(0.0, clearance - kSlack);
+  EXPECT_EQ(res.feasibility.min_clearance, bound);
+  EXPECT_EQ(res.metrics.min_clearance_m, bound);
+  const tdo_grid* grid = tdo_planner_grid(pl->planner());
+  std::vector<tdo_sample> samples;
+  ASSERT_EQ(tdo_planner_each_sample(pl->planner(), collect, &samples), TDO_OK);
+  ASSERT_GT(samples.size(), 1u);
+  const Brute b = brute_force(grid, samples, clearance);
+  EXPECT_TRUE(b.t.empty()) << b.t.size() << " samples closer than the clearance";
+  EXPECT_GE(b.min, bound);
+  tdo_metrics_input mi{};
+  mi.path = &res.path;
+  mi.waypoints = res.waypoints;
+  mi.n_waypoints = res.n_waypoints;
+  mi.grid = grid;
+  mi.clearance_cap = clearance + kCapExtra;
+  tdo_metrics measured{};
+  ASSERT_EQ(tdo_metrics_compute(&mi, &measured), TDO_OK);
+  EXPECT_GE(measured.min_clearance_m, bound);
+
+  std::vector<tdo_path_segment> segs(res.path.seg, res.path.seg + res.path.n);
+  tdo_path path = res.path;
+  path.seg = segs.data();
+  TestTraj traj(traj_cfg(4u * res.n_samples + 1000u, res.path.n + 8u, TDO_TRAJ_SAMPLES_PIECES),
+                64u);
+  ASSERT_EQ(traj.status(), TDO_OK);
+  tdo_plan_params params;
+  tdo_plan_params_default(&params);
+  tdo_traj_input in{};
+  tdo_plan_traj_input(&params, &in);
+  in.path = path;
+  in.grid = grid;
+  in.clearance = clearance;
+  tdo_traj_output out{};
+  ASSERT_EQ(tdo_traj_run(traj.ctx(), &in, &out), TDO_OK);
+  ASSERT_EQ(out.sample_passes, 0u);
+  EXPECT_EQ(out.report.min_clearance, measured.min_clearance_m);
+  in.clearance_proven = 2;
+  EXPECT_EQ(tdo_traj_run(traj.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+}
+
+// The planner's pieces-mode plans on the forests (clearance 0.5), geb079 (0.3) and MovingAI Simple
+// (0: the paths graze the cubes).
+TEST(TrajectoryClearance, GivenPiecesPlansWhenTheStagesProveTheClearanceThenBruteForceAgrees) {
+  const tdo_io::Map forest = load("forest_gen/forest2.bt");
+  TestPlanner pf = pieces_planner(forest, 0.5);
+  ASSERT_EQ(pf.status(), TDO_OK);
+  // maps/forest_gen/start_and_end.csv, pairs 205 and 200.
+  check_proven(&pf, 0.5, tdo_vec3{2.083444, -3.562597, 1.0}, tdo_vec3{-1.367670, 3.574024, 1.0});
+  check_proven(&pf, 0.5, tdo_vec3{-0.910768, 2.729434, 1.0}, tdo_vec3{4.385792, 2.004155, 1.0});
+  const tdo_io::Map geb = load("octomap/geb079.bt");
+  TestPlanner pg = pieces_planner(geb, 0.3);
+  ASSERT_EQ(pg.status(), TDO_OK);
+  check_proven(&pg, 0.3, tdo_vec3{6.0, 5.0, 1.2}, tdo_vec3{11.0, -5.0, 1.2});  // G5, with turns
+  const tdo_io::Map simple = load("movingai/Simple.3dmap");
+  std::vector<tdo_io::ScenQuery> queries;
+  std::string err;
+  ASSERT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
+  ASSERT_GE(queries.size(), 20u);
+  TestPlanner ps = pieces_planner(simple, 0.0);
+  ASSERT_EQ(ps.status(), TDO_OK);
+  for (size_t k = 0; k < 20u; ++k) {
+    SCOPED_TRACE("Simple query " + std::to_string(queries[k].line));
+    check_proven(&ps, 0.0, queries[k].start, queries[k].goal);
+  }
+}
+
 }  // namespace

@@ -40,7 +40,9 @@ typedef struct tdo_metrics {
   double total_turn_deg;    /**< deg, sum of those deflections */
   double min_clearance_m;   /**< m, min distance from the final path to obstacles: exact for
                                  lines; for curves a proven lower bound (chords of sagitta about
-                                 1e-4 m: chord distance minus sagitta); HUGE_VAL without grid */
+                                 1e-4 m: chord distance minus sagitta); HUGE_VAL without grid.
+                                 tdo_planner_plan in the pieces mode: the proven clearance
+                                 (tdo_traj_input.clearance_proven) */
   double avg_curvature;     /**< 1/m, (1/L) integral |kappa| ds */
   double smoothness;        /**< 1 / (1 + integral kappa^2 ds * 1 m), in (0, 1] */
   double energy;            /**< m^2/s^3, integral |a|^2 dt over the samples (trapezoid rule

@@ -173,6 +173,13 @@ typedef struct tdo_traj_input {
                               velocity and acceleration: the ramp of tdo_traj_entry_plan, then the
                               path, which must begin at the entry's p (within 1e-6 m) with a line
                               along its v (within 1e-3 rad) at least `brake` long */
+  int clearance_proven;  /**< 0 (zero-initialised input): the pieces mode measures the path's
+                              clearance. 1: the caller has proven that every point of `path`
+                              keeps `clearance` less 1e-9 m from the obstacles (tdo_planner_plan:
+                              its correction and smoothing checked every line and curve), and the
+                              pieces mode takes that proof: its report's min_clearance is that
+                              bound, not a measurement. Stored and streamed samples are always
+                              measured. Other values: TDO_ERR_INVALID_ARGUMENT */
 } tdo_traj_input;
 
 /** Output; storage in the context, valid until the next run. */
@@ -190,7 +197,8 @@ typedef struct tdo_traj_output {
                                the finite differences, min_turn_radius the path's least radius of
                                curvature flown (1 / the plateaus' curvature bound), min_clearance
                                the path's capped distance (lines exact, curves the chord lower
-                               bound of tdo_metrics_compute): a lower bound of the samples' */
+                               bound of tdo_metrics_compute), or with `clearance_proven` the
+                               proven clearance less 1e-9 m: a lower bound of the samples' */
   double energy;          /**< m^2/s^3, integral |a|^2 dt over the samples by the trapezoid rule on
                                their a, as tdo_metrics_compute computes it from `samples`; with
                                TDO_TRAJ_SAMPLES_PIECES and the closed form accepted: the integral
