@@ -424,8 +424,9 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
   const Node& n = me.nodes[idx];
   // Voxel-state searches: a voxel outside the box of the other side's states holds none of them
   // (the box spares the read of its slot, a cache miss while the sides are apart).
-  if (!kHeaded && (n.x < other.box_lo[0] || n.x > other.box_hi[0] || n.y < other.box_lo[1] ||
-                   n.y > other.box_hi[1] || n.z < other.box_lo[2] || n.z > other.box_hi[2]))
+  if (!kHeaded && kStateBox &&
+      (n.x < other.box_lo[0] || n.x > other.box_hi[0] || n.y < other.box_lo[1] ||
+       n.y > other.box_hi[1] || n.z < other.box_lo[2] || n.z > other.box_hi[2]))
     return;
   for (uint32_t o = slot_first(other, n.voxel); o != kNil; o = other.nodes[o].next) {
     const Node& m = other.nodes[o];
@@ -604,6 +605,7 @@ void vt_prune_ensure(tdo_search* ctx, const Query& q) {
 
 // Grow the box of side s's states (Side.box_lo) by state n.
 inline void box_add(Side& s, const Node& n) {
+  if (!kStateBox) return;
   const int32_t c[3] = {n.x, n.y, n.z};
   for (int k = 0; k < 3; ++k) {
     s.box_lo[k] = c[k] < s.box_lo[k] ? c[k] : s.box_lo[k];

@@ -118,6 +118,9 @@ struct TDO_SEARCH_PACKED(2) StackItem {
   Index node;  // node index
 };
 
+// Side.box_lo: the 32-bit build only (the big grids, whose slot arrays miss the cache; the 16-bit
+// build's firmware keeps its flash).
+constexpr bool kStateBox = sizeof(Index) == 4;
 struct Side {
   Index* slot;           // per voxel: see kSlotClosed
   Index* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
