@@ -603,13 +603,14 @@ void vt_prune_ensure(tdo_search* ctx, const Query& q) {
   memcpy(t->key, key, sizeof(key));
 }
 
-// Grow the box of side s's states (Side.box_lo) by state n.
+// Grow the box of side s's states (Side.box_lo) by the 3x3x3 block of state n, which is being
+// expanded: every state is the root or a child of an expanded state, so the box holds them all.
 inline void box_add(Side& s, const Node& n) {
   if (!kStateBox) return;
   const int32_t c[3] = {n.x, n.y, n.z};
   for (int k = 0; k < 3; ++k) {
-    s.box_lo[k] = c[k] < s.box_lo[k] ? c[k] : s.box_lo[k];
-    s.box_hi[k] = c[k] > s.box_hi[k] ? c[k] : s.box_hi[k];
+    s.box_lo[k] = c[k] - 1 < s.box_lo[k] ? c[k] - 1 : s.box_lo[k];
+    s.box_hi[k] = c[k] + 1 > s.box_hi[k] ? c[k] + 1 : s.box_hi[k];
   }
 }
 
@@ -642,7 +643,6 @@ inline tdo_status relax_voxel(tdo_search* ctx, Query& q, int back, uint32_t ui, 
     idx = new_state(ctx, s, ui, s.nodes[ui], w, ng, kStepDelta.d[e][0], kStepDelta.d[e][1],
                     kStepDelta.d[e][2], d, kNil);
     if (idx == kNil) return TDO_ERR_NODE_CAPACITY;
-    box_add(s, s.nodes[idx]);
     slot_set(s, w, idx);
     push<false>(ctx, q, s, back, idx);
   }
@@ -816,7 +816,7 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   n.z = static_cast<Coord>(v.k);
   n.heading = kHeadingNone;
   s.n_nodes = 1;
-  s.box_lo[0] = s.box_hi[0] = v.i;
+  s.box_lo[0] = s.box_hi[0] = v.i;  // the root (box_add grows it by the blocks expanded)
   s.box_lo[1] = s.box_hi[1] = v.j;
   s.box_lo[2] = s.box_hi[2] = v.k;
   s.n_open = 0;
@@ -954,6 +954,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     // ui is closed now: pop() and the stack set its heap position to kNil.
     if (kHeaded && q.try_share != 0 && flooding(q, back, s, s.nodes[ui])) return TDO_ERR_BUDGET;
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
+    if (!kHeaded && q.bidir) box_add(s, s.nodes[ui]);
     // Children whose f is not above the next queued f plus the margin are created now (those up
     // to the next f would be popped before anything else), the rest are deferred.
     const double next_f = kHeaded ? top_of(s) : 0.0;

@@ -129,7 +129,7 @@ struct Side {
   uint32_t n_nodes;
   uint32_t n_open;
   int32_t tx, ty, tz;            // target voxel of this side's heuristic
-  int32_t box_lo[3], box_hi[3];  // voxel-state searches: box of the voxels holding a state
+  int32_t box_lo[3], box_hi[3];  // bidirectional voxel-state searches: holds every state's voxel
   StackItem stack[kStackCap];    // A* fast path (forward side only)
   // Turn-penalised searches: per voxel a lower bound (m) of the grid distance to this side's target
   // (exact_lower_bounds); nullptr = the octile distance alone.
