@@ -422,6 +422,12 @@ inline void meet(tdo_search* ctx, Query& q, int a, uint32_t idx) {
   const Side& me = ctx->side[a];
   const Side& other = ctx->side[1 - a];
   const Node& n = me.nodes[idx];
+  // Voxel-state searches: a voxel outside the box of the other side's states holds none of them
+  // (the box spares the read of its slot, a cache miss while the sides are apart).
+  if (!kHeaded && kStateBox &&
+      (n.x < other.box_lo[0] || n.x > other.box_hi[0] || n.y < other.box_lo[1] ||
+       n.y > other.box_hi[1] || n.z < other.box_lo[2] || n.z > other.box_hi[2]))
+    return;
   for (uint32_t o = slot_first(other, n.voxel); o != kNil; o = other.nodes[o].next) {
     const Node& m = other.nodes[o];
     double c = n.g + m.g;
@@ -595,6 +601,17 @@ void vt_prune_ensure(tdo_search* ctx, const Query& q) {
         t->prune[back][hp][si] = m;
       }
   memcpy(t->key, key, sizeof(key));
+}
+
+// Grow the box of side s's states (Side.box_lo) by the 3x3x3 block of state n, which is being
+// expanded: every state is the root or a child of an expanded state, so the box holds them all.
+inline void box_add(Side& s, const Node& n) {
+  if (!kStateBox) return;
+  const int32_t c[3] = {n.x, n.y, n.z};
+  for (int k = 0; k < 3; ++k) {
+    s.box_lo[k] = c[k] - 1 < s.box_lo[k] ? c[k] - 1 : s.box_lo[k];
+    s.box_hi[k] = c[k] + 1 > s.box_hi[k] ? c[k] + 1 : s.box_hi[k];
+  }
 }
 
 // Voxel-state searches (no heading costs): offer voxel w, whose open state is `idx` (kNil: not
@@ -799,6 +816,9 @@ void add_root(tdo_search* ctx, const Query& q, int back, bool headed) {
   n.z = static_cast<Coord>(v.k);
   n.heading = kHeadingNone;
   s.n_nodes = 1;
+  s.box_lo[0] = s.box_hi[0] = v.i;  // the root (box_add grows it by the blocks expanded)
+  s.box_lo[1] = s.box_hi[1] = v.j;
+  s.box_lo[2] = s.box_hi[2] = v.k;
   s.n_open = 0;
   s.n_stack = 0;
   s.f_cur = -HUGE_VAL;  // the root goes to the heap
@@ -934,6 +954,7 @@ tdo_status search_loop(tdo_search* ctx, Query& q) {
     // ui is closed now: pop() and the stack set its heap position to kNil.
     if (kHeaded && q.try_share != 0 && flooding(q, back, s, s.nodes[ui])) return TDO_ERR_BUDGET;
     if (!kHeaded) s.slot[s.nodes[ui].voxel] |= static_cast<Index>(kSlotClosed);
+    if (!kHeaded && q.bidir) box_add(s, s.nodes[ui]);
     // Children whose f is not above the next queued f plus the margin are created now (those up
     // to the next f would be popped before anything else), the rest are deferred.
     const double next_f = kHeaded ? top_of(s) : 0.0;

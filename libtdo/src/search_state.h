@@ -118,6 +118,9 @@ struct TDO_SEARCH_PACKED(2) StackItem {
   Index node;  // node index
 };
 
+// Side.box_lo: the 32-bit build only (the big grids, whose slot arrays miss the cache; the 16-bit
+// build's firmware keeps its flash).
+constexpr bool kStateBox = sizeof(Index) == 4;
 struct Side {
   Index* slot;           // per voxel: see kSlotClosed
   Index* heading_index;  // dense_headings: 27 states per voxel, valid while its slot is set
@@ -125,8 +128,9 @@ struct Side {
   OpenItem* open;        // binary min-heap, max_nodes
   uint32_t n_nodes;
   uint32_t n_open;
-  int32_t tx, ty, tz;          // target voxel of this side's heuristic
-  StackItem stack[kStackCap];  // A* fast path (forward side only)
+  int32_t tx, ty, tz;            // target voxel of this side's heuristic
+  int32_t box_lo[3], box_hi[3];  // bidirectional voxel-state searches: holds every state's voxel
+  StackItem stack[kStackCap];    // A* fast path (forward side only)
   // Turn-penalised searches: per voxel a lower bound (m) of the grid distance to this side's target
   // (exact_lower_bounds); nullptr = the octile distance alone.
   const float* hx;
