@@ -82,6 +82,7 @@ struct Run {
   uint32_t budget;   // checks allowed
   uint32_t hint;     // box that failed the last check (segment_clear_hinted)
   uint32_t cube;     // voxel cube that failed the last check (segment_clear_steered)
+  uint32_t proven;   // input points 1 .. proven: their segments are known clear (steps_proven)
 };
 
 // [a, b] at `clearance` (m, >= the run's): 1 clear, 0 not clear, -1 budget exhausted.
@@ -144,9 +145,9 @@ bool run_clear(Run& r, const tdo_vec3* p, uint32_t s, uint32_t e) {
 }
 
 // Step 1: every input segment checked at the clearance, in order; TDO_ERR_NO_PATH at the first
-// that fails. A collinear run that run_clear proves is counted check by check, as checking each
-// would (the same answers, the same count, so the same status at every budget), and marked in
-// memo_at[s] for drop_collinear.
+// that fails. A collinear run that run_clear proves, or that lies within the caller's proven
+// steps, is counted check by check, as checking each would (the same answers, the same count, so
+// the same status at every budget), and marked in memo_at[s] for drop_collinear.
 tdo_status verify_input(Run& r, const tdo_vec3* p, uint32_t n) {
   tdo_correct* ctx = r.ctx;
   for (uint32_t i = 0; i < n; ++i) ctx->memo_at[i] = 0;
@@ -154,7 +155,7 @@ tdo_status verify_input(Run& r, const tdo_vec3* p, uint32_t n) {
   for (uint32_t s = 0; s + 1u < n;) {
     bool run = false;
     const uint32_t e = next_kept(p, n, s, &run);
-    const bool known = run && run_clear(r, p, s, e);
+    const bool known = (s >= 1u && e <= r.proven) || (run && run_clear(r, p, s, e));
     ctx->memo_at[s] = known ? 1u : 0u;
     for (uint32_t i = s + 1u; i <= e; ++i) {
       const int ok = known ? known_clear(r) : check(r, p[i - 1u], p[i]);
@@ -687,7 +688,8 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
       !isfinite(in->clearance) || in->clearance < 0.0 || !isfinite(in->turn_threshold) ||
       in->turn_threshold < 0.0 ||
       (in->mode != TDO_CORRECT_MULTISCALE && in->mode != TDO_CORRECT_GREEDY_LOS &&
-       in->mode != TDO_CORRECT_NONE))
+       in->mode != TDO_CORRECT_NONE) ||
+      (in->steps_proven != 0 && in->steps_proven != 1))
     return TDO_ERR_INVALID_ARGUMENT;
   if (tdo_grid_clearance(in->grid) < 0.0) return TDO_ERR_MAP_NOT_READY;
   if (in->n_points > ctx->cfg.max_points) return TDO_ERR_PATH_CAPACITY;
@@ -702,7 +704,8 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
         0u,
         ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu,
         0u,
-        0u};
+        0u,
+        in->steps_proven && n >= 3u ? n - 2u : 0u};
   // 1. The input itself must keep clearance.
   tdo_status st = verify_input(r, in->points, n);
   uint32_t m = 0, critical = 0;

@@ -458,6 +458,10 @@ extern "C" tdo_status tdo_planner_plan(tdo_planner* pl, const tdo_plan_request* 
   ci.n_points = out->n_grid_path;
   ci.clearance = verify_clearance(clearance);
   tdo_plan_correct_input(&p, &ci);
+  // At clearance 0 a grid step is clear by MovingAI's rule (s.0: every voxel it sweeps is free,
+  // so it stays half a voxel edge from every other voxel); the points between the ends are
+  // voxel centres joined by steps, or the direct route's two ends (no step).
+  ci.steps_proven = !(clearance > 0.0) && out->search.direct == 0 ? 1 : 0;
   tdo_correct_output co;
   out->status = tdo_correct_run(pl->correct, &ci, &co);
   if (out->status != TDO_OK) return out->status;

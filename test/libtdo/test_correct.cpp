@@ -560,3 +560,42 @@ TEST(Correct, GivenEveryBudget_WhenShortened_ThenChecksUseItExactlyAndSegmentsKe
 }
 
 }  // namespace
+
+// steps_proven (the planner's grid paths at clearance 0): the interior grid steps are not checked
+// again, and the run is the one that checks them: the same status, waypoints and check count, in
+// every mode. The steps do keep half a voxel edge (an independent distance to every box), which
+// is what lets the planner claim them. Other values of the flag are refused.
+TEST(Correct, GivenGridStepsProvenAtClearanceZero_WhenCorrected_ThenTheSameRunAsCheckingThem) {
+  TestPlanner pl(tdo_test::make_cap(24 * 24 * 10, 24 * 24 * 10, 2000, 64, 20000));
+  TestCorrector corr(correct_cfg(2000, 100000));
+  Rng rng(5150);
+  int compared = 0;
+  for (int q = 0; q < 40; ++q) {
+    Map mp;
+    std::vector<tdo_vec3> pts;
+    if (!random_pillar_query(pl, rng, 25, 0.0, 0, 9, &mp, &pts)) continue;
+    for (size_t i = 2; i + 1 < pts.size(); ++i)
+      for (const tdo_box& box : mp.boxes)
+        ASSERT_GE(ref_segment_box(pts[i - 1], pts[i], box), 0.5 * mp.m.res - 1e-9) << q << " " << i;
+    for (tdo_correct_mode mode : kModes) {
+      tdo_correct_input in = make_in(pl.grid(), pts, mode, 0.0);
+      in.shorten = 1;
+      tdo_correct_output a{}, b{};
+      const tdo_status sa = tdo_correct_run(corr.ctx(), &in, &a);
+      const std::vector<tdo_vec3> checked(a.waypoints, a.waypoints + a.n_waypoints);
+      in.steps_proven = 1;
+      ASSERT_EQ(tdo_correct_run(corr.ctx(), &in, &b), sa) << q << " " << mode_name(mode);
+      ASSERT_EQ(b.n_waypoints, checked.size()) << q << " " << mode_name(mode);
+      EXPECT_EQ(std::memcmp(checked.data(), b.waypoints, checked.size() * sizeof(tdo_vec3)), 0)
+          << q << " " << mode_name(mode);
+      EXPECT_EQ(a.checks, b.checks) << q << " " << mode_name(mode);
+      ++compared;
+    }
+  }
+  EXPECT_GE(compared, 60);
+  std::vector<tdo_vec3> pts = {v3(1.25, 1.25, 1.25), v3(1.75, 1.25, 1.25), v3(2.25, 1.25, 1.25)};
+  tdo_correct_input in = make_in(pl.grid(), pts, TDO_CORRECT_MULTISCALE, 0.0);
+  in.steps_proven = 2;
+  tdo_correct_output out{};
+  EXPECT_EQ(tdo_correct_run(corr.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+}

@@ -62,6 +62,14 @@ typedef struct tdo_correct_input {
                                turns, the corners' room and the segments' room from obstacles;
                                fewer or equal waypoints, shorter polyline. 0 = off (the paper's
                                correction alone) */
+  int steps_proven;       /**< 0 (zero-initialised input): every input segment is checked.
+                               1: the caller has proven that the segments between points[1] and
+                               points[n_points - 2] keep the clearance with room to spare, and so
+                               do the straight runs they form (tdo_planner_plan: grid steps at
+                               clearance 0, whose swept voxels are all free, docs/design.md s.2);
+                               those are not checked again but counted as checks, so budgets and
+                               statuses stay those of checking. Other values:
+                               TDO_ERR_INVALID_ARGUMENT */
 } tdo_correct_input;
 
 /** Output polyline P2; storage in the context, valid until the next run. */
