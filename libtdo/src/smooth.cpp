@@ -167,7 +167,6 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
       ++*checks;
       if (bezier_surely_clear(in.grid, b[i].p, clearance, kClearTolerance)) continue;
       if (bezier_surely_blocked(in.grid, b[i].p, clearance, i == 0 ? 1 : 0) ||
-          bezier_blocked_by_cube(in.grid, b[i].p, clearance, st->cube) ||
           !bezier_clear_hinted(in.grid, b[i].p, clearance, kClearTolerance, &st->box, &st->cube)) {
         st->first = i;
         return 0;

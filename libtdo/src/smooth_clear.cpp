@@ -16,7 +16,6 @@ namespace {
 constexpr double kMaxSpan = 1e6;        // of the tolerance: longest box side certified clear
 constexpr int kBlockedSamples = 8;      // curve points tried, 1/16 of the parameter apart
 constexpr double kInsideVoxels = 1e-6;  // voxel edges: depth inside a cube that counts
-constexpr int kCubeSamples = 16;        // curve points tried against the hinted cube, + 1
 constexpr double kBlockReach = 1.5;     // voxel edges: widest margin tried with block_clear
 
 // Point of the cubic Bezier c at parameter s (Bernstein form).
@@ -83,31 +82,6 @@ int bezier_surely_blocked(const tdo_grid* grid, const tdo_vec3 c[4], double clea
     const double s = static_cast<double>(k) / (2 * kBlockedSamples);
     const tdo_vec3 p = bezier_at(c, from_end ? 1.0 - s : s);
     if (inside_cube(grid, p, inv)) return 1;
-  }
-  return 0;
-}
-
-// The exact check's 1 proves every curve point keeps the clearance from every cube (its chords
-// keep clearance + bound, and the curve lies within bound of them), up to rounding far below
-// that depth.
-int bezier_blocked_by_cube(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
-                           uint32_t cube) {
-  if (grid == nullptr || cube == 0u) return 0;
-  const tdo_grid_desc& d = grid->desc;
-  const uint32_t v = cube - 1u, nx = static_cast<uint32_t>(d.nx), ny = static_cast<uint32_t>(d.ny);
-  const double lo[3] = {d.origin.x + d.res * (v % nx), d.origin.y + d.res * ((v / nx) % ny),
-                        d.origin.z + d.res * (v / nx / ny)};
-  const double depth = kInsideVoxels * d.res, lim = clearance - depth;
-  for (int k = 0; k <= kCubeSamples; ++k) {
-    const tdo_vec3 p = bezier_at(c, static_cast<double>(k) / kCubeSamples);
-    const double q[3] = {p.x, p.y, p.z};
-    double g2 = 0.0, in = -HUGE_VAL;  // squared distance outside; the largest gap inside
-    for (int i = 0; i < 3; ++i) {
-      const double g = dmax(lo[i] - q[i], q[i] - (lo[i] + d.res));
-      in = dmax(in, g);
-      if (g > 0.0) g2 += g * g;
-    }
-    if (in < -depth || (lim > 0.0 && g2 < lim * lim)) return 1;
   }
   return 0;
 }

@@ -28,14 +28,6 @@ int bezier_surely_clear(const tdo_grid* grid, const tdo_vec3 c[4], double cleara
 int bezier_surely_blocked(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
                           int from_end);
 
-/**
- * 1 when tdo_collision_bezier_clear(grid, c, clearance, any tolerance) is surely 0: a point of
- * the curve comes closer than the clearance to the cube of voxel cube - 1, or lies inside it (by
- * 1e-6 voxel edges; cube: bezier_clear_hinted's cube hint, 0: none). 0: no claim.
- */
-int bezier_blocked_by_cube(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
-                           uint32_t cube);
-
 }  // namespace tdo_internal
 
 #endif  // TDO_SRC_SMOOTH_CLEAR_H

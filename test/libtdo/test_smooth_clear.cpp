@@ -16,7 +16,6 @@
 
 namespace {
 
-using tdo_internal::bezier_blocked_by_cube;
 using tdo_internal::bezier_clear_hinted;
 using tdo_internal::bezier_surely_blocked;
 using tdo_internal::bezier_surely_clear;
@@ -104,11 +103,10 @@ TEST(SmoothClear, GivenRandomCurvesNearCubes_WhenCertified_ThenTheExactCheckAgre
 }
 
 // As the smoothing's shrink steps: runs of curves scaled about one point, checked with the hints
-// carried from check to check. bezier_clear_hinted answers as the exact check does, and the
-// carried cube's "blocked" claims only curves the exact check fails.
+// carried from check to check: bezier_clear_hinted answers as the exact check does.
 TEST(SmoothClear, GivenRunsOfScaledCurves_WhenHintsCarried_ThenTheExactCheckAgrees) {
   Rng rng(19);
-  int claims = 0, fails = 0;
+  int fails = 0, passes = 0;
   for (int m = 0; m < 6; ++m) {
     const double res = m % 2 == 0 ? 1.0 : 0.25;
     Map map(rng, res, m < 4 ? 0 : 5);
@@ -127,24 +125,20 @@ TEST(SmoothClear, GivenRunsOfScaledCurves_WhenHintsCarried_ThenTheExactCheckAgre
         tdo_vec3 c[4];
         for (int i = 0; i < 4; ++i) c[i] = v3(w.x + f * u[i].x, w.y + f * u[i].y, w.z + f * u[i].z);
         const int exact = tdo_collision_bezier_clear(map.grid(), c, clearance, kTolerance);
-        if (exact == 0) ++fails;
-        if (bezier_blocked_by_cube(map.grid(), c, clearance, cube)) {
-          ++claims;
-          EXPECT_EQ(exact, 0) << "map " << m << " run " << q << " step " << k;
-        }
+        ++(exact == 0 ? fails : passes);
         EXPECT_EQ(bezier_clear_hinted(map.grid(), c, clearance, kTolerance, &box, &cube), exact)
             << "map " << m << " run " << q << " step " << k;
       }
     }
   }
-  EXPECT_GT(claims, fails / 4);
+  EXPECT_GT(fails, 1000);  // both answers are common
+  EXPECT_GT(passes, 1000);
 }
 
 TEST(SmoothClear, GivenBadInput_WhenCertified_ThenNoClaim) {
   const tdo_vec3 c[4] = {v3(0, 0, 0), v3(1, 0, 0), v3(2, 0, 0), v3(3, 0, 0)};
   EXPECT_EQ(bezier_surely_clear(nullptr, c, 0.0, kTolerance), 0);
   EXPECT_EQ(bezier_surely_blocked(nullptr, c, 0.0, 1), 0);
-  EXPECT_EQ(bezier_blocked_by_cube(nullptr, c, 0.5, 1u), 0);
 }
 
 }  // namespace
