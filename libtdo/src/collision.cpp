@@ -1158,14 +1158,18 @@ extern "C" int tdo_collision_segment_clear(const tdo_grid* grid, tdo_vec3 a, tdo
 
 extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c[4],
                                           double clearance, double tolerance) {
+  uint32_t hint = 0, cube_hint = 0;
+  return tdo_internal::bezier_clear_hinted(grid, c, clearance, tolerance, &hint, &cube_hint);
+}
+
+int tdo_internal::bezier_clear_hinted(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
+                                      double tolerance, uint32_t* hint, uint32_t* cube_hint) {
   if (!ready(grid) || c == nullptr || !(clearance >= 0.0) || !isfinite(clearance) ||
       !(tolerance >= 0.0) || !isfinite(tolerance))
     return 0;
   for (int i = 0; i < 4; ++i)
     if (!finite3(c[i])) return 0;
   const double tol = dmax(tolerance, kMinTolerance);
-  uint32_t hint = 0;       // box that failed the last chord test (segment_clear_steered)
-  uint32_t cube_hint = 0;  // surface cube that failed the last chord test
   Bezier stack[kBezierStackCap];
   int top = 0;
   for (int i = 0; i < 4; ++i) load(c[i], stack[0].c[i]);
@@ -1180,8 +1184,8 @@ extern "C" int tdo_collision_bezier_clear(const tdo_grid* grid, const tdo_vec3 c
     bool in = true;
     for (int i = 0; i < 4; ++i) in = in && inside_bounds(grid, bz.c[i]);
     // The chord test: segment_clear_steered (the same answer as segment_clear, cheaper).
-    if (in && segment_clear_steered(grid, vec(bz.c[0]), vec(bz.c[3]), clearance + bound, &hint,
-                                    &cube_hint) != 0)
+    if (in && segment_clear_steered(grid, vec(bz.c[0]), vec(bz.c[3]), clearance + bound, hint,
+                                    cube_hint) != 0)
       continue;
     // Every chord point is within `bound` of the curve too, so a curve keeping clearance + tol
     // passes its chord test once bound <= tol / 2: stopping there keeps a 0 within tol.

@@ -84,6 +84,13 @@ int segment_clear_steered(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double c
  */
 int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
 
+/**
+ * tdo_collision_bezier_clear (the same answer always) with segment_clear_steered's hints carried
+ * in and out (*hint, *cube_hint: 0 to start), for runs of checks of nearby curves.
+ */
+int bezier_clear_hinted(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
+                        double tolerance, uint32_t* hint, uint32_t* cube_hint);
+
 /** True when p lies in the closed grid bounds: the bounds test the segment checks apply to their
  *  end points (segment_clear_steered, block_clear), by the same expressions. */
 bool point_in_bounds(const tdo_grid* grid, tdo_vec3 p);

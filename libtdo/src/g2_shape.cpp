@@ -228,8 +228,8 @@ double rate_lower(double beta, double gf, double hf, int pieces, int step) {
 }
 
 // The curvature (sk) and curvature-rate (sf) samples of z that g2_shape refines.
-void shape_samples(const PlanarBez& z, UnitSamples* sk, UnitSamples* sf) {
-  for (int i = 0; i <= kRateSamples; ++i) {
+void shape_samples(const PlanarBez& z, UnitSamples* sk, UnitSamples* sf, int step = 1) {
+  for (int i = 0; i <= kRateSamples; i += step) {
     const PlanarDeriv d = planar_deriv(z, static_cast<double>(i) / kRateSamples);
     sk->add(i, g2_kappa_of(d));
     sf->add(i, g2_rate_of(z, d));
@@ -282,11 +282,12 @@ double g2_rate_lower(double beta, double gf, double hf) {
   return rate_lower(beta, gf, hf, kBoundPieces, kBoundSampleStep);
 }
 
-void g2_shape_lower(double beta, double gf, double hf, double* tau_lower, double* f_lower) {
+void g2_shape_lower(double beta, double gf, double hf, double* tau_lower, double* f_lower,
+                    int step) {
   const PlanarBez z = unit_bez(beta, gf, hf);
   UnitSamples sk, sf;
-  shape_samples(z, &sk, &sf);
-  // g2_shape refines from these samples: its maxima are at least the best ones.
+  shape_samples(z, &sk, &sf, step);
+  // g2_shape refines from all these samples: its maxima are at least the best ones.
   *tau_lower = sk.best_v * kRateMargin;
   *f_lower = sf.best_v * kRateMargin;
 }

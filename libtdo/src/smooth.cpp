@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "arena_typed.h"
+#include "collision_internal.h"
 #include "g2_shape.h"
 #include "scalar.h"
 #include "smooth_clear.h"
@@ -59,6 +60,7 @@ constexpr double kGentleG = 0.32;  // |B1 - B0| / d
 constexpr double kGentleH = 0.32;  // |B2 - B1| / d
 constexpr int kShapeBlends = 4;    // shapes tried: Yang-Sukkarieh blended 0, 1/4, .., 1 of the way
 constexpr double kTimeJerkShare = 0.4;  // of j_max: lateral jerk the jerk radius designs for
+constexpr int kCoarseStep = 4;          // g2_shape_lower's sample step tried first
 
 enum CornerKind : uint8_t {
   kCornerStraight = 0,  // no turn: the lines meet end to end
@@ -136,14 +138,21 @@ struct tdo_smooth {
 
 namespace {
 
+/** What a corner's clearance checks hand on to the next check of the same corner. */
+struct ClearState {
+  int first;     // G2 half to check first: the one that failed last
+  uint32_t box;  // bezier_clear_hinted's hints: the box and the cube that failed last
+  uint32_t cube;
+};
+
 /**
  * Clearance of a corner curve; counts the queries. `margin` (m) is added to the clearance: it
  * covers the at most kMergeRel * max(1, L) shift of an end point that step 4 may snap onto its
- * neighbour's (along the line, so the curve moves by no more than that). `first` (0 or 1): the G2
- * half to check first, set to the half that fails.
+ * neighbour's (along the line, so the curve moves by no more than that). `st`: carried from
+ * the corner's previous check (zeros to start).
  */
 int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev, double margin,
-                 uint32_t* checks, int* first) {
+                 uint32_t* checks, ClearState* st) {
   if (in.grid == nullptr) return 1;
   const double clearance = in.clearance + margin;
   const tdo_vec3 entry = sub(c.w, mul(prev.u, c.t));
@@ -154,12 +163,12 @@ int corner_clear(const tdo_smooth_input& in, const Corner& c, const Corner& prev
     // Both halves must be clear: the one that failed the corner's last check goes first. The
     // certificates answer as the exact check would; it runs when neither decides.
     for (int q = 0; q < 2; ++q) {
-      const int i = q == 0 ? *first : 1 - *first;
+      const int i = q == 0 ? st->first : 1 - st->first;
       ++*checks;
       if (bezier_surely_clear(in.grid, b[i].p, clearance, kClearTolerance)) continue;
       if (bezier_surely_blocked(in.grid, b[i].p, clearance, i == 0 ? 1 : 0) ||
-          !tdo_collision_bezier_clear(in.grid, b[i].p, clearance, kClearTolerance)) {
-        *first = i;
+          !bezier_clear_hinted(in.grid, b[i].p, clearance, kClearTolerance, &st->box, &st->cube)) {
+        st->first = i;
         return 0;
       }
     }
@@ -213,15 +222,19 @@ double blend_speed(const Blends& s, double tau, double rate, double* r_des) {
 // True when v_last beats every middle blend's speed (b = 1 .. kShapeBlends - 1) by more than the
 // comparison's 1e-9. A blend's speed is at most its speed at r = half_room / tau, that is
 // min(sqrt(a_lat half_room / tau), cbrt(j_design half_room^2 / f)) with f = tau^2 rate, and its
-// tau and f are at least g2_shape_lower's (a 1e-6 margin covers the rounding).
+// tau and f are at least g2_shape_lower's (a 1e-6 margin covers the rounding): from every
+// kCoarseStep-th sample first (mostly enough), from all where that does not decide.
 bool middle_blends_slower(const Blends& s, double v_last) {
   for (int b = kShapeBlends - 1; b >= 1; --b) {
     double gf, hf, tau_lower, f_lower;
     blend_fractions(s, b, &gf, &hf);
-    g2_shape_lower(s.beta, gf, hf, &tau_lower, &f_lower);
-    const double upper = dmin(sqrt(s.in->a_lat_max * s.half_room / tau_lower),
-                              cbrt(s.j_design * s.half_room * s.half_room / f_lower));
-    if (!(v_last > upper * (1.0 + 1e-6) * (1.0 + 1e-9))) return false;
+    for (int step = kCoarseStep;; step = 1) {
+      g2_shape_lower(s.beta, gf, hf, &tau_lower, &f_lower, step);
+      const double upper = dmin(sqrt(s.in->a_lat_max * s.half_room / tau_lower),
+                                cbrt(s.j_design * s.half_room * s.half_room / f_lower));
+      if (v_last > upper * (1.0 + 1e-6) * (1.0 + 1e-9)) break;
+      if (step == 1) return false;
+    }
   }
   return true;
 }
@@ -411,13 +424,13 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
     k.shrunk = 1u;
   }
   int ok = 0;
-  int first = 0;        // G2 half checked first (corner_clear)
+  ClearState st{0, 0u, 0u};
   double r_fail = 0.0;  // m, the last radius that did not keep the clearance (0: none)
   for (uint32_t attempt = 0; attempt <= max_shrinks; ++attempt) {
     if (!(r >= r_floor)) break;
     k.r = r;
     k.t = dmin(k.tau * r, room);
-    if (corner_clear(in, k, c[i - 1u], margin, checks, &first)) {
+    if (corner_clear(in, k, c[i - 1u], margin, checks, &st)) {
       ok = 1;
       break;
     }
@@ -434,7 +447,7 @@ void fit_corner(const tdo_smooth_input& in, uint32_t max_shrinks, double r_floor
       const double mid = sqrt(lo * hi);
       k.r = mid;
       k.t = dmin(k.tau * mid, room);
-      if (corner_clear(in, k, c[i - 1u], margin, checks, &first))
+      if (corner_clear(in, k, c[i - 1u], margin, checks, &st))
         lo = mid;
       else
         hi = mid;

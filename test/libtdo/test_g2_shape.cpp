@@ -88,6 +88,20 @@ TEST(G2Shape, GivenRandomShapes_WhenShapeLowerBounds_ThenBelowTauAndTau2RateAndM
   EXPECT_GT(close, 3000);  // three quarters of the shapes
 }
 
+// The same bounds from every 4th sample only (the smoothing's first try): still below.
+TEST(G2Shape, GivenRandomShapes_WhenCoarseShapeLowerBounds_ThenBelowTheFullBounds) {
+  tdo_test::Rng rng(1208);
+  for (int n = 0; n < 2000; ++n) {
+    const Shape z = random_shape(rng, n);
+    double tau_lower = 0.0, f_lower = 0.0, tau_full = 0.0, f_full = 0.0;
+    g2_shape_lower(z.beta, z.gf, z.hf, &tau_lower, &f_lower, 4);
+    g2_shape_lower(z.beta, z.gf, z.hf, &tau_full, &f_full);
+    ASSERT_GT(tau_lower, 0.0);
+    ASSERT_LE(tau_lower, tau_full) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+    ASSERT_LE(f_lower, f_full) << "beta " << z.beta << " gf " << z.gf << " hf " << z.hf;
+  }
+}
+
 // smooth.cpp's speed of a blend with tau and rate (g2_choose).
 double blend_speed(double tau, double rate, double r8, double v_c, double j_design, double a_lat,
                    double half_room) {

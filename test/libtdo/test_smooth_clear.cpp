@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "../../libtdo/src/collision_internal.h"
 #include "../../libtdo/src/smooth_clear.h"
 #include "rng.h"
 #include "tdo/collision.h"
@@ -15,6 +16,7 @@
 
 namespace {
 
+using tdo_internal::bezier_clear_hinted;
 using tdo_internal::bezier_surely_blocked;
 using tdo_internal::bezier_surely_clear;
 using tdo_test::Rng;
@@ -98,6 +100,39 @@ TEST(SmoothClear, GivenRandomCurvesNearCubes_WhenCertified_ThenTheExactCheckAgre
   }
   EXPECT_GT(clear_claims, curves / 20);
   EXPECT_GT(blocked_claims, curves / 20);
+}
+
+// As the smoothing's shrink steps: runs of curves scaled about one point, checked with the hints
+// carried from check to check: bezier_clear_hinted answers as the exact check does.
+TEST(SmoothClear, GivenRunsOfScaledCurves_WhenHintsCarried_ThenTheExactCheckAgrees) {
+  Rng rng(19);
+  int fails = 0, passes = 0;
+  for (int m = 0; m < 6; ++m) {
+    const double res = m % 2 == 0 ? 1.0 : 0.25;
+    Map map(rng, res, m < 4 ? 0 : 5);
+    ASSERT_EQ(map.status(), TDO_OK);
+    for (int q = 0; q < 300; ++q) {
+      const tdo_vec3 w = map.point(rng);
+      const double reach = rng.uniform(0.2, 3.0) * res;
+      tdo_vec3 u[4];
+      for (tdo_vec3& p : u)
+        p = v3(rng.uniform(-reach, reach), rng.uniform(-reach, reach),
+               rng.uniform(-reach, reach) * 0.5);
+      const double clearance = q % 4 == 0 ? 0.0 : rng.uniform(0.0, 0.8) * res;
+      uint32_t box = 0, cube = 0;
+      for (int k = 0; k < 8; ++k) {
+        const double f = rng.uniform(0.3, 1.0);
+        tdo_vec3 c[4];
+        for (int i = 0; i < 4; ++i) c[i] = v3(w.x + f * u[i].x, w.y + f * u[i].y, w.z + f * u[i].z);
+        const int exact = tdo_collision_bezier_clear(map.grid(), c, clearance, kTolerance);
+        ++(exact == 0 ? fails : passes);
+        EXPECT_EQ(bezier_clear_hinted(map.grid(), c, clearance, kTolerance, &box, &cube), exact)
+            << "map " << m << " run " << q << " step " << k;
+      }
+    }
+  }
+  EXPECT_GT(fails, 1000);  // both answers are common
+  EXPECT_GT(passes, 1000);
 }
 
 TEST(SmoothClear, GivenBadInput_WhenCertified_ThenNoClaim) {
