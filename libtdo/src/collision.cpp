@@ -1670,4 +1670,51 @@ int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance) 
   return block_free(grid, pa, pb, r, grid->n_boxes > 0u) ? 1 : 0;
 }
 
+#if defined(TDO_KEEP_BOUNDS)
+double segment_cube_distance(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, uint32_t cube,
+                             double cap) {
+  double pa[3], pb[3];
+  if (!load_segment_query(grid, a, b, 0.0, pa, pb) || cube >= grid->nvox ||
+      (grid->flags[cube] & kFlagSurface) == 0)
+    return -1.0;
+  const tdo_grid_desc& d = grid->desc;
+  const int64_t v[3] = {cube % grid->stride_y, (cube / grid->stride_y) % d.ny,
+                        cube / grid->stride_z};
+  const double o[3] = {d.origin.x, d.origin.y, d.origin.z};
+  double lo[3], hi[3];  // the cube's faces as the cube loops compute them
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = o[i] + static_cast<double>(v[i]) * d.res;
+    hi[i] = o[i] + static_cast<double>(v[i] + 1) * d.res;
+  }
+  // The halvings of walk_pieces and the leaves of piece_info (its expressions), taken only where
+  // the cube may come within the running minimum; leaf_min's update of the minimum.
+  double best = cap;
+  Piece stack[kStackCap];
+  int top = 0;
+  stack[top++] = Piece{0.0, 1.0};
+  for (uint32_t pieces = 0; top > 0; ++pieces) {
+    const Piece pc = stack[--top];
+    double p0[3], p1[3], half2 = 0.0;
+    seg_point(pa, pb, pc.t0, p0);
+    seg_point(pa, pb, pc.t1, p1);
+    if (far_apart(p0, p1, lo, hi, best)) continue;
+    for (int i = 0; i < 3; ++i) {
+      const double h = 0.5 * (p1[i] - p0[i]);
+      half2 += h * h;
+    }
+    if (!(2.0 * sqrt(half2) > d.res)) {
+      const double d2 = piece_info(grid, pa, pb, pc).in_cube ? 0.0 : segment_box_d2(p0, p1, lo, hi);
+      if (d2 < best * best) best = sqrt(d2);
+      if (!(best > 0.0)) break;
+      continue;
+    }
+    if (pieces >= kMaxPieces || top + 2 > kStackCap) return -1.0;
+    const double tm = 0.5 * (pc.t0 + pc.t1);
+    stack[top++] = Piece{tm, pc.t1};
+    stack[top++] = Piece{pc.t0, tm};
+  }
+  return best;
+}
+#endif
+
 }  // namespace tdo_internal

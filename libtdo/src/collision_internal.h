@@ -91,6 +91,23 @@ int block_clear(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, double clearance);
 int bezier_clear_hinted(const tdo_grid* grid, const tdo_vec3 c[4], double clearance,
                         double tolerance, uint32_t* hint, uint32_t* cube_hint);
 
+// The correction's bounds on its tightening keeps (segment_cube_distance, correct.cpp's
+// keep_bounds) pay at clearances of a quarter voxel and below; the 32-bit firmware plans at larger
+// ones and its flash is scarce, so they are compiled into 64-bit builds only.
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define TDO_KEEP_BOUNDS 1
+/**
+ * min(cap, m), m the smallest distance of the surface cube `cube` (a voxel index) over the leaves
+ * tdo_collision_segment_distance cuts [a, b] into, each evaluated as that query evaluates it (0
+ * for a leaf whose midpoint lies in a cube): a result below cap is one of the values that query
+ * takes the minimum of, so its result is at most that. Leaves whose bounding box stays farther
+ * than the running minimum from the cube are not evaluated. -1 for a cube that is not a surface
+ * cube, an invalid query or a walk over its bounds.
+ */
+double segment_cube_distance(const tdo_grid* grid, tdo_vec3 a, tdo_vec3 b, uint32_t cube,
+                             double cap);
+#endif
+
 /** True when p lies in the closed grid bounds: the bounds test the segment checks apply to their
  *  end points (segment_clear_steered, block_clear), by the same expressions. */
 bool point_in_bounds(const tdo_grid* grid, tdo_vec3 p);

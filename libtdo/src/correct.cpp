@@ -83,6 +83,7 @@ struct Run {
   uint32_t hint;     // box that failed the last check (segment_clear_hinted)
   uint32_t cube;     // voxel cube that failed the last check (segment_clear_steered)
   uint32_t proven;   // input points 1 .. proven: their segments are known clear (steps_proven)
+  bool bounds;       // tighten bounds its keeps (keep_bounds): clearance <= res/4, 64-bit builds
 };
 
 // [a, b] at `clearance` (m, >= the run's): 1 clear, 0 not clear, -1 budget exhausted.
@@ -481,23 +482,6 @@ bool corner_costs(const tdo_vec3* p, uint32_t m, uint32_t k, const tdo_vec3& q, 
   return true;
 }
 
-// A capped distance of one of tighten's two current segments: counted as a check when first
-// asked for (as the budget sees it), computed only when a clearance check reads it, so a
-// candidate whose first new segment fails never needs the second distance.
-struct Capped {
-  enum : uint8_t { kUnknown, kPending, kKnown } state;  // not asked for / counted / computed
-  double d;                                             // m, min(cap, exact distance) when known
-};
-
-// Count the check of a capped distance; false when the budget ran out.
-bool count_distance(Run& r, Capped* c) {
-  if (c->state != Capped::kUnknown) return true;
-  if (r.checks >= r.budget) return false;
-  ++r.checks;
-  c->state = Capped::kPending;
-  return true;
-}
-
 // The capped distance of a waypoint (tdo_collision_point_distance), computed when first asked for.
 struct EndDist {
   bool known;
@@ -512,40 +496,152 @@ double end_distance(const Run& r, EndDist* e, const tdo_vec3& p, double cap) {
   return e->d;
 }
 
+// A margin far above the rounding of the distances of [a, b] (with cap): kMarginRel of the
+// coordinates' magnitude.
+double margin(const tdo_vec3& a, const tdo_vec3& b, double cap) {
+  double mag = 1.0 + cap;
+  const double v[6] = {a.x, a.y, a.z, b.x, b.y, b.z};
+  for (double x : v) mag = fabs(x) > mag ? fabs(x) : mag;
+  return kMarginRel * mag;
+}
+
 // tdo_collision_segment_distance(a, b, cap), the same value bit for bit, with a tighter cap when
-// the end points give one. The result of a capped distance is min(cap, M), M the minimum of the
-// exact distances over the leaves of the segment's pieces (and over its box pieces): a piece is
-// dropped only when its bound shows it cannot lower the minimum found, so a smaller cap changes
-// which pieces are looked at but not M (cubes_min, boxes_min). The segment's distance is at most
-// that of each end point, so with u = min(end distances) plus a margin far above the rounding of
-// both, M < u: then min(u, M) = M = min(cap, M) for every cap above u, and the cheap query with cap
-// u (nearly every piece dropped at once) answers. A result of u (the margin's claim failed, by
-// rounding) or u >= cap: the query with cap itself.
+// one is known to lie above it. The result of a capped distance is min(cap, M), M the minimum of
+// the exact distances over the leaves of the segment's pieces (and over its box pieces): a piece
+// is dropped only when its bound shows it cannot lower the minimum found, so a smaller cap changes
+// which pieces are looked at but not M (cubes_min, boxes_min). So a query with cap w < cap whose
+// result is below w has found M = min(cap, M). Tried in turn: w = lo (a lower bound of M, or -1)
+// plus the margin, where M nearly always is; w = the smaller end-point distance plus the margin
+// (a segment comes as close as its ends); cap itself.
 double capped_distance(const Run& r, const tdo_vec3& a, const tdo_vec3& b, EndDist* ea, EndDist* eb,
-                       double cap) {
+                       double cap, double lo) {
   const double da = end_distance(r, ea, a, cap), db = end_distance(r, eb, b, cap);
-  if (da >= 0.0 && db >= 0.0) {
-    double mag = 1.0 + cap;
-    const double v[6] = {a.x, a.y, a.z, b.x, b.y, b.z};
-    for (double x : v) mag = fabs(x) > mag ? fabs(x) : mag;
-    const double u = (da < db ? da : db) + kMarginRel * mag;
-    if (u < cap) {
-      const double d = tdo_collision_segment_distance(r.grid, a, b, u);
-      if (d >= 0.0 && d < u) return d;
-    }
+  const double w[2] = {lo, da >= 0.0 && db >= 0.0 ? (da < db ? da : db) : -1.0};
+  for (double x : w) {
+    if (!(x >= 0.0)) continue;
+    const double u = x + margin(a, b, cap);
+    if (!(u < cap)) continue;
+    const double d = tdo_collision_segment_distance(r.grid, a, b, u);
+    if (d >= 0.0 && d < u) return d;
   }
   return tdo_collision_segment_distance(r.grid, a, b, cap);
 }
 
-// The clearance the replacement of segment [a, b] (distance *c, counted; end distances *ea, *eb)
-// must keep: max(distance, the run's clearance), the distance computed when pending.
-double replacement_clearance(const Run& r, Capped* c, const tdo_vec3& a, const tdo_vec3& b,
-                             EndDist* ea, EndDist* eb, double cap) {
-  if (c->state == Capped::kPending) {
-    c->d = capped_distance(r, a, b, ea, eb, cap);
-    c->state = Capped::kKnown;
+// The clearance a replacement of one of tighten's two current segments must keep, its "keep":
+// max(the run's clearance, the segment's capped distance). Its distance is counted as a check
+// when first asked for (as the budget sees it); the value is found when a candidate needs it
+// (keep_ok), at small clearances only as far as the candidate's answer needs it (keep_bounds).
+struct Keep {
+  bool counted;  // counted as a check
+  bool known;    // v holds the keep
+  double v;      // m, the keep when known
+  double lo;     // m, a lower bound of the keep when >= 0 (a clearance the segment passed at)
+};
+
+// Count the check of a keep's distance; false when the budget ran out.
+bool count_distance(Run& r, Keep* k) {
+  if (k->counted) return true;
+  if (r.checks >= r.budget) return false;
+  ++r.checks;
+  k->counted = true;
+  return true;
+}
+
+// [a, b] at clearance c, not counted (the check it stands for is counted by the caller).
+bool clear_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double c) {
+  return tdo_internal::segment_clear_steered(r.grid, a, b, c, &r.hint, &r.cube) != 0;
+}
+
+// One tightening candidate: the old segment [s0, s1] (keep *k, end distances *e0, *e1) and the
+// new segment [n0, n1] that replaces it.
+struct Swap {
+  const tdo_vec3 &s0, &s1;
+  EndDist *e0, *e1;
+  const tdo_vec3 &n0, &n1;
+};
+
+#if defined(TDO_KEEP_BOUNDS)
+// Whether the new segment keeps the keep, decided from bounds of the keep where they suffice: 1
+// or 0, else -1 with *at, *ok a clearance the new segment was checked at (or -1) and its answer.
+// The check answers "every leaf of the segment and every cube (box) has squared distance
+// d2 >= c * c and > 0" (tdo_collision_segment_clear, exact); rounding is monotone, so the answer
+// is monotone in c, and a pass at c says that the capped distance (the minimum over the same
+// leaves of sqrt(d2)) is at least min(cap, c). A leaf holding an end point evaluates that point
+// exactly (segment_box_d2), so the capped distance is at most each end point's capped distance,
+// and the keep at most u = max(clearance, min(e0, e1)).
+// - u is the clearance: so is the keep.
+// - Without a lower bound, the new segment is checked at u first: clear there, clear at the keep.
+// - With one, a new segment failing there fails; passing, a surface cube the old segment comes
+//   no nearer than lo to (segment_cube_distance) puts the keep at lo.
+int keep_bounds(Run& r, Keep* k, const Swap& s, double cap, double* at, bool* ok) {
+  const double d0 = end_distance(r, s.e0, s.s0, cap), d1 = end_distance(r, s.e1, s.s1, cap);
+  if (d0 >= 0.0 && d1 >= 0.0) {
+    const double m = d0 < d1 ? d0 : d1;
+    if (!(m > r.clearance)) {
+      k->known = true;
+      k->v = r.clearance;
+      return clear_at(r, s.n0, s.n1, k->v) ? 1 : 0;
+    }
+    if (!(k->lo >= 0.0)) {
+      if (clear_at(r, s.n0, s.n1, m)) return 1;
+      *at = m;
+      return -1;
+    }
   }
-  return c->d > r.clearance ? c->d : r.clearance;
+  if (!(k->lo >= 0.0)) return -1;
+  if (!clear_at(r, s.n0, s.n1, k->lo)) return 0;
+  *at = k->lo;
+  *ok = true;
+  // The cube of the last failed check, nearly always the one the old segment wraps.
+  const double w = k->lo + margin(s.s0, s.s1, cap);
+  const double dc =
+      r.cube != 0u ? tdo_internal::segment_cube_distance(r.grid, s.s0, s.s1, r.cube - 1u, w) : -1.0;
+  if (!(dc >= 0.0) || dc > k->lo) return -1;
+  k->known = true;
+  k->v = k->lo;
+  return 1;
+}
+#endif
+
+// Whether the new segment keeps the keep *k of the old one: the answer of checking it at the
+// keep. Where the bounds did not decide it, the keep comes from the capped distance (tried first
+// with the lower bound as its cap, which nearly always holds it), and the new segment is checked
+// at it unless it was checked there already.
+int keep_ok(Run& r, Keep* k, const Swap& s, double cap) {
+  if (!k->known) {
+    double at = -1.0;  // a clearance the new segment was checked at
+    bool ok = false;   // its answer there
+#if defined(TDO_KEEP_BOUNDS)
+    if (r.bounds) {
+      const int b = keep_bounds(r, k, s, cap, &at, &ok);
+      if (b >= 0) return b;
+    }
+#endif
+    const double d = capped_distance(r, s.s0, s.s1, s.e0, s.e1, cap, k->lo);
+    k->v = d > r.clearance ? d : r.clearance;
+    k->known = true;
+    if (at >= 0.0 && !(k->v < at) && !(k->v > at)) return ok ? 1 : 0;  // checked there already
+  }
+  return clear_at(r, s.n0, s.n1, k->v) ? 1 : 0;
+}
+
+// The keep of a new segment that passed at the keep v of the old one (with the bounds; else not
+// asked for): at least v (the pass, v <= cap), and at most the capped distance e of the shared
+// end point, so known when e <= v (then e = v: the pass bounds e from below too).
+Keep keep_after(const Run& r, const EndDist& e, double v) {
+  if (!r.bounds) return Keep{false, false, 0.0, -1.0};
+  return Keep{false, e.known && e.d >= 0.0 && !(e.d > v), v, v};
+}
+
+// Whether tighten bounds its keeps (keep_bounds): at clearances up to a quarter voxel edge, where
+// the end points nearly always bound them; at larger ones they nearly never do, and cost.
+bool bounds_pay(const tdo_correct_input* in) {
+#if defined(TDO_KEEP_BOUNDS)
+  return in->clearance <= 0.25 * tdo_grid_get_desc(in->grid).res;
+#else
+  (void)in;
+  return false;
+#endif
 }
 
 // The pass; returns false when the budget ran out.
@@ -553,13 +649,13 @@ bool tighten(Run& r, uint32_t m) {
   tdo_vec3* p = r.ctx->pts;
   const double res = tdo_grid_get_desc(r.grid).res;
   const double cap = r.clearance + kRoomMargin;
-  constexpr Capped kNotAsked{Capped::kUnknown, 0.0};
+  constexpr Keep kNotAsked{false, false, 0.0, -1.0};
   constexpr EndDist kNoEnd{false, 0.0};
-  Capped carried = kNotAsked;  // capped distance of [p[k-1], p[k]] when already asked for
+  Keep carried = kNotAsked;  // keep of [p[k-1], p[k]] when already asked for or known
   EndDist ends[3] = {kNoEnd, kNoEnd, kNoEnd};  // distances of p[k-1], p[k], p[k+1] when known
   for (uint32_t k = 1; k + 1u < m; ++k) {
     const tdo_vec3 a = p[k - 1u], c = p[k + 1u];
-    Capped d1 = carried, d2 = kNotAsked;  // capped distances of the current segments
+    Keep d1 = carried, d2 = kNotAsked;  // keeps of the current segments
     carried = kNotAsked;
     if (k > 1u) {  // the window moves on by one point
       ends[0] = ends[1];
@@ -593,10 +689,15 @@ bool tighten(Run& r, uint32_t m) {
           if (turns > turns0 || room > room0 * (1.0 + kRoomTol)) continue;
           // The old segments' distances, only for a candidate that got this far.
           if (!count_distance(r, &d1) || !count_distance(r, &d2)) return false;
-          int ok = check_at(r, a, q, replacement_clearance(r, &d1, a, b, &ends[0], &ends[1], cap));
-          if (ok == 1)
-            ok = check_at(r, q, c, replacement_clearance(r, &d2, b, c, &ends[1], &ends[2], cap));
-          if (ok < 0) return false;
+          // Counted as check_at counts them: one each, the second only after the first passed.
+          if (r.checks >= r.budget) return false;
+          ++r.checks;
+          int ok = keep_ok(r, &d1, Swap{a, b, &ends[0], &ends[1], a, q}, cap);
+          if (ok == 1) {
+            if (r.checks >= r.budget) return false;
+            ++r.checks;
+            ok = keep_ok(r, &d2, Swap{b, c, &ends[1], &ends[2], q, c}, cap);
+          }
           if (ok == 0) {
             failed |= 1u << dir;
             continue;
@@ -604,14 +705,16 @@ bool tighten(Run& r, uint32_t m) {
           p[k] = q;
           r.ctx->orig[k] = kNone;
           moved = true;
-          d1 = d2 = kNotAsked;  // both segments changed
+          // Both segments changed; each new one keeps what it passed at.
+          d1 = keep_after(r, ends[0], d1.v);
+          d2 = keep_after(r, ends[2], d2.v);
           ends[1] = kNoEnd;
         }
         if (moved) break;
       }
     }
-    // [p[k], p[k+1]] is the next point's first segment; its distance carries over when known.
-    if (!moved) carried = d2;
+    // [p[k], p[k+1]] is the next point's first segment; its keep carries over.
+    carried = d2;
   }
   return true;
 }
@@ -705,7 +808,8 @@ extern "C" tdo_status tdo_correct_run(tdo_correct* ctx, const tdo_correct_input*
         ctx->cfg.max_checks != 0u ? ctx->cfg.max_checks : 0xFFFFFFFFu,
         0u,
         0u,
-        in->steps_proven && n >= 3u ? n - 2u : 0u};
+        in->steps_proven && n >= 3u ? n - 2u : 0u,
+        bounds_pay(in)};
   // 1. The input itself must keep clearance.
   tdo_status st = verify_input(r, in->points, n);
   uint32_t m = 0, critical = 0;

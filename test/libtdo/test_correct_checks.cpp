@@ -475,4 +475,77 @@ TEST(CorrectChecks, LatticeSegmentsThroughVoxelCornersAtSmallClearances) {
   EXPECT_GT(blocked, 20000);
 }
 
+#if defined(TDO_KEEP_BOUNDS)
+// segment_cube_distance (the correction's tightening settles a keep with it): with one surface
+// cube on the grid it is the exact distance itself, bit for bit (the same leaves, each evaluated
+// the same way), capped alike; with many cubes it is never below the exact distance, and it
+// refuses a voxel that is not a surface cube.
+TEST(CorrectChecks, SegmentCubeDistanceIsTheExactQuerysValueForItsCube) {
+  Rng rng(41);
+  const tdo_grid_desc descs[2] = {tdo_grid_desc{14, 12, 9, 1.0, tdo_vec3{-0.5, -0.5, -0.5}},
+                                  tdo_grid_desc{20, 16, 12, 0.15, tdo_vec3{-3.3, 1.7, 0.05}}};
+  int equal = 0, below_cap = 0;
+  for (const tdo_grid_desc& d : descs) {
+    MapFile one;
+    one.desc = d;
+    const tdo_voxel v{d.nx / 2, d.ny / 2, d.nz / 2};
+    one.cubes.push_back(v);
+    MapGrid mg(one);
+    ASSERT_EQ(mg.load(0.0), TDO_OK);
+    const uint32_t idx = static_cast<uint32_t>(v.i + d.nx * (v.j + d.ny * v.k));
+    const double r = d.res;
+    const tdo_vec3 c{d.origin.x + (v.i + 0.5) * r, d.origin.y + (v.j + 0.5) * r,
+                     d.origin.z + (v.k + 0.5) * r};
+    for (int n = 0; n < 4000; ++n) {
+      // End points around the cube, some on its lattice (faces, edges, corners).
+      tdo_vec3 e[2];
+      for (tdo_vec3& p : e) {
+        const double s = n % 3 == 0 ? 4.0 : 1.5;
+        p = tdo_vec3{c.x + rng.uniform(-s, s) * r, c.y + rng.uniform(-s, s) * r,
+                     c.z + rng.uniform(-s, s) * r};
+        if (n % 4 == 1) p.x = d.origin.x + std::round((p.x - d.origin.x) / r) * r;
+      }
+      const double cap = n % 2 == 0 ? 1e9 : rng.uniform(0.0, 1.5) * r;
+      const double exact = tdo_collision_segment_distance(mg.grid(), e[0], e[1], cap);
+      const double got = tdo_internal::segment_cube_distance(mg.grid(), e[0], e[1], idx, cap);
+      ASSERT_EQ(got, exact) << "n " << n << " cap " << cap;
+      ++equal;
+      below_cap += got < cap ? 1 : 0;
+    }
+  }
+  EXPECT_GT(below_cap, 2000);
+  // Many cubes: an upper bound of the exact distance for every surface cube near the segment.
+  MapFile m;
+  m.desc = descs[1];
+  for (int n = 0; n < 300; ++n)
+    m.cubes.push_back(tdo_voxel{rng.range(0, 19), rng.range(0, 15), rng.range(0, 11)});
+  MapGrid mg(m);
+  ASSERT_EQ(mg.load(0.0), TDO_OK);
+  SegmentMaker make(m, 5);
+  int bounded = 0;
+  for (int n = 0; n < 3000; ++n) {
+    tdo_vec3 a, b;
+    if (!make.make(n % SegmentMaker::kKinds, 0.0, &a, &b)) continue;
+    const double exact = tdo_collision_segment_distance(mg.grid(), a, b, 1e9);
+    for (const tdo_voxel& v : m.cubes) {
+      const uint32_t idx = static_cast<uint32_t>(v.i + m.desc.nx * (v.j + m.desc.ny * v.k));
+      const double got = tdo_internal::segment_cube_distance(mg.grid(), a, b, idx, 1e9);
+      if (got < 0.0) continue;  // not a surface cube
+      ASSERT_GE(got, exact) << "n " << n;
+      ++bounded;
+    }
+  }
+  EXPECT_GT(bounded, 100000);
+  const uint32_t free_voxel = 0u;  // refused unless it is a surface cube
+  bool occupied = false;
+  for (const tdo_voxel& v : m.cubes) occupied = occupied || (v.i == 0 && v.j == 0 && v.k == 0);
+  if (!occupied) {
+    EXPECT_EQ(tdo_internal::segment_cube_distance(mg.grid(), tdo_vec3{0.0, 2.0, 0.1},
+                                                  tdo_vec3{-3.0, 3.0, 1.0}, free_voxel, 1e9),
+              -1.0);
+  }
+  EXPECT_EQ(equal, 8000);
+}
+#endif
+
 }  // namespace
