@@ -552,6 +552,16 @@ bool clear_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double c) {
   return tdo_internal::segment_clear_steered(r.grid, a, b, c, &r.hint, &r.cube) != 0;
 }
 
+// Whether the run bounds its keeps (keep_bounds); false where they are compiled out.
+bool bounding(const Run& r) {
+#if defined(TDO_KEEP_BOUNDS)
+  return r.bounds;
+#else
+  (void)r;
+  return false;
+#endif
+}
+
 // One tightening candidate: the old segment [s0, s1] (keep *k, end distances *e0, *e1) and the
 // new segment [n0, n1] that replaces it.
 struct Swap {
@@ -612,12 +622,13 @@ int keep_ok(Run& r, Keep* k, const Swap& s, double cap) {
     double at = -1.0;  // a clearance the new segment was checked at
     bool ok = false;   // its answer there
 #if defined(TDO_KEEP_BOUNDS)
-    if (r.bounds) {
+    if (bounding(r)) {
       const int b = keep_bounds(r, k, s, cap, &at, &ok);
       if (b >= 0) return b;
     }
 #endif
-    const double d = capped_distance(r, s.s0, s.s1, s.e0, s.e1, cap, k->lo);
+    const double lo = bounding(r) ? k->lo : -1.0;
+    const double d = capped_distance(r, s.s0, s.s1, s.e0, s.e1, cap, lo);
     k->v = d > r.clearance ? d : r.clearance;
     k->known = true;
     if (at >= 0.0 && !(k->v < at) && !(k->v > at)) return ok ? 1 : 0;  // checked there already
@@ -629,7 +640,7 @@ int keep_ok(Run& r, Keep* k, const Swap& s, double cap) {
 // asked for): at least v (the pass, v <= cap), and at most the capped distance e of the shared
 // end point, so known when e <= v (then e = v: the pass bounds e from below too).
 Keep keep_after(const Run& r, const EndDist& e, double v) {
-  if (!r.bounds) return Keep{false, false, 0.0, -1.0};
+  if (!bounding(r)) return Keep{false, false, 0.0, -1.0};
   return Keep{false, e.known && e.d >= 0.0 && !(e.d > v), v, v};
 }
 
