@@ -86,11 +86,22 @@ struct Run {
   bool bounds;       // tighten bounds its keeps (keep_bounds): clearance <= res/4, 64-bit builds
 };
 
+// Counts one check; false (nothing counted) when the budget is spent.
+bool count_check(Run& r) {
+  if (r.checks >= r.budget) return false;
+  ++r.checks;
+  return true;
+}
+
+// [a, b] at clearance c, not counted (the check it stands for is counted by the caller).
+bool clear_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double c) {
+  return tdo_internal::segment_clear_steered(r.grid, a, b, c, &r.hint, &r.cube) != 0;
+}
+
 // [a, b] at `clearance` (m, >= the run's): 1 clear, 0 not clear, -1 budget exhausted.
 int check_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double clearance) {
-  if (r.checks >= r.budget) return -1;
-  ++r.checks;
-  return tdo_internal::segment_clear_steered(r.grid, a, b, clearance, &r.hint, &r.cube) ? 1 : 0;
+  if (!count_check(r)) return -1;
+  return clear_at(r, a, b, clearance) ? 1 : 0;
 }
 
 // [a, b] at the run's clearance.
@@ -98,11 +109,7 @@ int check(Run& r, const tdo_vec3& a, const tdo_vec3& b) { return check_at(r, a, 
 
 // A check whose answer is known to be "clear", counted as check() counts it: -1 when the budget
 // is spent, else 1.
-int known_clear(Run& r) {
-  if (r.checks >= r.budget) return -1;
-  ++r.checks;
-  return 1;
-}
+int known_clear(Run& r) { return count_check(r) ? 1 : -1; }
 
 // The point drop_collinear keeps after the kept input point s: e, the first later point that is
 // neither a repeat nor collinear (turn below kCollinearRad at it, seen from s), or the last.
@@ -142,7 +149,7 @@ bool run_clear(Run& r, const tdo_vec3* p, uint32_t s, uint32_t e) {
     h = dk > h ? dk : h;
   }
   const double need = r.clearance + h + kMarginRel * mag;
-  return tdo_internal::segment_clear_steered(r.grid, p[s], p[e], need, &r.hint, &r.cube) != 0;
+  return clear_at(r, p[s], p[e], need);
 }
 
 // Step 1: every input segment checked at the clearance, in order; TDO_ERR_NO_PATH at the first
@@ -541,15 +548,9 @@ struct Keep {
 // Count the check of a keep's distance; false when the budget ran out.
 bool count_distance(Run& r, Keep* k) {
   if (k->counted) return true;
-  if (r.checks >= r.budget) return false;
-  ++r.checks;
+  if (!count_check(r)) return false;
   k->counted = true;
   return true;
-}
-
-// [a, b] at clearance c, not counted (the check it stands for is counted by the caller).
-bool clear_at(Run& r, const tdo_vec3& a, const tdo_vec3& b, double c) {
-  return tdo_internal::segment_clear_steered(r.grid, a, b, c, &r.hint, &r.cube) != 0;
 }
 
 // Whether the run bounds its keeps (keep_bounds); false where they are compiled out.
@@ -701,12 +702,10 @@ bool tighten(Run& r, uint32_t m) {
           // The old segments' distances, only for a candidate that got this far.
           if (!count_distance(r, &d1) || !count_distance(r, &d2)) return false;
           // Counted as check_at counts them: one each, the second only after the first passed.
-          if (r.checks >= r.budget) return false;
-          ++r.checks;
+          if (!count_check(r)) return false;
           int ok = keep_ok(r, &d1, Swap{a, b, &ends[0], &ends[1], a, q}, cap);
           if (ok == 1) {
-            if (r.checks >= r.budget) return false;
-            ++r.checks;
+            if (!count_check(r)) return false;
             ok = keep_ok(r, &d2, Swap{b, c, &ends[1], &ends[2], q, c}, cap);
           }
           if (ok == 0) {

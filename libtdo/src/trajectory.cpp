@@ -2177,9 +2177,8 @@ bool pieces_dynamic(tdo_traj* ctx, const tdo_traj_input* in, const Limits& lim, 
   const Bound3 allowed{lim.v_max * f - noise.v, lim.a_max * f - noise.a, lim.j_max * f - noise.j};
   // span_bound with the bounds in place. Where the coarse ones miss, the plateaus under the
   // parts of the span that miss (2^kCoarseSplits) get the fine ones (refine_over); where it still
-  // misses, every
-  // plateau gets them (rigorous_curvature) and they decide, as they would alone (the spans before
-  // hold with the bounds they had, which are proven too).
+  // misses, every plateau gets them (rigorous_curvature) and they decide, as they would alone (the
+  // spans before hold with the bounds they had, which are proven too).
   const auto bound = [&](const Phase& ph, double ta, double tb, const Bound3& lim3) {
     Bound3 b = span_bound(ctx, ph, ta, tb, lim3, ctx->pieces->fine ? kPieceSplits : kCoarseSplits);
     if (fits(b, lim3) || ctx->pieces->fine) return b;

@@ -77,7 +77,8 @@ void collect(void* user, uint32_t /*index*/, const tdo_sample* s) {
   static_cast<std::vector<tdo_sample>*>(user)->push_back(*s);
 }
 
-Run run_traj(TestTraj* traj, const tdo_grid* grid, const tdo_path& path, double clearance) {
+Run run_traj(TestTraj* traj, const tdo_grid* grid, const tdo_path& path, double clearance,
+             int clearance_proven = 0) {
   tdo_plan_params params;
   tdo_plan_params_default(&params);
   tdo_traj_input in{};
@@ -85,6 +86,7 @@ Run run_traj(TestTraj* traj, const tdo_grid* grid, const tdo_path& path, double 
   in.path = path;
   in.grid = grid;
   in.clearance = clearance;
+  in.clearance_proven = clearance_proven;
   Run r;
   r.status = tdo_traj_run(traj->ctx(), &in, &r.out);
   if (r.status != TDO_OK && r.status != TDO_ERR_INFEASIBLE) return r;
@@ -224,18 +226,25 @@ TEST(TrajectoryClearance, GivenMap4WhenVerifiedThenClearanceEqualsBruteForce) { 
 TEST(TrajectoryClearance, GivenMap5WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map5"); }
 TEST(TrajectoryClearance, GivenMap6WhenVerifiedThenClearanceEqualsBruteForce) { check_map("map6"); }
 
+/** The first n queries of MovingAI Simple's scenario file (fewer when it does not load). */
+std::vector<tdo_io::ScenQuery> simple_queries(size_t n) {
+  std::vector<tdo_io::ScenQuery> queries;
+  std::string err;
+  EXPECT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
+  if (queries.size() > n) queries.resize(n);
+  return queries;
+}
+
 // MovingAI Simple (voxel cubes, clearance 0: the paths graze the cubes), its first queries.
 TEST(TrajectoryClearance, GivenMovingAISimpleWhenVerifiedThenClearanceEqualsBruteForce) {
   const tdo_io::Map map = load("movingai/Simple.3dmap");
-  std::vector<tdo_io::ScenQuery> queries;
-  std::string err;
-  ASSERT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
-  ASSERT_GE(queries.size(), 40u);
+  const std::vector<tdo_io::ScenQuery> queries = simple_queries(40u);
+  ASSERT_EQ(queries.size(), 40u);
   TestPlanner pl = map_planner(map, 0.0);
   ASSERT_EQ(pl.status(), TDO_OK);
-  for (size_t k = 0; k < 40u; ++k) {
-    SCOPED_TRACE("Simple query " + std::to_string(queries[k].line));
-    check_plan(&pl, 0.0, queries[k].start, queries[k].goal);
+  for (const tdo_io::ScenQuery& q : queries) {
+    SCOPED_TRACE("Simple query " + std::to_string(q.line));
+    check_plan(&pl, 0.0, q.start, q.goal);
   }
 }
 
@@ -304,19 +313,11 @@ void check_proven(TestPlanner* pl, double clearance, tdo_vec3 start, tdo_vec3 go
   TestTraj traj(traj_cfg(4u * res.n_samples + 1000u, res.path.n + 8u, TDO_TRAJ_SAMPLES_PIECES),
                 64u);
   ASSERT_EQ(traj.status(), TDO_OK);
-  tdo_plan_params params;
-  tdo_plan_params_default(&params);
-  tdo_traj_input in{};
-  tdo_plan_traj_input(&params, &in);
-  in.path = path;
-  in.grid = grid;
-  in.clearance = clearance;
-  tdo_traj_output out{};
-  ASSERT_EQ(tdo_traj_run(traj.ctx(), &in, &out), TDO_OK);
-  ASSERT_EQ(out.sample_passes, 0u);
-  EXPECT_EQ(out.report.min_clearance, measured.min_clearance_m);
-  in.clearance_proven = 2;
-  EXPECT_EQ(tdo_traj_run(traj.ctx(), &in, &out), TDO_ERR_INVALID_ARGUMENT);
+  const Run r = run_traj(&traj, grid, path, clearance);
+  ASSERT_EQ(r.status, TDO_OK);
+  ASSERT_EQ(r.out.sample_passes, 0u);
+  EXPECT_EQ(r.out.report.min_clearance, measured.min_clearance_m);
+  EXPECT_EQ(run_traj(&traj, grid, path, clearance, 2).status, TDO_ERR_INVALID_ARGUMENT);
 }
 
 // The planner's pieces-mode plans on the forests (clearance 0.5), geb079 (0.3) and MovingAI Simple
@@ -333,15 +334,13 @@ TEST(TrajectoryClearance, GivenPiecesPlansWhenTheStagesProveTheClearanceThenBrut
   ASSERT_EQ(pg.status(), TDO_OK);
   check_proven(&pg, 0.3, tdo_vec3{6.0, 5.0, 1.2}, tdo_vec3{11.0, -5.0, 1.2});  // G5, with turns
   const tdo_io::Map simple = load("movingai/Simple.3dmap");
-  std::vector<tdo_io::ScenQuery> queries;
-  std::string err;
-  ASSERT_TRUE(tdo_io::load_scen(kMaps + "/movingai/Simple.3dmap.3dscen", &queries, &err)) << err;
-  ASSERT_GE(queries.size(), 20u);
+  const std::vector<tdo_io::ScenQuery> queries = simple_queries(20u);
+  ASSERT_EQ(queries.size(), 20u);
   TestPlanner ps = pieces_planner(simple, 0.0);
   ASSERT_EQ(ps.status(), TDO_OK);
-  for (size_t k = 0; k < 20u; ++k) {
-    SCOPED_TRACE("Simple query " + std::to_string(queries[k].line));
-    check_proven(&ps, 0.0, queries[k].start, queries[k].goal);
+  for (const tdo_io::ScenQuery& q : queries) {
+    SCOPED_TRACE("Simple query " + std::to_string(q.line));
+    check_proven(&ps, 0.0, q.start, q.goal);
   }
 }
 
